@@ -1,0 +1,29 @@
+// Command-line flags for every model parameter, named after the source's
+// properties in kebab-case (--domain-count, --domain-diameter-range, ...).
+// Shared by the command-line programs.
+#pragma once
+
+#include "OpalModelParameters.h"
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+class vtkOpalSource;
+
+class OpalModelOptions
+{
+public:
+  // Registers the flags on the app; values land in this object.
+  void addTo(CLI::App& app);
+
+  // Configures the source: the preset first, then every flag given explicitly.
+  void configure(vtkOpalSource* source) const;
+
+  const std::string& presetName() const { return this->Preset; }
+
+private:
+  opal::ModelParameters Parameters;
+  std::string Preset = "fig12";
+  CLI::Option* DomainDiameterRangeOption = nullptr;
+};

@@ -1,0 +1,72 @@
+// The diffraction domains of the paper (§3.2): jittered regular polygons,
+// tilted, spun and moved into the opal, rasterised as one-voxel-thick naive
+// digital planes. The list depends only on the parameters and the seed, so
+// every process computes the same one.
+#pragma once
+
+#include "OpalGrid.h"
+#include "OpalModelParameters.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace opal
+{
+
+struct Domain
+{
+  int Id = -1;
+  std::vector<std::array<double, 3>> Vertices; // world coordinates, mm
+  std::array<double, 3> Centre{};
+  std::array<double, 3> Normal{}; // FCC (111) lattice-plane normal, y >= 0
+  double ParticleDiameter = 0;    // nm
+  std::int64_t VoxelCount = 0;
+};
+
+// One diffraction voxel: its global linear index and its domain.
+struct DomainVoxel
+{
+  std::int64_t Index;
+  int DomainId;
+  bool operator<(const DomainVoxel& other) const { return this->Index < other.Index; }
+};
+
+class DomainLayout
+{
+public:
+  // Places the domains one after another. A domain that finds no free place
+  // within MaxPlacementAttempts is skipped (placedCount() tells how many made it).
+  // progress(fraction) is called now and then; returning false aborts the build.
+  static DomainLayout build(const ModelParameters& parameters,
+    const std::function<bool(double)>& progress = nullptr);
+
+  const std::vector<Domain>& domains() const { return this->Domains; }
+  int placedCount() const { return static_cast<int>(this->Domains.size()); }
+  int requestedCount() const { return this->Requested; }
+  bool aborted() const { return this->Aborted; }
+
+  // Diffraction voxels sorted by global index (x fastest): a row of the grid
+  // is a contiguous run.
+  const std::vector<DomainVoxel>& voxels() const { return this->Voxels; }
+
+  // First diffraction voxel at or after the global index.
+  std::vector<DomainVoxel>::const_iterator lowerBound(std::int64_t index) const;
+
+private:
+  std::vector<Domain> Domains;
+  std::vector<DomainVoxel> Voxels;
+  int Requested = 0;
+  bool Aborted = false;
+};
+
+// Voxels of the naive digital plane of a convex polygon: along the grid axis
+// closest to its normal, each column whose axis crosses the polygon gets the
+// one voxel containing the crossing. Exposed for tests. Returns false if a
+// crossing falls outside the grid.
+bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>& vertices,
+  const std::array<double, 3>& normal, std::vector<std::array<int, 3>>& voxels);
+
+} // namespace opal

@@ -1,0 +1,145 @@
+#include "OpalModelParameters.h"
+
+#include "OpalPresets.h"
+
+#include <sstream>
+
+namespace opal
+{
+
+bool ModelParameters::applyPreset(int presetIndex)
+{
+  const PresetSettings* preset = presetByIndex(presetIndex);
+  if (!preset)
+  {
+    return presetIndex == CustomPreset;
+  }
+  this->DomainDiameterRange = preset->DomainDiameterRange;
+  return true;
+}
+
+namespace
+{
+
+template <typename T>
+std::string rangeError(const char* name, const std::array<T, 2>& range)
+{
+  std::ostringstream message;
+  if (range[0] > range[1])
+  {
+    message << name << " has min " << range[0] << " > max " << range[1] << ".";
+  }
+  return message.str();
+}
+
+template <typename T>
+std::string positiveRangeError(const char* name, const std::array<T, 2>& range)
+{
+  std::string error = rangeError(name, range);
+  if (error.empty() && !(range[0] > 0))
+  {
+    std::ostringstream message;
+    message << name << " must be positive, got min " << range[0] << ".";
+    error = message.str();
+  }
+  return error;
+}
+
+std::string withinRangeError(const char* name, const std::array<double, 2>& range, double lo, double hi)
+{
+  std::string error = rangeError(name, range);
+  if (error.empty() && !(range[0] >= lo && range[1] <= hi))
+  {
+    std::ostringstream message;
+    message << name << " must lie within [" << lo << ", " << hi << "], got [" << range[0] << ", "
+            << range[1] << "].";
+    error = message.str();
+  }
+  return error;
+}
+
+} // namespace
+
+std::string validate(const ModelParameters& p)
+{
+  std::ostringstream message;
+  static const char* axis = "xyz";
+  for (int a = 0; a < 3; ++a)
+  {
+    if (p.Dimensions[a] < 1)
+    {
+      message << "Dimensions must be positive, got " << p.Dimensions[a] << " along " << axis[a] << ".";
+      return message.str();
+    }
+    if (!(p.PhysicalSize[a] > 0))
+    {
+      message << "PhysicalSize must be positive, got " << p.PhysicalSize[a] << " mm along " << axis[a]
+              << ".";
+      return message.str();
+    }
+    if (!(p.SemiAxes[a] > 0))
+    {
+      message << "SemiAxes must be positive, got " << p.SemiAxes[a] << " mm along " << axis[a] << ".";
+      return message.str();
+    }
+  }
+  // The half-ellipsoid sits on the base y = 0, centred in x and z.
+  const std::array<double, 3> room{ p.PhysicalSize[0] / 2, p.PhysicalSize[1], p.PhysicalSize[2] / 2 };
+  for (int a = 0; a < 3; ++a)
+  {
+    if (p.SemiAxes[a] > room[a] * (1 + 1e-9))
+    {
+      message << "SemiAxes: the shape does not fit the box: semi-axis " << axis[a] << " = "
+              << p.SemiAxes[a] << " mm exceeds " << room[a] << " mm (PhysicalSize).";
+      return message.str();
+    }
+  }
+  for (const std::string& error : {
+         positiveRangeError("ScatteringDiameterRange", p.ScatteringDiameterRange),
+         positiveRangeError("DomainRadiusRange", p.DomainRadiusRange),
+         positiveRangeError("DomainDiameterRange", p.DomainDiameterRange),
+         withinRangeError("DomainVertexJitter", p.DomainVertexJitter, 0.0, 1.0),
+         withinRangeError("DomainAngleRange", p.DomainAngleRange, 0.0, 180.0),
+         withinRangeError("DomainRotationRange", p.DomainRotationRange, 0.0, 90.0),
+         rangeError("DomainVertexRange", p.DomainVertexRange),
+       })
+  {
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  if (!(p.DomainVertexJitter[0] > 0))
+  {
+    return "DomainVertexJitter must be above 0: a vertex at the centre degenerates the polygon.";
+  }
+  if (p.DomainVertexRange[0] < 3)
+  {
+    message << "DomainVertexRange needs at least 3 vertices, got " << p.DomainVertexRange[0] << ".";
+    return message.str();
+  }
+  if (!(p.ScatteringVolumeFraction > 0 && p.ScatteringVolumeFraction <= MaxVolumeFraction))
+  {
+    message << "ScatteringVolumeFraction must lie in (0, " << MaxVolumeFraction << "], got "
+            << p.ScatteringVolumeFraction << ".";
+    return message.str();
+  }
+  if (p.DomainCount < 0)
+  {
+    message << "DomainCount must not be negative, got " << p.DomainCount << ".";
+    return message.str();
+  }
+  if (!(p.RefractiveIndex > 1))
+  {
+    message << "RefractiveIndex must exceed 1, got " << p.RefractiveIndex << ".";
+    return message.str();
+  }
+  if (p.MaxPlacementAttempts < 1)
+  {
+    message << "MaxPlacementAttempts must be at least 1, got " << p.MaxPlacementAttempts << ".";
+    return message.str();
+  }
+  return {};
+}
+
+} // namespace opal

@@ -1,0 +1,43 @@
+// Every parameter of the volumetric opal model (paper §3-4, DESIGN.md §2),
+// with the paper's values where it gives them and documented choices where
+// it does not. Plain data, no VTK types.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace opal
+{
+
+struct ModelParameters
+{
+  std::array<int, 3> Dimensions{ 160, 80, 200 };         // voxels (x, y, z), paper §7
+  std::array<double, 3> PhysicalSize{ 16.0, 8.0, 20.0 }; // mm, paper §7
+  std::array<double, 3> SemiAxes{ 8.0, 8.0, 10.0 };      // mm, half-ellipsoid a, b, c
+  std::array<double, 2> ScatteringDiameterRange{ 5.0, 50.0 }; // nm, paper §2
+  // Silica volume fraction of the scattering body. The paper gives none; 0.2
+  // gives mean mu_s(550) ~ 0.34 /mm: milky and translucent over 8 mm.
+  double ScatteringVolumeFraction = 0.2;
+  int DomainCount = 250;                                   // paper §7
+  std::array<int, 2> DomainVertexRange{ 5, 8 };            // polygon vertices
+  std::array<double, 2> DomainRadiusRange{ 0.5, 1.5 };     // mm, circumradius
+  std::array<double, 2> DomainVertexJitter{ 0.4, 1.0 };    // fraction of the radius
+  std::array<double, 2> DomainAngleRange{ 30.0, 170.0 };   // deg, interior angles
+  std::array<double, 2> DomainRotationRange{ 0.0, 30.0 };  // deg, tilt of the normal from +y
+  std::array<double, 2> DomainDiameterRange{ 250.0, 350.0 }; // nm, fig12
+  double RefractiveIndex = 1.45;                           // mu of opal (silica)
+  int MaxPlacementAttempts = 1000;                         // per domain
+  std::uint32_t Seed = 1;
+
+  // Sets the parameters the paper varies between figures; false if the index is unknown.
+  bool applyPreset(int presetIndex);
+};
+
+// The largest silica volume fraction: close packing of equal spheres.
+constexpr double MaxVolumeFraction = 0.74;
+
+// Empty if the parameters are valid, else one sentence naming the parameter.
+std::string validate(const ModelParameters& parameters);
+
+} // namespace opal

@@ -1,0 +1,36 @@
+// The paper's figures as presets (DESIGN.md §4): the parameters the paper
+// varies between its figures. Everything else keeps the model's defaults.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace opal
+{
+
+struct PresetSettings
+{
+  const char* Name;
+  std::array<double, 2> DomainDiameterRange; // nm
+  std::array<int, 2> ImageSize;              // pixels, width x height
+  double RotateXDegrees;                     // model rotation about x
+  const char* PaperObservation;
+};
+
+// Index 0 of the preset enumeration is "custom" (no preset); presets are 1-based.
+constexpr int CustomPreset = 0;
+constexpr int DefaultPreset = 3; // fig12, the paper's red opal
+
+const std::vector<PresetSettings>& presets();
+
+// The preset with the given 1-based index, or nullptr for CustomPreset / out of range.
+const PresetSettings* presetByIndex(int index);
+
+// 1-based index of the named preset ("fig12"), CustomPreset for "custom", -1 if unknown.
+int presetIndexByName(const std::string& name);
+
+// "custom, fig10, fig11, ..." for messages and help texts.
+std::string presetNameList();
+
+} // namespace opal

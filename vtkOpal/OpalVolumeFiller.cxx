@@ -1,0 +1,122 @@
+#include "OpalVolumeFiller.h"
+
+#include "OpalOptics.h"
+#include "OpalRandom.h"
+
+#include <algorithm>
+
+namespace opal
+{
+
+VolumeFiller::VolumeFiller(const ModelParameters& parameters, const DomainLayout& layout)
+  : Parameters(parameters)
+  , Layout(layout)
+  , VoxelGrid(Grid::fromParameters(parameters))
+  , Shape(parameters.SemiAxes)
+  , RayleighPerCubicNm(
+      rayleighScatteringPerMm(1.0, parameters.ScatteringVolumeFraction, ReferenceWavelengthNm))
+  , MaxSpacing(*std::max_element(this->VoxelGrid.Spacing.begin(), this->VoxelGrid.Spacing.end()))
+{
+}
+
+double VolumeFiller::scatteringDiameter(std::int64_t globalIndex) const
+{
+  const double u = unitFromHash(hashCounter(this->Parameters.Seed, RandomStream::ScatteringDiameter,
+    static_cast<std::uint64_t>(globalIndex)));
+  const auto& range = this->Parameters.ScatteringDiameterRange;
+  return range[0] + (range[1] - range[0]) * u;
+}
+
+bool VolumeFiller::isSurfaceVoxel(int i, int j, int k) const
+{
+  static const int offsets[6][3] = { { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
+    { 0, 0, -1 } };
+  for (const auto& o : offsets)
+  {
+    const int a = i + o[0], b = j + o[1], c = k + o[2];
+    if (!this->VoxelGrid.contains(a, b, c) || !this->Shape.contains(this->VoxelGrid.position(a, b, c)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void VolumeFiller::fill(
+  const std::array<int, 6>& extent, int kBegin, int kEnd, const VolumeFields& out) const
+{
+  const Grid& grid = this->VoxelGrid;
+  const std::int64_t nx = extent[1] - extent[0] + 1;
+  const std::int64_t ny = extent[3] - extent[2] + 1;
+  const std::vector<Domain>& domains = this->Layout.domains();
+  const double mu = this->Parameters.RefractiveIndex;
+  for (int k = kBegin; k < kEnd; ++k)
+  {
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      const std::int64_t rowStart = nx * ((j - extent[2]) + ny * (k - extent[4]));
+      // The row's diffraction voxels, in increasing x.
+      auto domainVoxel = this->Layout.lowerBound(grid.linearIndex(extent[0], j, k));
+      const auto domainEnd = this->Layout.voxels().end();
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        const std::int64_t o = rowStart + (i - extent[0]);
+        const std::int64_t globalIndex = grid.linearIndex(i, j, k);
+        const std::array<double, 3> p = grid.position(i, j, k);
+        const double distance = this->Shape.signedDistance(p);
+        out.SurfaceDistance[o] = static_cast<float>(distance);
+
+        float* normal = out.Normal + 3 * o;
+        normal[0] = normal[1] = normal[2] = 0.0f;
+        out.DomainId[o] = -1;
+        out.BraggLambdaMax[o] = 0.0f;
+        out.BraggLambdaMin[o] = 0.0f;
+        out.ScatteringCoefficient[o] = 0.0f;
+        out.ParticleDiameter[o] = 0.0f;
+
+        while (domainVoxel != domainEnd && domainVoxel->Index < globalIndex)
+        {
+          ++domainVoxel;
+        }
+        if (domainVoxel != domainEnd && domainVoxel->Index == globalIndex)
+        {
+          // Diffraction voxel: FCC (111) planes, no scattering (paper §6.2).
+          const Domain& domain = domains[static_cast<std::size_t>(domainVoxel->DomainId)];
+          const double lambdaMax = braggLambdaMax(domain.ParticleDiameter, mu);
+          out.VoxelType[o] = DiffractionVoxel;
+          out.DomainId[o] = domain.Id;
+          out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
+          out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
+          out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
+          for (int a = 0; a < 3; ++a)
+          {
+            normal[a] = static_cast<float>(domain.Normal[static_cast<std::size_t>(a)]);
+          }
+        }
+        else if (this->Shape.contains(p))
+        {
+          const double diameter = this->scatteringDiameter(globalIndex);
+          out.VoxelType[o] = ScatteringVoxel;
+          out.ParticleDiameter[o] = static_cast<float>(diameter);
+          out.ScatteringCoefficient[o] =
+            static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
+          // Only voxels within one spacing of the surface can have an empty neighbour.
+          if (distance >= -this->MaxSpacing && this->isSurfaceVoxel(i, j, k))
+          {
+            const std::array<double, 3> n = this->Shape.outwardNormal(p);
+            for (int a = 0; a < 3; ++a)
+            {
+              normal[a] = static_cast<float>(n[static_cast<std::size_t>(a)]);
+            }
+          }
+        }
+        else
+        {
+          out.VoxelType[o] = EmptyVoxel;
+        }
+      }
+    }
+  }
+}
+
+} // namespace opal

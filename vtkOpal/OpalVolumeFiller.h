@@ -1,0 +1,60 @@
+// Fills the model's per-voxel fields (DESIGN.md §2) over any sub-extent of
+// the grid. Every value derives from the global voxel index, the parameters
+// and the domain layout, so pieces agree exactly with the whole volume.
+#pragma once
+
+#include "OpalDomainLayout.h"
+#include "OpalGrid.h"
+#include "OpalHalfEllipsoid.h"
+#include "OpalModelParameters.h"
+
+#include <array>
+#include <cstdint>
+
+namespace opal
+{
+
+enum VoxelType : std::uint8_t
+{
+  EmptyVoxel = 0,
+  ScatteringVoxel = 1,
+  DiffractionVoxel = 2,
+};
+
+// Destination arrays, each laid out over the extent with x fastest.
+struct VolumeFields
+{
+  std::uint8_t* VoxelType;
+  float* ParticleDiameter;      // nm
+  float* Normal;                // 3 components
+  std::int32_t* DomainId;
+  float* BraggLambdaMax;        // nm
+  float* BraggLambdaMin;        // nm
+  float* ScatteringCoefficient; // 1/mm at 550 nm
+  float* SurfaceDistance;       // mm, negative inside
+};
+
+class VolumeFiller
+{
+public:
+  VolumeFiller(const ModelParameters& parameters, const DomainLayout& layout);
+
+  // Fills the voxels of `extent` (inclusive index bounds i0 i1 j0 j1 k0 k1)
+  // whose z index lies in [kBegin, kEnd). Thread-safe for disjoint ranges.
+  void fill(const std::array<int, 6>& extent, int kBegin, int kEnd, const VolumeFields& out) const;
+
+  // The particle diameter (nm) the scattering voxel with this global index gets.
+  double scatteringDiameter(std::int64_t globalIndex) const;
+
+private:
+  bool isSurfaceVoxel(int i, int j, int k) const;
+
+  ModelParameters Parameters;
+  const DomainLayout& Layout;
+  Grid VoxelGrid;
+  HalfEllipsoid Shape;
+  double RayleighPerCubicNm; // mu_s(550) / l^3: eq. 1 with n = 6 phi / (pi l^3)
+  double MaxSpacing;
+};
+
+} // namespace opal

@@ -1,0 +1,61 @@
+#include "vtkOpalFieldData.h"
+
+#include "OpalModelParameters.h"
+#include "OpalPresets.h"
+
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkStringArray.h"
+
+#include <initializer_list>
+
+namespace
+{
+template <typename ArrayT, typename T>
+void addArray(vtkFieldData* fieldData, const char* name, std::initializer_list<T> values)
+{
+  vtkNew<ArrayT> array;
+  array->SetName(name);
+  for (T value : values)
+  {
+    array->InsertNextValue(value);
+  }
+  fieldData->AddArray(array);
+}
+} // namespace
+
+namespace vtkOpalFieldData
+{
+void AddModelParameters(
+  vtkDataObject* data, const opal::ModelParameters& p, int preset, int domainsPlaced)
+{
+  vtkFieldData* f = data->GetFieldData();
+  addArray<vtkIntArray>(f, "Dimensions", { p.Dimensions[0], p.Dimensions[1], p.Dimensions[2] });
+  addArray<vtkDoubleArray>(f, "PhysicalSize", { p.PhysicalSize[0], p.PhysicalSize[1], p.PhysicalSize[2] });
+  addArray<vtkDoubleArray>(f, "SemiAxes", { p.SemiAxes[0], p.SemiAxes[1], p.SemiAxes[2] });
+  addArray<vtkDoubleArray>(
+    f, "ScatteringDiameterRange", { p.ScatteringDiameterRange[0], p.ScatteringDiameterRange[1] });
+  addArray<vtkDoubleArray>(f, "ScatteringVolumeFraction", { p.ScatteringVolumeFraction });
+  addArray<vtkIntArray>(f, "DomainCount", { p.DomainCount });
+  addArray<vtkIntArray>(f, "DomainVertexRange", { p.DomainVertexRange[0], p.DomainVertexRange[1] });
+  addArray<vtkDoubleArray>(f, "DomainRadiusRange", { p.DomainRadiusRange[0], p.DomainRadiusRange[1] });
+  addArray<vtkDoubleArray>(f, "DomainVertexJitter", { p.DomainVertexJitter[0], p.DomainVertexJitter[1] });
+  addArray<vtkDoubleArray>(f, "DomainAngleRange", { p.DomainAngleRange[0], p.DomainAngleRange[1] });
+  addArray<vtkDoubleArray>(
+    f, "DomainRotationRange", { p.DomainRotationRange[0], p.DomainRotationRange[1] });
+  addArray<vtkDoubleArray>(
+    f, "DomainDiameterRange", { p.DomainDiameterRange[0], p.DomainDiameterRange[1] });
+  addArray<vtkDoubleArray>(f, "RefractiveIndex", { p.RefractiveIndex });
+  addArray<vtkIntArray>(f, "MaxPlacementAttempts", { p.MaxPlacementAttempts });
+  addArray<vtkIntArray>(f, "Seed", { static_cast<int>(p.Seed) });
+  const opal::PresetSettings* settings = opal::presetByIndex(preset);
+  vtkNew<vtkStringArray> presetName;
+  presetName->SetName("Preset");
+  presetName->InsertNextValue(settings ? settings->Name : "custom");
+  f->AddArray(presetName);
+  addArray<vtkIntArray>(f, "DomainsPlaced", { domainsPlaced });
+}
+} // namespace vtkOpalFieldData

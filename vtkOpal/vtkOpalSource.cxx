@@ -1,0 +1,322 @@
+#include "vtkOpalSource.h"
+
+#include "OpalDomainLayout.h"
+#include "OpalModelParameters.h"
+#include "OpalOptics.h"
+#include "OpalPresets.h"
+#include "OpalVolumeFiller.h"
+#include "vtkOpalFieldData.h"
+
+#include "vtkCellArray.h"
+#include "vtkCellData.h"
+#include "vtkDataObject.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkOpalSource);
+
+namespace
+{
+template <typename T, std::size_t N>
+void copyArray(const std::array<T, N>& from, T* to)
+{
+  std::copy(from.begin(), from.end(), to);
+}
+
+template <typename T, std::size_t N>
+void copyArray(const T* from, std::array<T, N>& to)
+{
+  std::copy(from, from + N, to.begin());
+}
+
+// Share of the work spent placing domains; filling the voxels takes the rest.
+constexpr double LayoutProgressShare = 0.1;
+} // namespace
+
+vtkOpalSource::vtkOpalSource()
+{
+  this->SetNumberOfInputPorts(0);
+  this->SetNumberOfOutputPorts(2);
+  this->SetModelParameters(opal::ModelParameters());
+  this->Preset = opal::DefaultPreset;
+}
+
+bool vtkOpalSource::SetPresetByName(const char* name)
+{
+  const int index = name ? opal::presetIndexByName(name) : -1;
+  if (index < 0)
+  {
+    vtkErrorMacro("Preset \"" << (name ? name : "(null)")
+                              << "\" is unknown; choose one of: " << opal::presetNameList());
+    return false;
+  }
+  this->SetPreset(index);
+  return true;
+}
+
+opal::ModelParameters vtkOpalSource::GetModelParameters() const
+{
+  opal::ModelParameters p;
+  copyArray(this->Dimensions, p.Dimensions);
+  copyArray(this->PhysicalSize, p.PhysicalSize);
+  copyArray(this->SemiAxes, p.SemiAxes);
+  copyArray(this->ScatteringDiameterRange, p.ScatteringDiameterRange);
+  p.ScatteringVolumeFraction = this->ScatteringVolumeFraction;
+  p.DomainCount = this->DomainCount;
+  copyArray(this->DomainVertexRange, p.DomainVertexRange);
+  copyArray(this->DomainRadiusRange, p.DomainRadiusRange);
+  copyArray(this->DomainVertexJitter, p.DomainVertexJitter);
+  copyArray(this->DomainAngleRange, p.DomainAngleRange);
+  copyArray(this->DomainRotationRange, p.DomainRotationRange);
+  copyArray(this->DomainDiameterRange, p.DomainDiameterRange);
+  p.RefractiveIndex = this->RefractiveIndex;
+  p.MaxPlacementAttempts = this->MaxPlacementAttempts;
+  p.Seed = static_cast<std::uint32_t>(this->Seed);
+  p.applyPreset(this->Preset);
+  return p;
+}
+
+void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
+{
+  copyArray(p.Dimensions, this->Dimensions);
+  copyArray(p.PhysicalSize, this->PhysicalSize);
+  copyArray(p.SemiAxes, this->SemiAxes);
+  copyArray(p.ScatteringDiameterRange, this->ScatteringDiameterRange);
+  this->ScatteringVolumeFraction = p.ScatteringVolumeFraction;
+  this->DomainCount = p.DomainCount;
+  copyArray(p.DomainVertexRange, this->DomainVertexRange);
+  copyArray(p.DomainRadiusRange, this->DomainRadiusRange);
+  copyArray(p.DomainVertexJitter, this->DomainVertexJitter);
+  copyArray(p.DomainAngleRange, this->DomainAngleRange);
+  copyArray(p.DomainRotationRange, this->DomainRotationRange);
+  copyArray(p.DomainDiameterRange, this->DomainDiameterRange);
+  this->RefractiveIndex = p.RefractiveIndex;
+  this->MaxPlacementAttempts = p.MaxPlacementAttempts;
+  this->Seed = static_cast<int>(p.Seed);
+  this->Modified();
+}
+
+std::string vtkOpalSource::Validate() const
+{
+  if (this->Preset != opal::CustomPreset && !opal::presetByIndex(this->Preset))
+  {
+    return "Preset " + std::to_string(this->Preset) + " is unknown; choose one of: " +
+      opal::presetNameList() + " (0-" + std::to_string(opal::presets().size()) + ").";
+  }
+  return opal::validate(this->GetModelParameters());
+}
+
+int vtkOpalSource::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
+  return 1;
+}
+
+int vtkOpalSource::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  const std::string error = this->Validate();
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const opal::Grid grid = opal::Grid::fromParameters(this->GetModelParameters());
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int wholeExtent[6] = { 0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0,
+    grid.Dimensions[2] - 1 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), grid.Spacing.data(), 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin.data(), 3);
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
+  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 1);
+  return 1;
+}
+
+namespace
+{
+template <typename ArrayT>
+vtkNew<ArrayT> makePointArray(const char* name, int components, vtkIdType tuples)
+{
+  vtkNew<ArrayT> array;
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+vtkNew<vtkPolyData> makeDomainPolygons(const opal::DomainLayout& layout, double refractiveIndex)
+{
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> polygons;
+  const auto domainCount = static_cast<vtkIdType>(layout.domains().size());
+  auto ids = makePointArray<vtkIntArray>("DomainId", 1, domainCount);
+  auto diameters = makePointArray<vtkFloatArray>("ParticleDiameter", 1, domainCount);
+  auto normals = makePointArray<vtkFloatArray>("Normal", 3, domainCount);
+  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, domainCount);
+  for (const opal::Domain& domain : layout.domains())
+  {
+    polygons->InsertNextCell(static_cast<vtkIdType>(domain.Vertices.size()));
+    for (const auto& vertex : domain.Vertices)
+    {
+      polygons->InsertCellPoint(points->InsertNextPoint(vertex.data()));
+    }
+    ids->SetValue(domain.Id, domain.Id);
+    diameters->SetValue(domain.Id, static_cast<float>(domain.ParticleDiameter));
+    normals->SetTuple(domain.Id, domain.Normal.data());
+    lambdaMax->SetValue(domain.Id,
+      static_cast<float>(opal::braggLambdaMax(domain.ParticleDiameter, refractiveIndex)));
+  }
+  vtkNew<vtkPolyData> output;
+  output->SetPoints(points);
+  output->SetPolys(polygons);
+  output->GetCellData()->AddArray(ids);
+  output->GetCellData()->AddArray(diameters);
+  output->GetCellData()->AddArray(normals);
+  output->GetCellData()->AddArray(lambdaMax);
+  return output;
+}
+} // namespace
+
+int vtkOpalSource::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  const std::string error = this->Validate();
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  const opal::ModelParameters parameters = this->GetModelParameters();
+  const opal::Grid grid = opal::Grid::fromParameters(parameters);
+
+  this->UpdateProgress(0.0);
+  const opal::DomainLayout layout =
+    opal::DomainLayout::build(parameters, [this](double fraction) {
+      this->UpdateProgress(LayoutProgressShare * fraction);
+      return !this->GetAbortExecute();
+    });
+  if (layout.aborted())
+  {
+    return 0;
+  }
+  if (layout.placedCount() < layout.requestedCount())
+  {
+    vtkWarningMacro("DomainCount: only " << layout.placedCount() << " of " << layout.requestedCount()
+                                         << " domains could be placed within MaxPlacementAttempts ("
+                                         << parameters.MaxPlacementAttempts
+                                         << "); DomainsPlaced in the field data says how many.");
+  }
+
+  vtkInformation* imageInfo = outputVector->GetInformationObject(0);
+  vtkImageData* image = vtkImageData::GetData(imageInfo);
+  int extent[6];
+  imageInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  image->SetExtent(extent);
+  image->SetSpacing(grid.Spacing.data());
+  image->SetOrigin(grid.Origin.data());
+  const vtkIdType count = image->GetNumberOfPoints();
+
+  auto voxelType = makePointArray<vtkUnsignedCharArray>("VoxelType", 1, count);
+  auto diameter = makePointArray<vtkFloatArray>("ParticleDiameter", 1, count);
+  auto normal = makePointArray<vtkFloatArray>("Normal", 3, count);
+  auto domainId = makePointArray<vtkIntArray>("DomainId", 1, count);
+  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, count);
+  auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
+  auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
+  auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
+  const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0),
+    normal->GetPointer(0), domainId->GetPointer(0), lambdaMax->GetPointer(0),
+    lambdaMin->GetPointer(0), scattering->GetPointer(0), distance->GetPointer(0) };
+
+  // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
+  const opal::VolumeFiller filler(parameters, layout);
+  const std::array<int, 6> fillExtent{ extent[0], extent[1], extent[2], extent[3], extent[4],
+    extent[5] };
+  const int slabs = count > 0 ? extent[5] - extent[4] + 1 : 0;
+  const int chunk = std::max(1, slabs / 20);
+  for (int k = extent[4]; count > 0 && k <= extent[5]; k += chunk)
+  {
+    if (this->GetAbortExecute())
+    {
+      image->Initialize();
+      return 0;
+    }
+    const int kEnd = std::min(extent[5] + 1, k + chunk);
+    vtkSMPTools::For(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
+    this->UpdateProgress(
+      LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
+  }
+
+  vtkPointData* pointData = image->GetPointData();
+  pointData->SetScalars(voxelType);
+  pointData->AddArray(diameter);
+  pointData->SetNormals(normal);
+  pointData->AddArray(domainId);
+  pointData->AddArray(lambdaMax);
+  pointData->AddArray(lambdaMin);
+  pointData->AddArray(scattering);
+  pointData->AddArray(distance);
+  vtkOpalFieldData::AddModelParameters(image, parameters, this->Preset, layout.placedCount());
+
+  // The layout is small: the first piece carries all of it, the others none.
+  vtkInformation* polyInfo = outputVector->GetInformationObject(1);
+  vtkPolyData* polygons = vtkPolyData::GetData(polyInfo);
+  const int piece = polyInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? polyInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  if (piece == 0)
+  {
+    polygons->ShallowCopy(makeDomainPolygons(layout, parameters.RefractiveIndex));
+  }
+  else
+  {
+    polygons->Initialize();
+  }
+  vtkOpalFieldData::AddModelParameters(polygons, parameters, this->Preset, layout.placedCount());
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Dimensions: " << this->Dimensions[0] << " " << this->Dimensions[1] << " "
+     << this->Dimensions[2] << "\n";
+  os << indent << "PhysicalSize: " << this->PhysicalSize[0] << " " << this->PhysicalSize[1] << " "
+     << this->PhysicalSize[2] << "\n";
+  os << indent << "SemiAxes: " << this->SemiAxes[0] << " " << this->SemiAxes[1] << " "
+     << this->SemiAxes[2] << "\n";
+  os << indent << "ScatteringDiameterRange: " << this->ScatteringDiameterRange[0] << " "
+     << this->ScatteringDiameterRange[1] << "\n";
+  os << indent << "ScatteringVolumeFraction: " << this->ScatteringVolumeFraction << "\n";
+  os << indent << "DomainCount: " << this->DomainCount << "\n";
+  os << indent << "DomainVertexRange: " << this->DomainVertexRange[0] << " "
+     << this->DomainVertexRange[1] << "\n";
+  os << indent << "DomainRadiusRange: " << this->DomainRadiusRange[0] << " "
+     << this->DomainRadiusRange[1] << "\n";
+  os << indent << "DomainVertexJitter: " << this->DomainVertexJitter[0] << " "
+     << this->DomainVertexJitter[1] << "\n";
+  os << indent << "DomainAngleRange: " << this->DomainAngleRange[0] << " "
+     << this->DomainAngleRange[1] << "\n";
+  os << indent << "DomainRotationRange: " << this->DomainRotationRange[0] << " "
+     << this->DomainRotationRange[1] << "\n";
+  os << indent << "DomainDiameterRange: " << this->DomainDiameterRange[0] << " "
+     << this->DomainDiameterRange[1] << "\n";
+  os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
+  os << indent << "MaxPlacementAttempts: " << this->MaxPlacementAttempts << "\n";
+  os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "Preset: " << this->Preset << "\n";
+}

@@ -1,0 +1,172 @@
+/**
+ * @class vtkOpalSource
+ * @brief The volumetric opal model of Nakajima & Kawai as an image source.
+ *
+ * Output port 0 is a vtkImageData whose points are voxel centres, with the
+ * point arrays VoxelType, ParticleDiameter, Normal, DomainId, BraggLambdaMax,
+ * BraggLambdaMin, ScatteringCoefficient and SurfaceDistance (DESIGN.md §2).
+ * Output port 1 is the diffraction-domain layout as polygons, one cell per
+ * domain, with DomainId, ParticleDiameter, Normal and BraggLambdaMax as cell
+ * data. Both carry the parameters used and DomainsPlaced as field data.
+ *
+ * The source can produce any sub-extent; every value derives from the global
+ * voxel index and the seed, so pieces agree exactly with the whole volume.
+ *
+ * Preset (fig10 ... fig17, or custom) sets the parameters the paper varies
+ * between its figures; while a preset other than custom is chosen it takes
+ * precedence over DomainDiameterRange.
+ */
+#pragma once
+
+#include "vtkImageAlgorithm.h"
+#include "vtkOpalModule.h" // for export macro
+
+#include <string>
+
+namespace opal
+{
+struct ModelParameters;
+}
+
+class VTKOPAL_EXPORT vtkOpalSource : public vtkImageAlgorithm
+{
+public:
+  static vtkOpalSource* New();
+  vtkTypeMacro(vtkOpalSource, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Voxels along x, y, z. Default 160 x 80 x 200 (paper §7).
+  vtkSetVector3Macro(Dimensions, int);
+  vtkGetVector3Macro(Dimensions, int);
+  ///@}
+
+  ///@{
+  /// Size of the voxel box in mm. Default 16 x 8 x 20.
+  vtkSetVector3Macro(PhysicalSize, double);
+  vtkGetVector3Macro(PhysicalSize, double);
+  ///@}
+
+  ///@{
+  /// Semi-axes a, b, c of the half-ellipsoid in mm. Default 8, 8, 10.
+  vtkSetVector3Macro(SemiAxes, double);
+  vtkGetVector3Macro(SemiAxes, double);
+  ///@}
+
+  ///@{
+  /// Diameter range of the scattering silica spheres in nm. Default 5-50.
+  vtkSetVector2Macro(ScatteringDiameterRange, double);
+  vtkGetVector2Macro(ScatteringDiameterRange, double);
+  ///@}
+
+  ///@{
+  /// Silica volume fraction of the scattering body, in (0, 0.74]. Default 0.2.
+  vtkSetMacro(ScatteringVolumeFraction, double);
+  vtkGetMacro(ScatteringVolumeFraction, double);
+  ///@}
+
+  ///@{
+  /// Number of diffraction domains to place. Default 250 (paper §7).
+  vtkSetMacro(DomainCount, int);
+  vtkGetMacro(DomainCount, int);
+  ///@}
+
+  ///@{
+  /// Vertex count range of the domain polygons. Default 5-8.
+  vtkSetVector2Macro(DomainVertexRange, int);
+  vtkGetVector2Macro(DomainVertexRange, int);
+  ///@}
+
+  ///@{
+  /// Circumradius range of the domain polygons in mm. Default 0.5-1.5.
+  vtkSetVector2Macro(DomainRadiusRange, double);
+  vtkGetVector2Macro(DomainRadiusRange, double);
+  ///@}
+
+  ///@{
+  /// Where on its spoke each vertex may move, as a fraction of the radius. Default 0.4-1.
+  vtkSetVector2Macro(DomainVertexJitter, double);
+  vtkGetVector2Macro(DomainVertexJitter, double);
+  ///@}
+
+  ///@{
+  /// Allowed interior angles of the domain polygons in degrees. Default 30-170.
+  vtkSetVector2Macro(DomainAngleRange, double);
+  vtkGetVector2Macro(DomainAngleRange, double);
+  ///@}
+
+  ///@{
+  /// Tilt of the domain normals from +y in degrees. Default 0-30.
+  vtkSetVector2Macro(DomainRotationRange, double);
+  vtkGetVector2Macro(DomainRotationRange, double);
+  ///@}
+
+  ///@{
+  /// Diameter range of the spheres in the domains in nm (custom preset only). Default 250-350.
+  vtkSetVector2Macro(DomainDiameterRange, double);
+  vtkGetVector2Macro(DomainDiameterRange, double);
+  ///@}
+
+  ///@{
+  /// Refractive index mu of opal. Default 1.45.
+  vtkSetMacro(RefractiveIndex, double);
+  vtkGetMacro(RefractiveIndex, double);
+  ///@}
+
+  ///@{
+  /// Placement (and shape) attempts per domain before it is given up. Default 1000.
+  vtkSetMacro(MaxPlacementAttempts, int);
+  vtkGetMacro(MaxPlacementAttempts, int);
+  ///@}
+
+  ///@{
+  /// Seed of every random choice of the model. Default 1.
+  vtkSetMacro(Seed, int);
+  vtkGetMacro(Seed, int);
+  ///@}
+
+  ///@{
+  /// 0 custom, 1 fig10, 2 fig11, 3 fig12 (default), 4 fig13, 5 fig15, 6 fig17.
+  vtkSetMacro(Preset, int);
+  vtkGetMacro(Preset, int);
+  /// Chooses the preset by name ("fig12", "custom"); false if the name is unknown.
+  bool SetPresetByName(const char* name);
+  ///@}
+
+  /// The parameters as the next update will use them (preset applied).
+  opal::ModelParameters GetModelParameters() const;
+  /// Sets every model parameter at once; the preset is left as it is.
+  void SetModelParameters(const opal::ModelParameters& parameters);
+
+protected:
+  vtkOpalSource();
+  ~vtkOpalSource() override = default;
+
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int Dimensions[3];
+  double PhysicalSize[3];
+  double SemiAxes[3];
+  double ScatteringDiameterRange[2];
+  double ScatteringVolumeFraction;
+  int DomainCount;
+  int DomainVertexRange[2];
+  double DomainRadiusRange[2];
+  double DomainVertexJitter[2];
+  double DomainAngleRange[2];
+  double DomainRotationRange[2];
+  double DomainDiameterRange[2];
+  double RefractiveIndex;
+  int MaxPlacementAttempts;
+  int Seed;
+  int Preset;
+
+private:
+  vtkOpalSource(const vtkOpalSource&) = delete;
+  void operator=(const vtkOpalSource&) = delete;
+
+  // Empty if the parameters are valid, else the message naming the parameter.
+  std::string Validate() const;
+};
