@@ -63,7 +63,19 @@ void VolumeFiller::fill(
         const std::int64_t o = rowStart + (i - extent[0]);
         const std::int64_t globalIndex = grid.linearIndex(i, j, k);
         const std::array<double, 3> p = grid.position(i, j, k);
-        const double distance = this->Shape.signedDistance(p);
+        // The shape is symmetric in x: evaluate the distance at the canonical
+        // voxel of each mirror pair (so every piece gets identical values) and
+        // reuse the mirror's value when this row already holds it.
+        const int mirror = grid.Dimensions[0] - 1 - i;
+        double distance;
+        if (mirror < i && mirror >= extent[0])
+        {
+          distance = out.SurfaceDistance[o - (i - mirror)];
+        }
+        else
+        {
+          distance = this->Shape.signedDistance(grid.position(std::min(i, mirror), j, k));
+        }
         out.SurfaceDistance[o] = static_cast<float>(distance);
 
         float* normal = out.Normal + 3 * o;
@@ -100,8 +112,9 @@ void VolumeFiller::fill(
           out.ParticleDiameter[o] = static_cast<float>(diameter);
           out.ScatteringCoefficient[o] =
             static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
-          // Only voxels within one spacing of the surface can have an empty neighbour.
-          if (distance >= -this->MaxSpacing && this->isSurfaceVoxel(i, j, k))
+          // Only voxels within one spacing of the surface can have an empty
+          // neighbour; the margin keeps float rounding of reused distances moot.
+          if (distance >= -1.5 * this->MaxSpacing && this->isSurfaceVoxel(i, j, k))
           {
             const std::array<double, 3> n = this->Shape.outwardNormal(p);
             for (int a = 0; a < 3; ++a)

@@ -19,7 +19,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkSMPTools.h"
+#include "vtkOpalParallel.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -255,7 +255,7 @@ int vtkOpalSource::RequestData(
       return 0;
     }
     const int kEnd = std::min(extent[5] + 1, k + chunk);
-    vtkSMPTools::For(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
+    vtkOpalParallel::For(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
     this->UpdateProgress(
       LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
   }
