@@ -1,0 +1,79 @@
+// A minimal harness for the C++ tests: checks that count failures and print
+// what went wrong, and a recorder of the errors and warnings VTK objects emit.
+#pragma once
+
+#include "vtkCommand.h"
+#include "vtkObject.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace opaltest
+{
+
+inline int& failureCount()
+{
+  static int failures = 0;
+  return failures;
+}
+
+inline void check(bool condition, const std::string& what, const char* file, int line)
+{
+  if (!condition)
+  {
+    ++failureCount();
+    std::cerr << file << ":" << line << ": FAILED: " << what << std::endl;
+  }
+}
+
+inline int finish(const char* testName)
+{
+  if (failureCount() == 0)
+  {
+    std::cout << testName << ": all checks passed" << std::endl;
+    return EXIT_SUCCESS;
+  }
+  std::cerr << testName << ": " << failureCount() << " check(s) failed" << std::endl;
+  return EXIT_FAILURE;
+}
+
+// Collects the ErrorEvent and WarningEvent messages of an object instead of printing them.
+class MessageRecorder : public vtkCommand
+{
+public:
+  static MessageRecorder* New() { return new MessageRecorder; }
+  void Execute(vtkObject*, unsigned long event, void* callData) override
+  {
+    const std::string text = callData ? static_cast<const char*>(callData) : "";
+    (event == vtkCommand::ErrorEvent ? this->Errors : this->Warnings).push_back(text);
+  }
+  void watch(vtkObject* object)
+  {
+    object->AddObserver(vtkCommand::ErrorEvent, this);
+    object->AddObserver(vtkCommand::WarningEvent, this);
+  }
+  void clear()
+  {
+    this->Errors.clear();
+    this->Warnings.clear();
+  }
+  bool anyContains(const std::vector<std::string>& messages, const std::string& needle) const
+  {
+    for (const auto& message : messages)
+    {
+      if (message.find(needle) != std::string::npos)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
+};
+
+} // namespace opaltest
+
+#define OPAL_CHECK(condition, what) ::opaltest::check((condition), (what), __FILE__, __LINE__)

@@ -1,0 +1,71 @@
+// Small opal volumes and array comparisons shared by the C++ tests.
+#pragma once
+
+#include "OpalTestHarness.h"
+#include "vtkOpalSource.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+
+#include <array>
+#include <string>
+
+namespace opaltest
+{
+
+// The array names of DESIGN.md §2: the interface users and tests rely on.
+inline const std::array<const char*, 8>& volumeArrayNames()
+{
+  static const std::array<const char*, 8> names = { "VoxelType", "ParticleDiameter", "Normal",
+    "DomainId", "BraggLambdaMax", "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance" };
+  return names;
+}
+
+// A quarter-resolution opal (40 x 20 x 50 voxels of 0.4 mm) with a few domains.
+inline vtkSmartPointer<vtkOpalSource> makeSmallSource(int seed = 1)
+{
+  auto source = vtkSmartPointer<vtkOpalSource>::New();
+  source->SetDimensions(40, 20, 50);
+  source->SetDomainCount(30);
+  source->SetSeed(seed);
+  return source;
+}
+
+// Counts the points of `piece` whose arrays differ from `whole` at the same global index.
+inline long long countDifferences(vtkImageData* whole, vtkImageData* piece, const std::string& name)
+{
+  vtkDataArray* wholeArray = whole->GetPointData()->GetArray(name.c_str());
+  vtkDataArray* pieceArray = piece->GetPointData()->GetArray(name.c_str());
+  if (!wholeArray || !pieceArray || wholeArray->GetNumberOfComponents() != pieceArray->GetNumberOfComponents())
+  {
+    return -1;
+  }
+  int extent[6];
+  piece->GetExtent(extent);
+  long long differences = 0;
+  for (int k = extent[4]; k <= extent[5]; ++k)
+  {
+    for (int j = extent[2]; j <= extent[3]; ++j)
+    {
+      for (int i = extent[0]; i <= extent[1]; ++i)
+      {
+        int ijk[3] = { i, j, k };
+        const vtkIdType a = whole->ComputePointId(ijk);
+        const vtkIdType b = piece->ComputePointId(ijk);
+        for (int c = 0; c < wholeArray->GetNumberOfComponents(); ++c)
+        {
+          if (wholeArray->GetComponent(a, c) != pieceArray->GetComponent(b, c))
+          {
+            ++differences;
+            break;
+          }
+        }
+      }
+    }
+  }
+  return differences;
+}
+
+} // namespace opaltest

@@ -1,0 +1,102 @@
+// Each invalid parameter fails the pipeline request with a message naming the
+// parameter, and the source works again once the parameter is fixed.
+// Domains that cannot all be placed give a warning and the placed count.
+#include "OpalModelParameters.h"
+#include "OpalTestVolumes.h"
+
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct BadCase
+{
+  std::string Description;
+  std::function<void(vtkOpalSource*)> Break;
+  std::string Parameter; // the message must name it
+};
+} // namespace
+
+int main()
+{
+  using opaltest::MessageRecorder;
+  // The executive reports failed requests on the output window; keep the log readable.
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+
+  const std::vector<BadCase> cases = {
+    { "zero dimension", [](vtkOpalSource* s) { s->SetDimensions(40, 0, 50); }, "Dimensions" },
+    { "negative dimension", [](vtkOpalSource* s) { s->SetDimensions(-4, 20, 50); }, "Dimensions" },
+    { "zero size", [](vtkOpalSource* s) { s->SetPhysicalSize(16, 0, 20); }, "PhysicalSize" },
+    { "negative size", [](vtkOpalSource* s) { s->SetPhysicalSize(-16, 8, 20); }, "PhysicalSize" },
+    { "negative semi-axis", [](vtkOpalSource* s) { s->SetSemiAxes(8, -8, 10); }, "SemiAxes" },
+    { "shape wider than the box", [](vtkOpalSource* s) { s->SetSemiAxes(9, 8, 10); }, "does not fit" },
+    { "shape taller than the box", [](vtkOpalSource* s) { s->SetSemiAxes(8, 8.5, 10); }, "SemiAxes" },
+    { "scattering diameters min > max",
+      [](vtkOpalSource* s) { s->SetScatteringDiameterRange(50, 5); }, "ScatteringDiameterRange" },
+    { "domain diameters min > max",
+      [](vtkOpalSource* s) {
+        s->SetPreset(0);
+        s->SetDomainDiameterRange(300, 200);
+      },
+      "DomainDiameterRange" },
+    { "domain radii min > max", [](vtkOpalSource* s) { s->SetDomainRadiusRange(2, 1); }, "DomainRadiusRange" },
+    { "two vertices", [](vtkOpalSource* s) { s->SetDomainVertexRange(2, 6); }, "DomainVertexRange" },
+    { "vertex range min > max", [](vtkOpalSource* s) { s->SetDomainVertexRange(8, 5); }, "DomainVertexRange" },
+    { "volume fraction 0", [](vtkOpalSource* s) { s->SetScatteringVolumeFraction(0); }, "ScatteringVolumeFraction" },
+    { "volume fraction 0.8", [](vtkOpalSource* s) { s->SetScatteringVolumeFraction(0.8); },
+      "ScatteringVolumeFraction" },
+    { "negative volume fraction", [](vtkOpalSource* s) { s->SetScatteringVolumeFraction(-0.1); },
+      "ScatteringVolumeFraction" },
+    { "angle range min > max", [](vtkOpalSource* s) { s->SetDomainAngleRange(170, 30); }, "DomainAngleRange" },
+    { "tilt beyond 90 deg", [](vtkOpalSource* s) { s->SetDomainRotationRange(0, 120); }, "DomainRotationRange" },
+    { "vertex jitter 0", [](vtkOpalSource* s) { s->SetDomainVertexJitter(0, 1); }, "DomainVertexJitter" },
+    { "negative domain count", [](vtkOpalSource* s) { s->SetDomainCount(-1); }, "DomainCount" },
+    { "refractive index below 1", [](vtkOpalSource* s) { s->SetRefractiveIndex(0.9); }, "RefractiveIndex" },
+    { "no placement attempts", [](vtkOpalSource* s) { s->SetMaxPlacementAttempts(0); }, "MaxPlacementAttempts" },
+    { "unknown preset", [](vtkOpalSource* s) { s->SetPreset(99); }, "Preset" },
+  };
+
+  for (const BadCase& bad : cases)
+  {
+    auto source = opaltest::makeSmallSource();
+    vtkNew<MessageRecorder> recorder;
+    recorder->watch(source);
+    bad.Break(source);
+    const int status = source->GetExecutive()->Update();
+    OPAL_CHECK(status == 0, bad.Description + ": the request fails");
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, bad.Parameter),
+      bad.Description + ": the error names " + bad.Parameter);
+    // Fixed again, the same source works.
+    auto fresh = opaltest::makeSmallSource();
+    source->SetModelParameters(fresh->GetModelParameters());
+    source->SetPreset(fresh->GetPreset());
+    recorder->clear();
+    OPAL_CHECK(source->GetExecutive()->Update() == 1 && recorder->Errors.empty(),
+      bad.Description + ": the source recovers once fixed");
+  }
+
+  {
+    vtkNew<vtkOpalSource> source;
+    OPAL_CHECK(!source->SetPresetByName("fig99"), "an unknown preset name is refused");
+  }
+
+  // Far more big domains than fit: a warning naming DomainCount, the placed count, no hang.
+  auto crowded = opaltest::makeSmallSource();
+  crowded->SetDomainCount(400);
+  crowded->SetDomainRadiusRange(2.5, 3.0);
+  crowded->SetMaxPlacementAttempts(40);
+  vtkNew<MessageRecorder> recorder;
+  recorder->watch(crowded);
+  OPAL_CHECK(crowded->GetExecutive()->Update() == 1, "a crowded opal still builds");
+  OPAL_CHECK(recorder->anyContains(recorder->Warnings, "DomainCount"), "the warning names DomainCount");
+  const double placed = crowded->GetOutput()->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0);
+  OPAL_CHECK(placed > 0 && placed < 400, "DomainsPlaced says how many fit: " + std::to_string(placed));
+  return opaltest::finish("TestOpalBadInput");
+}

@@ -1,0 +1,62 @@
+// Every paper preset (DESIGN.md §4) places all 250 domains at paper scale,
+// with the preset's sphere diameters, and the domain polygons match.
+#include "OpalTestVolumes.h"
+
+#include "OpalPresets.h"
+
+#include "vtkCellData.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <string>
+
+int main()
+{
+  for (const opal::PresetSettings& preset : opal::presets())
+  {
+    const std::string name = preset.Name;
+    vtkNew<vtkOpalSource> source;
+    OPAL_CHECK(source->SetPresetByName(preset.Name), name + " is a known preset");
+    OPAL_CHECK(source->GetExecutive()->Update() == 1, name + " builds");
+    vtkImageData* volume = source->GetOutput(0);
+    vtkPolyData* polygons = vtkPolyData::SafeDownCast(source->GetOutputDataObject(1));
+    const double placed = volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0);
+    OPAL_CHECK(placed == 250, name + " places all 250 domains, got " + std::to_string(placed));
+    OPAL_CHECK(polygons && polygons->GetNumberOfCells() == 250, name + " has 250 domain polygons");
+    vtkDataArray* cellDiameter = polygons->GetCellData()->GetArray("ParticleDiameter");
+    for (const char* array : { "DomainId", "ParticleDiameter", "Normal", "BraggLambdaMax" })
+    {
+      OPAL_CHECK(polygons->GetCellData()->GetArray(array) != nullptr, name + " polygons carry " + array);
+    }
+    bool inRange = true;
+    for (vtkIdType c = 0; cellDiameter && c < cellDiameter->GetNumberOfTuples(); ++c)
+    {
+      const double l = cellDiameter->GetComponent(c, 0);
+      inRange = inRange && l >= preset.DomainDiameterRange[0] - 1e-3 && l <= preset.DomainDiameterRange[1] + 1e-3;
+    }
+    OPAL_CHECK(inRange, name + " domain diameters within the preset's range");
+    // Every polygon's domain has voxels in the volume.
+    vtkDataArray* ids = volume->GetPointData()->GetArray("DomainId");
+    std::vector<int> voxelsPerDomain(250, 0);
+    for (vtkIdType id = 0; id < ids->GetNumberOfTuples(); ++id)
+    {
+      const int d = static_cast<int>(ids->GetComponent(id, 0));
+      if (d >= 0 && d < 250)
+      {
+        ++voxelsPerDomain[static_cast<std::size_t>(d)];
+      }
+    }
+    bool allHaveVoxels = true;
+    for (int v : voxelsPerDomain)
+    {
+      allHaveVoxels = allHaveVoxels && v > 0;
+    }
+    OPAL_CHECK(allHaveVoxels, name + " every domain owns voxels");
+  }
+  return opaltest::finish("TestOpalPresetDomains");
+}
