@@ -70,7 +70,9 @@ int main(int argc, char** argv)
 
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetInputData(volume);
-  writer->SetDataModeToAppended();
+  // Inline binary, not appended: Debian bookworm's VTK 9.2 with its patched
+  // expat cannot read appended XML data back ("junk after document element").
+  writer->SetDataModeToBinary();
   writer->SetCompressorTypeToZLib();
   const std::string error = writeFileAtomically(output, [&](const std::string& path) {
     writer->SetFileName(path.c_str());

@@ -1,0 +1,55 @@
+"""pvpython: the plugin loads, its Opal Volume proxy is documented and builds
+every paper preset with the arrays of DESIGN.md section 2 and all 250 domains."""
+import sys
+
+from paraview import servermanager as sm
+from paraview.simple import LoadPlugin
+
+import opal_test_config as config
+
+# Defines the plugin's constructors (OpalVolume, ...) in this module's namespace.
+LoadPlugin(config.PLUGIN, remote=False, ns=globals())
+
+ARRAYS = {
+    "VoxelType": "vtkUnsignedCharArray",
+    "ParticleDiameter": "vtkFloatArray",
+    "Normal": "vtkFloatArray",
+    "DomainId": "vtkIntArray",
+    "BraggLambdaMax": "vtkFloatArray",
+    "BraggLambdaMin": "vtkFloatArray",
+    "ScatteringCoefficient": "vtkFloatArray",
+    "SurfaceDistance": "vtkFloatArray",
+}
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAILED:", what)
+
+
+volume = OpalVolume()
+for name in volume.ListProperties():
+    documentation = volume.GetProperty(name).SMProperty.GetDocumentation()
+    check(documentation is not None and documentation.GetDescription().strip(),
+          f"property {name} has documentation")
+
+for preset in ["fig10", "fig11", "fig12", "fig13", "fig15", "fig17"]:
+    volume = OpalVolume(Preset=preset)
+    volume.UpdatePipeline()
+    data = sm.Fetch(volume)
+    check(data.GetDimensions() == (160, 80, 200), f"{preset}: paper-scale grid")
+    for name, class_name in ARRAYS.items():
+        array = data.GetPointData().GetArray(name)
+        check(array is not None and array.GetClassName() == class_name,
+              f"{preset}: {name} is a {class_name}")
+    placed = data.GetFieldData().GetArray("DomainsPlaced").GetValue(0)
+    check(placed == 250, f"{preset}: 250 domains placed, got {placed}")
+    check(data.GetFieldData().GetAbstractArray("Preset").GetValue(0) == preset,
+          f"{preset}: field data records the preset")
+    polygons = sm.Fetch(volume, idx=1)
+    check(polygons.GetNumberOfCells() == 250, f"{preset}: 250 domain polygons")
+
+print("TestOpalPluginPresets:", "FAILED" if failures else "passed")
+sys.exit(1 if failures else 0)
