@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# The two set-up commands of the README:
+#   bash scripts/opal.sh run    install what is missing, build, run the main job
+#   bash scripts/opal.sh test   install what is missing, build, run every test
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${OPAL_BUILD_DIR:-$root/build}"
+mode="${1:-}"
+case "$mode" in
+  run | test) ;;
+  *)
+    echo "usage: bash scripts/opal.sh run|test" >&2
+    exit 2
+    ;;
+esac
+
+bash "$root/scripts/install-dependencies.sh"
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release
+cmake --build "$build" -j2
+
+if [[ "$mode" == run ]]; then
+  mkdir -p "$build/output"
+  "$build/bin/opal-volume" --preset fig12 -o "$build/output/opal-fig12.vti"
+else
+  # Open MPI refuses to run as root unless told (the MPI tests set this too).
+  export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  ctest --test-dir "$build" --output-on-failure
+fi
