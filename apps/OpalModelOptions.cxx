@@ -1,26 +1,11 @@
 #include "OpalModelOptions.h"
 
+#include "OpalCliArrays.h"
+
 #include "OpalPresets.h"
 #include "vtkOpalSource.h"
 
-#include <array>
-#include <vector>
 
-namespace
-{
-// A fixed-size vector flag: exactly N values into the array.
-template <typename T, std::size_t N>
-CLI::Option* addArrayOption(CLI::App& app, const std::string& name, std::array<T, N>& target,
-  const std::string& help)
-{
-  return app
-    .add_option_function<std::vector<T>>(
-      name, [&target](const std::vector<T>& values) { std::copy(values.begin(), values.end(), target.begin()); },
-      help)
-    ->expected(static_cast<int>(N))
-    ->group("Model");
-}
-} // namespace
 
 void OpalModelOptions::addTo(CLI::App& app)
 {
@@ -29,11 +14,11 @@ void OpalModelOptions::addTo(CLI::App& app)
     ->check(CLI::IsMember({ "custom", "fig10", "fig11", "fig12", "fig13", "fig15", "fig17" }))
     ->capture_default_str()
     ->group("Model");
-  addArrayOption(app, "--dimensions", p.Dimensions, "Voxels along x y z (160 80 200)");
-  addArrayOption(app, "--physical-size", p.PhysicalSize, "Box size in mm along x y z (16 8 20)");
-  addArrayOption(app, "--semi-axes", p.SemiAxes, "Half-ellipsoid semi-axes a b c in mm (8 8 10)");
+  addArrayOption(app, "--dimensions", p.Dimensions, "Voxels along x y z (160 80 200)", "Model");
+  addArrayOption(app, "--physical-size", p.PhysicalSize, "Box size in mm along x y z (16 8 20)", "Model");
+  addArrayOption(app, "--semi-axes", p.SemiAxes, "Half-ellipsoid semi-axes a b c in mm (8 8 10)", "Model");
   addArrayOption(app, "--scattering-diameter-range", p.ScatteringDiameterRange,
-    "Scattering sphere diameters MIN MAX in nm (5 50)");
+    "Scattering sphere diameters MIN MAX in nm (5 50)", "Model");
   app.add_option("--scattering-volume-fraction", p.ScatteringVolumeFraction,
        "Silica volume fraction of the milky body, (0, 0.74]")
     ->capture_default_str()
@@ -41,17 +26,17 @@ void OpalModelOptions::addTo(CLI::App& app)
   app.add_option("--domain-count", p.DomainCount, "Diffraction domains to place")
     ->capture_default_str()
     ->group("Model");
-  addArrayOption(app, "--domain-vertex-range", p.DomainVertexRange, "Polygon vertex count MIN MAX (5 8)");
+  addArrayOption(app, "--domain-vertex-range", p.DomainVertexRange, "Polygon vertex count MIN MAX (5 8)", "Model");
   addArrayOption(
-    app, "--domain-radius-range", p.DomainRadiusRange, "Polygon circumradius MIN MAX in mm (0.5 1.5)");
+    app, "--domain-radius-range", p.DomainRadiusRange, "Polygon circumradius MIN MAX in mm (0.5 1.5)", "Model");
   addArrayOption(app, "--domain-vertex-jitter", p.DomainVertexJitter,
-    "Vertex position on its spoke MIN MAX, fraction of the radius (0.4 1)");
+    "Vertex position on its spoke MIN MAX, fraction of the radius (0.4 1)", "Model");
   addArrayOption(
-    app, "--domain-angle-range", p.DomainAngleRange, "Allowed interior angles MIN MAX in degrees (30 170)");
+    app, "--domain-angle-range", p.DomainAngleRange, "Allowed interior angles MIN MAX in degrees (30 170)", "Model");
   addArrayOption(app, "--domain-rotation-range", p.DomainRotationRange,
-    "Tilt of the domain normal from +y MIN MAX in degrees (0 30)");
+    "Tilt of the domain normal from +y MIN MAX in degrees (0 30)", "Model");
   this->DomainDiameterRangeOption = addArrayOption(app, "--domain-diameter-range",
-    p.DomainDiameterRange, "Domain sphere diameters MIN MAX in nm (default: the preset's)");
+    p.DomainDiameterRange, "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model");
   app.add_option("--refractive-index", p.RefractiveIndex, "Refractive index of opal")
     ->capture_default_str()
     ->group("Model");

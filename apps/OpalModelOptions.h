@@ -21,6 +21,7 @@ public:
   void configure(vtkOpalSource* source) const;
 
   const std::string& presetName() const { return this->Preset; }
+  double refractiveIndex() const { return this->Parameters.RefractiveIndex; }
 
 private:
   opal::ModelParameters Parameters;

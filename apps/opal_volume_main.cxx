@@ -1,19 +1,15 @@
 // opal-volume: builds the opal volume and writes it as a .vti file, with a
 // one-screen summary of what was built.
-#include "OpalAtomicFile.h"
+#include "OpalCliSupport.h"
 #include "OpalModelOptions.h"
 #include "vtkOpalSource.h"
 
-#include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkOutputWindow.h"
 #include "vtkPointData.h"
-#include "vtkUnsignedCharArray.h"
-#include "vtkXMLImageDataWriter.h"
 
 #include <CLI/CLI.hpp>
 
@@ -21,19 +17,6 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
-
-namespace
-{
-// Turns VTK's error and warning output into lines on stderr, and remembers errors.
-class StderrOutputWindow : public vtkOutputWindow
-{
-public:
-  static StderrOutputWindow* New();
-  vtkTypeMacro(StderrOutputWindow, vtkOutputWindow);
-  void DisplayText(const char* text) override { std::cerr << text; }
-};
-vtkStandardNewMacro(StderrOutputWindow);
-} // namespace
 
 int main(int argc, char** argv)
 {
@@ -43,12 +26,11 @@ int main(int argc, char** argv)
   std::string output = "opal.vti";
   app.add_option("-o,--output", output, "Output .vti file")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
-
-  vtkNew<StderrOutputWindow> outputWindow;
-  vtkOutputWindow::SetInstance(outputWindow);
+  installStderrOutputWindow();
 
   vtkNew<vtkOpalSource> source;
   model.configure(source);
+  showProgress(source, "volume");
   const auto start = std::chrono::steady_clock::now();
   if (!source->GetExecutive()->Update())
   {
@@ -59,25 +41,13 @@ int main(int argc, char** argv)
   vtkImageData* volume = source->GetOutput();
 
   std::array<long long, 3> counts{ 0, 0, 0 };
-  vtkUnsignedCharArray* types =
-    vtkUnsignedCharArray::SafeDownCast(volume->GetPointData()->GetArray("VoxelType"));
+  vtkDataArray* types = volume->GetPointData()->GetArray("VoxelType");
   for (vtkIdType i = 0; i < types->GetNumberOfTuples(); ++i)
   {
-    ++counts[types->GetValue(i) % 3];
+    ++counts[static_cast<std::size_t>(types->GetComponent(i, 0)) % 3];
   }
-  const int placed =
-    static_cast<int>(volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
-
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetInputData(volume);
-  // Inline binary, not appended: Debian bookworm's VTK 9.2 with its patched
-  // expat cannot read appended XML data back ("junk after document element").
-  writer->SetDataModeToBinary();
-  writer->SetCompressorTypeToZLib();
-  const std::string error = writeFileAtomically(output, [&](const std::string& path) {
-    writer->SetFileName(path.c_str());
-    return writer->Write() == 1;
-  });
+  const int placed = static_cast<int>(volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
+  const std::string error = writeImageDataFile(output, volume);
   if (!error.empty())
   {
     std::cerr << "opal-volume: " << error << std::endl;

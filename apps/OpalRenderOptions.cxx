@@ -1,0 +1,79 @@
+#include "OpalRenderOptions.h"
+
+#include "OpalCliArrays.h"
+#include "OpalPresets.h"
+#include "vtkOpalSpectralRender.h"
+
+void OpalRenderOptions::addTo(CLI::App& app)
+{
+  opal::RenderParameters& p = this->Parameters;
+  const std::string group = "Render";
+  this->WidthOption = app.add_option("--width", p.ImageSize[0], "Image width in pixels (default: the preset's)")->group(group);
+  this->HeightOption = app.add_option("--height", p.ImageSize[1], "Image height in pixels (default: the preset's)")->group(group);
+  addArrayOption(app, "--image-region", p.ImageRegion,
+    "Render only X0 Y0 WIDTH HEIGHT of the image (from the top left; <= 0 reaches the edge)", group);
+  addArrayOption(app, "--eye-position", p.EyePosition, "Eye position in mm (0 60 0)", group);
+  addArrayOption(app, "--focal-point", p.FocalPoint, "Point looked at in mm (0 0 0)", group);
+  addArrayOption(app, "--view-up", p.ViewUp, "Image up direction (0 0 -1)", group);
+  app.add_option("--view-angle", p.ViewAngle, "Vertical view angle in degrees")->capture_default_str()->group(group);
+  addArrayOption(app, "--light-position", p.LightPosition, "D65 point light position in mm (0 60 0)", group);
+  app.add_option("--light-radius", p.LightRadius, "Radius of the light's sphere in mm")->capture_default_str()->group(group);
+  this->RotateXOption =
+    app.add_option("--rotate-x", p.ModelRotation[0], "Model rotation about x in degrees (fig13: 5)")->group(group);
+  this->ModelRotationOption =
+    addArrayOption(app, "--model-rotation", p.ModelRotation, "Model rotation about x, y, z in degrees", group);
+  addArrayOption(app, "--wavelength-range", p.WavelengthRange, "Wavelengths MIN MAX in nm (380 780)", group);
+  app.add_option("--wavelength-step", p.WavelengthStep, "Wavelength step in nm")->capture_default_str()->group(group);
+  app.add_option("--bragg-bandwidth", p.BraggBandwidth, "Relative full width of the Bragg band")
+    ->capture_default_str()
+    ->group(group);
+  app.add_option("--diffraction-gain", p.DiffractionGain, "Diffraction gain G (paper: 4)")
+    ->capture_default_str()
+    ->group(group);
+  app.add_option("--bragg-orders", p.BraggOrders, "Bragg orders k = 1..N")->capture_default_str()->group(group);
+  app.add_option("--mosaic-spread", p.MosaicSpread, "Angular gating of diffraction in degrees (0 = off, the paper)")
+    ->capture_default_str()
+    ->group(group);
+  app.add_option("--exposure", p.Exposure, "Exposure multiplier (0 = automatic)")->capture_default_str()->group(group);
+  addArrayOption(app, "--background", p.Background, "Background colour, sRGB R G B in [0, 1]", group);
+  app.add_option("--step-size", p.StepSize, "Longest march sub-step in mm (0 = one voxel)")
+    ->capture_default_str()
+    ->group(group);
+  app.add_option("--specular-samples", p.SpecularSamples, "Sub-rays per pixel axis for the highlight")
+    ->capture_default_str()
+    ->group(group);
+  app.add_flag("--light-falloff-at-entry", p.LightFalloffAtEntry,
+       "The paper's eq. 6: stop the 1/r^2 fall-off at the light's entry point")
+    ->group(group);
+  app.add_option("--device", this->DeviceIndex, "Vulkan device index (-1: OPAL_VULKAN_DEVICE or the best)")
+    ->capture_default_str()
+    ->group(group);
+  app.add_option("--device-memory-limit", this->DeviceMemoryLimit, "Refuse device memory beyond this many MB (0: none)")
+    ->capture_default_str()
+    ->group(group);
+}
+
+void OpalRenderOptions::configure(
+  vtkOpalSpectralRender* render, const std::string& presetName, double refractiveIndex) const
+{
+  opal::RenderParameters p = this->Parameters;
+  if (const opal::PresetSettings* preset = opal::presetByIndex(opal::presetIndexByName(presetName)))
+  {
+    if (this->WidthOption->count() == 0)
+    {
+      p.ImageSize[0] = preset->ImageSize[0];
+    }
+    if (this->HeightOption->count() == 0)
+    {
+      p.ImageSize[1] = preset->ImageSize[1];
+    }
+    if (this->RotateXOption->count() == 0 && this->ModelRotationOption->count() == 0)
+    {
+      p.ModelRotation[0] = preset->RotateXDegrees;
+    }
+  }
+  p.RefractiveIndex = refractiveIndex;
+  render->SetRenderParameters(p);
+  render->SetDeviceIndex(this->DeviceIndex);
+  render->SetDeviceMemoryLimit(this->DeviceMemoryLimit);
+}

@@ -1,0 +1,59 @@
+#version 450
+// SpectrumToColourPass (DESIGN.md §3, step 4): CIE XYZ (already integrated
+// from the spectrum with the CIE 1931 2-degree tables) -> linear sRGB (D65)
+// -> exposure -> hue-preserving tone map -> sRGB transfer -> 8 bit.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 64) in;
+
+#include "opal_render_layout.glsl"
+
+layout(std430, set = 0, binding = 8) readonly buffer PixelXYZ { vec4 pixelXYZ[]; };
+layout(std430, set = 0, binding = 9) readonly buffer PixelBragg { vec4 pixelBragg[]; };
+// Linear sRGB radiance (before exposure) and packed 8-bit sRGB per pixel.
+layout(std430, set = 0, binding = 11) writeonly buffer PixelRadiance { vec4 pixelRadiance[]; };
+layout(std430, set = 0, binding = 12) writeonly buffer PixelRGB8 { uint pixelRGB8[]; };
+
+// IEC 61966-2-1 XYZ (D65) to linear sRGB.
+const mat3 XYZ_TO_SRGB = mat3(3.2404542, -0.9692660, 0.0556434,
+                              -1.5371385, 1.8760108, -0.2040259,
+                              -0.4985314, 0.0415560, 1.0572252);
+
+float srgbTransfer(float linear)
+{
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+// Brings a colour into [0, 1]^3 keeping its hue: out-of-gamut negatives are
+// desaturated towards the colour's luminance, then an over-bright colour is
+// scaled down as a whole (per-channel clipping would turn orange into yellow).
+vec3 huePreservingToneMap(vec3 rgb)
+{
+  float luminance = dot(rgb, vec3(0.2126, 0.7152, 0.0722));
+  float lowest = min(rgb.r, min(rgb.g, rgb.b));
+  if (lowest < 0.0 && luminance > 0.0)
+  {
+    rgb = luminance + (rgb - luminance) * (luminance / (luminance - lowest));
+  }
+  rgb = max(rgb, vec3(0.0));
+  float highest = max(rgb.r, max(rgb.g, rgb.b));
+  return highest > 1.0 ? rgb / highest : rgb;
+}
+
+layout(push_constant) uniform PixelRange { int first; } range;
+
+void main()
+{
+  int index = range.first + int(gl_GlobalInvocationID.x);
+  if (index >= P.rect.z * P.rect.w)
+  {
+    return;
+  }
+  bool hit = pixelBragg[index].z > 0.5;
+  vec3 linear = XYZ_TO_SRGB * pixelXYZ[index].xyz;
+  vec3 display = hit ? huePreservingToneMap(linear * P.colour.x) : clamp(P.background.rgb, 0.0, 1.0);
+  pixelRadiance[index] = vec4(hit ? linear : P.background.rgb, 0.0);
+  uvec3 bytes = uvec3(round(255.0 * vec3(srgbTransfer(display.r), srgbTransfer(display.g),
+    srgbTransfer(display.b))));
+  pixelRGB8[index] = bytes.r | (bytes.g << 8) | (bytes.b << 16);
+}

@@ -1,0 +1,251 @@
+#version 450
+// ViewMarchPass (paper §6, DESIGN.md §3): per pixel, the primary ray meets the
+// smooth surface (the zero of SurfaceDistance); the light's mirror image is
+// the Fresnel highlight (supersampled over the pixel, so a light smaller than
+// a pixel still shows); the refracted ray (Snell 1 -> mu, carrying 1 - F)
+// crosses the opal voxel by voxel (3-D DDA, so no one-voxel-thick domain is
+// tunnelled through) and gathers Rayleigh single scattering (eq. 8) and Bragg
+// diffraction (eq. 4, 9), each domain once per crossing.
+#extension GL_GOOGLE_include_directive : require
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(constant_id = 0) const int WAVELENGTHS = 41;
+
+#include "opal_render_layout.glsl"
+#include "opal_volume_fields.glsl"
+#include "opal_optics.glsl"
+
+layout(std430, set = 0, binding = 5) readonly buffer LightOpticalDepthField { float lightOpticalDepth[]; };
+layout(std430, set = 0, binding = 6) readonly buffer LightGeometryField { float lightGeometry[]; };
+// Per domain: lattice-plane normal (y >= 0) and FCC (111) plane spacing d in nm.
+layout(std430, set = 0, binding = 7) readonly buffer DomainTable { vec4 domains[]; };
+// Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
+layout(std430, set = 0, binding = 8) writeonly buffer PixelXYZ { vec4 pixelXYZ[]; };
+// Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
+layout(std430, set = 0, binding = 9) writeonly buffer PixelBragg { vec4 pixelBragg[]; };
+// Per pixel, WAVELENGTHS spectral radiances (only if P.forward.w > 0.5).
+layout(std430, set = 0, binding = 10) writeonly buffer PixelSpectrum { float pixelSpectrum[]; };
+
+// The tile of the rendered rectangle this dispatch covers.
+layout(push_constant) uniform Tile { ivec2 origin; } tile;
+
+float radiance[WAVELENGTHS];
+
+float lightOpticalDepthAt(vec3 p)
+{
+  float tau;
+  OPAL_TRILINEAR(lightOpticalDepth, p, tau);
+  return tau;
+}
+
+float lightGeometryAt(vec3 p)
+{
+  float g;
+  OPAL_TRILINEAR(lightGeometry, p, g);
+  return g;
+}
+
+vec3 primaryDirection(vec2 pixel)
+{
+  float width = P.right.w, height = P.up.w;
+  float tanHalf = P.eye.w;
+  vec2 ndc = vec2(2.0 * pixel.x / width - 1.0, 1.0 - 2.0 * pixel.y / height);
+  return normalize(P.forward.xyz + ndc.x * tanHalf * (width / height) * P.right.xyz +
+    ndc.y * tanHalf * P.up.xyz);
+}
+
+// Distance along the ray to the light sphere, or -1.
+float lightSphereHit(vec3 origin, vec3 direction)
+{
+  vec3 oc = origin - P.light.xyz;
+  float b = dot(oc, direction);
+  float c = dot(oc, oc) - P.light.w * P.light.w;
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  float t = -b - sqrt(disc);
+  return t > 0.0 ? t : -1.0;
+}
+
+// Fresnel reflectance of the light seen in the surface, averaged over the
+// pixel's n x n sub-rays: the highlight and the paper's secondary ray in the
+// mirror direction (the scene holds nothing else to reflect).
+float specularHighlight(vec2 pixel, vec3 eye, float mu)
+{
+  int n = int(P.lighting.w);
+  float sum = 0.0;
+  for (int sy = 0; sy < n; ++sy)
+  {
+    for (int sx = 0; sx < n; ++sx)
+    {
+      vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
+      vec3 d = primaryDirection(sub);
+      vec2 box = gridBoxHits(eye, d);
+      if (box.x > box.y) continue;
+      float t = traceSurfaceEntry(eye, d, box.x, box.y);
+      if (t < 0.0) continue;
+      vec3 hit = eye + t * d;
+      vec3 normal = surfaceNormal(hit);
+      float cosI = -dot(d, normal);
+      if (cosI <= 0.0) continue;
+      vec3 mirrored = reflect(d, normal);
+      if (lightSphereHit(hit + 1e-4 * normal, mirrored) > 0.0)
+      {
+        sum += fresnelReflectance(cosI, mu);
+      }
+    }
+  }
+  return sum / float(n * n);
+}
+
+void main()
+{
+  ivec2 local = ivec2(gl_GlobalInvocationID.xy) + tile.origin; // within the rectangle
+  if (local.x >= P.rect.z || local.y >= P.rect.w)
+  {
+    return;
+  }
+  int pixelIndex = local.x + P.rect.z * local.y;
+  vec2 pixel = vec2(P.rect.xy + local) + 0.5;
+  vec3 eye = P.eye.xyz;
+  vec3 direction = primaryDirection(pixel);
+  float mu = P.optics.x;
+  bool writeSpectrum = P.forward.w > 0.5;
+
+  vec2 box = gridBoxHits(eye, direction);
+  float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y) : -1.0;
+  if (tHit < 0.0)
+  {
+    pixelXYZ[pixelIndex] = vec4(0.0);
+    pixelBragg[pixelIndex] = vec4(0.0);
+    if (writeSpectrum)
+    {
+      for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
+    }
+    return;
+  }
+
+  for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
+
+  // P_in: Fresnel reflection of the light and refraction of the view ray (paper §6.1).
+  vec3 entry = eye + tHit * direction;
+  vec3 normal = surfaceNormal(entry);
+  float cosI = clamp(-dot(direction, normal), 0.0, 1.0);
+  float transmitted = 1.0 - fresnelReflectance(cosI, mu);
+  float highlight = specularHighlight(pixel, eye, mu) * P.lighting.y;
+  vec3 inward = refract(direction, normal, 1.0 / mu);
+  vec3 towardEye = -inward;
+
+  // March the refracted ray voxel by voxel to where it leaves the opal.
+  vec3 origin = entry - 1e-4 * P.gridOrigin.w * normal;
+  float tExit = traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y);
+  vec3 cellLow = P.gridOrigin.xyz - 0.5 * P.gridSpacing.xyz;
+  ivec3 cell = voxelOf(origin);
+  ivec3 stepDir = ivec3(sign(inward));
+  vec3 inverse = 1.0 / max(abs(inward), vec3(1e-20));
+  vec3 nextBoundary = cellLow + (vec3(cell) + max(vec3(stepDir), vec3(0.0))) * P.gridSpacing.xyz;
+  vec3 tMax = (nextBoundary - origin) * inverse * sign(inward) ;
+  tMax = mix(tMax, vec3(1e30), equal(stepDir, ivec3(0)));
+  vec3 tDelta = P.gridSpacing.xyz * inverse;
+
+  float stepLimit = P.gridSpacing.w;
+  float gain = P.optics.z;
+  float bandwidth = P.optics.y;
+  float spread = P.optics.w;
+  int orders = P.counts.y;
+  float tauView = 0.0;       // optical depth at 550 nm from P_in along the view path
+  int lastDomain = -1;       // the domain being crossed, counted once
+  float dominantLambda = 0.0;
+  float dominantY = 0.0;
+  float t = 0.0;
+  for (int guard = 0; guard < 65536 && t < tExit; ++guard)
+  {
+    float tNext = min(min(tMax.x, tMax.y), min(tMax.z, tExit));
+    float segment = tNext - t;
+    if (segment > 0.0 && insideGrid(cell))
+    {
+      int v = voxelIndex(cell);
+      int domain = domainIdField[v];
+      float mus = scatteringField[v];
+      if (domain >= 0)
+      {
+        if (domain != lastDomain)
+        {
+          // Bragg diffraction at the crossing (eq. 4, 9): lambda_B from the
+          // glancing angle of the light on the lattice planes; the box band B
+          // averaged per bin; gain G and 1/pi turn the reflected irradiance into radiance.
+          vec3 at = origin + (t + 0.5 * segment) * inward;
+          vec4 lattice = domains[domain];
+          vec3 towardLight = normalize(P.light.xyz - at);
+          float sinGlancing = abs(dot(towardLight, lattice.xyz));
+          float tauLight = lightOpticalDepthAt(at);
+          float geometry = lightGeometryAt(at);
+          float weight = gain * geometry * mosaicWeight(lattice.xyz, towardLight, towardEye, spread) / OPAL_PI;
+          for (int k = 1; k <= orders; ++k)
+          {
+            float lambdaB = braggSnellWavelength(lattice.w, mu, sinGlancing, k);
+            float contributionY = 0.0;
+            for (int l = 0; l < WAVELENGTHS; ++l)
+            {
+              vec4 bin = W[2 * l];
+              float band = braggBandAverage(bin.x, bin.w, lambdaB, bandwidth);
+              if (band > 0.0)
+              {
+                float value = weight * band * exp(-(tauLight + tauView) * bin.y);
+                radiance[l] += value;
+                contributionY += value * bin.z * W[2 * l + 1].y * bin.w;
+              }
+            }
+            if (contributionY > dominantY)
+            {
+              dominantY = contributionY;
+              dominantLambda = lambdaB;
+            }
+          }
+          lastDomain = domain;
+        }
+      }
+      else
+      {
+        lastDomain = -1;
+        if (mus > 0.0)
+        {
+          // Rayleigh single scattering (eq. 8), isotropic phase 1/(4 pi), with
+          // the view transmittance at each sub-step's midpoint.
+          int pieces = max(1, int(ceil(segment / stepLimit)));
+          float ds = segment / float(pieces);
+          for (int q = 0; q < pieces; ++q)
+          {
+            vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
+            float tauTotal = lightOpticalDepthAt(at) + tauView + 0.5 * mus * ds;
+            float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
+            for (int l = 0; l < WAVELENGTHS; ++l)
+            {
+              float s = W[2 * l].y;
+              radiance[l] += weight * s * exp(-tauTotal * s);
+            }
+            tauView += mus * ds;
+          }
+        }
+      }
+    }
+    t = tNext;
+    if (t >= tExit) break;
+    // Step to the next voxel along the axis whose boundary comes first.
+    if (tMax.x <= tMax.y && tMax.x <= tMax.z) { cell.x += stepDir.x; tMax.x += tDelta.x; }
+    else if (tMax.y <= tMax.z) { cell.y += stepDir.y; tMax.y += tDelta.y; }
+    else { cell.z += stepDir.z; tMax.z += tDelta.z; }
+  }
+
+  // Spectral radiance: the light's normalised D65 scales every term; the view
+  // ray carries 1 - F out of the opal; the highlight adds the mirrored light.
+  vec3 xyz = vec3(0.0);
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    vec4 bin = W[2 * l];
+    float value = (transmitted * radiance[l] + highlight) * bin.z;
+    xyz += value * W[2 * l + 1].xyz * bin.w;
+    if (writeSpectrum) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
+  }
+  pixelXYZ[pixelIndex] = vec4(xyz, tHit);
+  pixelBragg[pixelIndex] = vec4(dominantLambda, dominantY * transmitted, 1.0, 0.0);
+}

@@ -1,0 +1,136 @@
+#include "OpalComputePipeline.h"
+
+#include "OpalVulkanBuffer.h"
+#include "OpalVulkanContext.h"
+#include "OpalVulkanError.h"
+
+namespace opal
+{
+
+StorageBufferBindings::StorageBufferBindings(
+  VulkanContext& context, std::uint32_t bindingCount, std::uint32_t pushConstantBytes)
+  : Context(context)
+  , BindingCount(bindingCount)
+  , PushConstantBytes(pushConstantBytes)
+{
+  VkDevice device = context.device();
+  std::vector<VkDescriptorSetLayoutBinding> layoutBindings(bindingCount);
+  for (std::uint32_t i = 0; i < bindingCount; ++i)
+  {
+    layoutBindings[i] = { i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr };
+  }
+  auto layoutInfo = vulkanStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  layoutInfo.bindingCount = bindingCount;
+  layoutInfo.pBindings = layoutBindings.data();
+  VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+  checkVulkan(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+  this->SetLayout = VulkanHandle<VkDescriptorSetLayout>(
+    setLayout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
+
+  VkPushConstantRange range{ VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes };
+  auto pipelineLayoutInfo = vulkanStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout;
+  pipelineLayoutInfo.pushConstantRangeCount = pushConstantBytes > 0 ? 1 : 0;
+  pipelineLayoutInfo.pPushConstantRanges = &range;
+  VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+  checkVulkan(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, &pipelineLayout), "vkCreatePipelineLayout");
+  this->PipelineLayout = VulkanHandle<VkPipelineLayout>(
+    pipelineLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+
+  VkDescriptorPoolSize poolSize{ VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount };
+  auto poolInfo = vulkanStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &poolSize;
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  checkVulkan(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+  this->Pool =
+    VulkanHandle<VkDescriptorPool>(pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
+
+  auto allocateInfo = vulkanStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+  allocateInfo.descriptorPool = pool;
+  allocateInfo.descriptorSetCount = 1;
+  allocateInfo.pSetLayouts = &setLayout;
+  checkVulkan(vkAllocateDescriptorSets(device, &allocateInfo, &this->Set), "vkAllocateDescriptorSets");
+}
+
+void StorageBufferBindings::bind(const std::vector<const VulkanBuffer*>& buffers)
+{
+  if (buffers.size() != this->BindingCount)
+  {
+    throw VulkanError("vkUpdateDescriptorSets: " + std::to_string(buffers.size()) + " buffers for " +
+      std::to_string(this->BindingCount) + " bindings");
+  }
+  std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+  std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  for (std::size_t i = 0; i < buffers.size(); ++i)
+  {
+    infos[i] = { buffers[i]->buffer(), 0, VK_WHOLE_SIZE };
+    writes[i] = vulkanStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    writes[i].dstSet = this->Set;
+    writes[i].dstBinding = static_cast<std::uint32_t>(i);
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &infos[i];
+  }
+  vkUpdateDescriptorSets(
+    this->Context.device(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+ComputePipeline::ComputePipeline(VulkanContext& context, const StorageBufferBindings& bindings,
+  const std::uint32_t* spirv, std::size_t spirvWords, const std::vector<std::int32_t>& specialisation)
+  : Bindings(bindings)
+{
+  VkDevice device = context.device();
+  auto moduleInfo = vulkanStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+  moduleInfo.codeSize = spirvWords * sizeof(std::uint32_t);
+  moduleInfo.pCode = spirv;
+  VkShaderModule rawModule = VK_NULL_HANDLE;
+  checkVulkan(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), "vkCreateShaderModule");
+  VulkanHandle<VkShaderModule> shaderModule(
+    rawModule, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
+
+  std::vector<VkSpecializationMapEntry> entries(specialisation.size());
+  for (std::size_t i = 0; i < specialisation.size(); ++i)
+  {
+    entries[i] = { static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i * sizeof(std::int32_t)),
+      sizeof(std::int32_t) };
+  }
+  VkSpecializationInfo specialisationInfo{ static_cast<std::uint32_t>(entries.size()), entries.data(),
+    specialisation.size() * sizeof(std::int32_t), specialisation.data() };
+
+  auto info = vulkanStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+  info.stage = vulkanStruct<VkPipelineShaderStageCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO);
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = rawModule;
+  info.stage.pName = "main";
+  info.stage.pSpecializationInfo = specialisation.empty() ? nullptr : &specialisationInfo;
+  info.layout = bindings.pipelineLayout();
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  checkVulkan(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+    "vkCreateComputePipelines");
+  this->Pipeline = VulkanHandle<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+}
+
+void ComputePipeline::dispatch(VkCommandBuffer commands, const void* pushConstants, std::uint32_t groupsX,
+  std::uint32_t groupsY, std::uint32_t groupsZ) const
+{
+  VkDescriptorSet set = this->Bindings.set();
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Pipeline.get());
+  vkCmdBindDescriptorSets(
+    commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Bindings.pipelineLayout(), 0, 1, &set, 0, nullptr);
+  if (this->Bindings.pushConstantBytes() > 0 && pushConstants)
+  {
+    vkCmdPushConstants(commands, this->Bindings.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+      this->Bindings.pushConstantBytes(), pushConstants);
+  }
+  vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
+  auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+} // namespace opal

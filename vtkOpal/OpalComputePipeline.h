@@ -1,0 +1,58 @@
+// Compute pipelines over one shared descriptor set of storage buffers.
+#pragma once
+
+#include "OpalVulkanHandle.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace opal
+{
+
+class VulkanBuffer;
+class VulkanContext;
+
+// A descriptor set of `bindingCount` storage buffers (bindings 0..n-1) and the
+// pipeline layout every pass shares, with `pushConstantBytes` of push constants.
+class StorageBufferBindings
+{
+public:
+  StorageBufferBindings(VulkanContext& context, std::uint32_t bindingCount, std::uint32_t pushConstantBytes);
+
+  // Points every binding at its buffer (index = binding).
+  void bind(const std::vector<const VulkanBuffer*>& buffers);
+
+  VkPipelineLayout pipelineLayout() const { return this->PipelineLayout.get(); }
+  VkDescriptorSet set() const { return this->Set; }
+  std::uint32_t pushConstantBytes() const { return this->PushConstantBytes; }
+
+private:
+  VulkanContext& Context;
+  std::uint32_t BindingCount;
+  std::uint32_t PushConstantBytes;
+  VulkanHandle<VkDescriptorSetLayout> SetLayout;
+  VulkanHandle<VkPipelineLayout> PipelineLayout;
+  VulkanHandle<VkDescriptorPool> Pool;
+  VkDescriptorSet Set = VK_NULL_HANDLE;
+};
+
+// One compute shader as a pipeline; `specialisation` sets constant_id 0..n-1.
+class ComputePipeline
+{
+public:
+  ComputePipeline(VulkanContext& context, const StorageBufferBindings& bindings, const std::uint32_t* spirv,
+    std::size_t spirvWords, const std::vector<std::int32_t>& specialisation = {});
+
+  // Records: bind pipeline and set, push constants, dispatch, then a barrier
+  // so the next dispatch or the host sees the writes.
+  void dispatch(VkCommandBuffer commands, const void* pushConstants, std::uint32_t groupsX,
+    std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const;
+
+private:
+  const StorageBufferBindings& Bindings;
+  VulkanHandle<VkPipeline> Pipeline;
+};
+
+} // namespace opal

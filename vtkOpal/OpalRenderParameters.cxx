@@ -1,0 +1,112 @@
+#include "OpalRenderParameters.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace opal
+{
+
+int wavelengthCount(const RenderParameters& p)
+{
+  return static_cast<int>(std::floor((p.WavelengthRange[1] - p.WavelengthRange[0]) / p.WavelengthStep + 1e-3)) + 1;
+}
+
+std::string validate(const RenderParameters& p)
+{
+  std::ostringstream m;
+  auto finite3 = [](const std::array<double, 3>& v) {
+    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+  };
+  if (p.ImageSize[0] < 1 || p.ImageSize[1] < 1 || p.ImageSize[0] > 16384 || p.ImageSize[1] > 16384)
+  {
+    m << "ImageSize must be 1-16384 pixels each way, got " << p.ImageSize[0] << " x " << p.ImageSize[1] << ".";
+  }
+  else if (p.ImageRegion[0] < 0 || p.ImageRegion[1] < 0 || p.ImageRegion[0] >= p.ImageSize[0] ||
+    p.ImageRegion[1] >= p.ImageSize[1] || p.ImageRegion[0] + p.ImageRegion[2] > p.ImageSize[0] ||
+    p.ImageRegion[1] + p.ImageRegion[3] > p.ImageSize[1])
+  {
+    m << "ImageRegion (" << p.ImageRegion[0] << ", " << p.ImageRegion[1] << ", " << p.ImageRegion[2] << ", "
+      << p.ImageRegion[3] << ") must lie within the " << p.ImageSize[0] << " x " << p.ImageSize[1] << " image.";
+  }
+  else if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition))
+  {
+    m << "EyePosition, FocalPoint and LightPosition must be finite.";
+  }
+  else if (p.EyePosition == p.FocalPoint)
+  {
+    m << "FocalPoint must differ from EyePosition.";
+  }
+  else if (!(p.ViewAngle > 0 && p.ViewAngle < 179))
+  {
+    m << "ViewAngle must lie in (0, 179) degrees, got " << p.ViewAngle << ".";
+  }
+  else if (!(p.LightRadius > 0))
+  {
+    m << "LightRadius must be positive, got " << p.LightRadius << " mm.";
+  }
+  else if (!finite3(p.ModelRotation))
+  {
+    m << "ModelRotation must be finite.";
+  }
+  else if (!(p.WavelengthRange[0] >= 200 && p.WavelengthRange[1] <= 1000 &&
+             p.WavelengthRange[0] <= p.WavelengthRange[1]))
+  {
+    m << "WavelengthRange must be min <= max within [200, 1000] nm, got [" << p.WavelengthRange[0] << ", "
+      << p.WavelengthRange[1] << "].";
+  }
+  else if (!(p.WavelengthStep > 0))
+  {
+    m << "WavelengthStep must be positive, got " << p.WavelengthStep << " nm.";
+  }
+  else if (wavelengthCount(p) > MaxWavelengths)
+  {
+    m << "WavelengthStep " << p.WavelengthStep << " nm gives " << wavelengthCount(p)
+      << " wavelengths; at most " << MaxWavelengths << " are supported.";
+  }
+  else if (!(p.RefractiveIndex > 1 && p.RefractiveIndex < 4))
+  {
+    m << "RefractiveIndex must lie in (1, 4), got " << p.RefractiveIndex << ".";
+  }
+  else if (!(p.BraggBandwidth > 0 && p.BraggBandwidth < 1))
+  {
+    m << "BraggBandwidth must lie in (0, 1), got " << p.BraggBandwidth << ".";
+  }
+  else if (!(p.DiffractionGain >= 0 && std::isfinite(p.DiffractionGain)))
+  {
+    m << "DiffractionGain must be finite and not negative, got " << p.DiffractionGain << ".";
+  }
+  else if (p.BraggOrders < 1 || p.BraggOrders > 8)
+  {
+    m << "BraggOrders must be 1-8, got " << p.BraggOrders << ".";
+  }
+  else if (!(p.MosaicSpread >= 0 && p.MosaicSpread <= 90))
+  {
+    m << "MosaicSpread must lie in [0, 90] degrees, got " << p.MosaicSpread << ".";
+  }
+  else if (!(p.Exposure >= 0 && std::isfinite(p.Exposure)))
+  {
+    m << "Exposure must be 0 (automatic) or positive, got " << p.Exposure << ".";
+  }
+  else if (!(p.StepSize >= 0 && std::isfinite(p.StepSize)))
+  {
+    m << "StepSize must be 0 (one voxel) or positive, got " << p.StepSize << " mm.";
+  }
+  else if (p.SpecularSamples < 1 || p.SpecularSamples > 16)
+  {
+    m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
+  }
+  else
+  {
+    for (double b : p.Background)
+    {
+      if (!(b >= 0 && b <= 1))
+      {
+        m << "Background components must lie in [0, 1].";
+        break;
+      }
+    }
+  }
+  return m.str();
+}
+
+} // namespace opal

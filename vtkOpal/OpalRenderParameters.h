@@ -1,0 +1,48 @@
+// Every parameter of the spectral render (paper §6-7, DESIGN.md §3), with the
+// paper's set-up as defaults: one D65 point light and the eye at the same
+// point 60 mm above the base's centre, looking down. Plain data.
+#pragma once
+
+#include <array>
+#include <string>
+
+namespace opal
+{
+
+struct RenderParameters
+{
+  std::array<int, 2> ImageSize{ 640, 480 };            // pixels
+  std::array<int, 4> ImageRegion{ 0, 0, -1, -1 };      // x0, y0, width, height (<= 0: to the edge)
+  std::array<double, 3> EyePosition{ 0.0, 60.0, 0.0 }; // mm
+  std::array<double, 3> FocalPoint{ 0.0, 0.0, 0.0 };   // mm
+  std::array<double, 3> ViewUp{ 0.0, 0.0, -1.0 };      // image up: the opal's long axis z runs vertically
+  double ViewAngle = 24.0;                             // vertical, degrees
+  std::array<double, 3> LightPosition{ 0.0, 60.0, 0.0 }; // mm
+  double LightRadius = 0.5;                            // mm: a 1 mm light
+  std::array<double, 3> ModelRotation{ 0.0, 0.0, 0.0 }; // degrees about x, then y, then z (fig13: 5 about x)
+  std::array<double, 2> WavelengthRange{ 380.0, 780.0 }; // nm
+  double WavelengthStep = 10.0;                        // nm: 41 wavelengths
+  double RefractiveIndex = 1.45;                       // mu
+  double BraggBandwidth = 0.04;                        // relative full width of the band B
+  double DiffractionGain = 4.0;                        // G: the paper's doubled amplitude (§5)
+  int BraggOrders = 1;                                 // k = 1..BraggOrders (paper: 1)
+  double MosaicSpread = 0.0;                           // degrees; 0 = off, as in the paper
+  double Exposure = 0.0;                               // 0: automatic (body's median luminance to 0.18)
+  std::array<double, 3> Background{ 0.0, 0.0, 0.0 };   // sRGB in [0, 1]
+  double StepSize = 0.0;                               // mm, longest march sub-step; 0: one voxel
+  int SpecularSamples = 4;                             // per pixel axis, for the highlight
+  bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
+  bool WriteSpectrum = false;                          // fill the Spectrum output
+};
+
+// The largest number of wavelengths a render takes (the march keeps one
+// radiance per wavelength in registers).
+constexpr int MaxWavelengths = 401;
+
+// Empty if valid, else one sentence naming the parameter.
+std::string validate(const RenderParameters& parameters);
+
+// Number of wavelength bins the parameters give.
+int wavelengthCount(const RenderParameters& parameters);
+
+} // namespace opal

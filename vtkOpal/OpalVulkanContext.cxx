@@ -1,0 +1,343 @@
+#include "OpalVulkanContext.h"
+
+#include "OpalVulkanError.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace opal
+{
+
+namespace
+{
+const char* const ValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+bool environmentFlag(const char* name)
+{
+  const char* value = std::getenv(name);
+  return value && std::strcmp(value, "0") != 0 && std::strcmp(value, "") != 0;
+}
+
+bool layerAvailable(const char* name)
+{
+  std::uint32_t count = 0;
+  checkVulkan(vkEnumerateInstanceLayerProperties(&count, nullptr), "vkEnumerateInstanceLayerProperties");
+  std::vector<VkLayerProperties> layers(count);
+  checkVulkan(vkEnumerateInstanceLayerProperties(&count, layers.data()), "vkEnumerateInstanceLayerProperties");
+  return std::any_of(layers.begin(), layers.end(),
+    [name](const VkLayerProperties& layer) { return std::strcmp(layer.layerName, name) == 0; });
+}
+
+VulkanHandle<VkInstance> createInstance(bool validation)
+{
+  auto application = vulkanStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
+  application.pApplicationName = "Opal";
+  application.pEngineName = "Opal";
+  application.apiVersion = VK_API_VERSION_1_1;
+  auto info = vulkanStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
+  info.pApplicationInfo = &application;
+  const char* debugUtils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  if (validation)
+  {
+    info.enabledLayerCount = 1;
+    info.ppEnabledLayerNames = &ValidationLayer;
+    info.enabledExtensionCount = 1;
+    info.ppEnabledExtensionNames = &debugUtils;
+  }
+  VkInstance instance = VK_NULL_HANDLE;
+  const VkResult result = vkCreateInstance(&info, nullptr, &instance);
+  if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
+  {
+    throw NoVulkanDeviceError("vkCreateInstance failed: no Vulkan driver (VK_ERROR_INCOMPATIBLE_DRIVER); "
+                              "install mesa-vulkan-drivers for the CPU device lavapipe",
+      result);
+  }
+  checkVulkan(result, "vkCreateInstance");
+  return VulkanHandle<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance)
+{
+  std::uint32_t count = 0;
+  checkVulkan(vkEnumeratePhysicalDevices(instance, &count, nullptr), "vkEnumeratePhysicalDevices");
+  std::vector<VkPhysicalDevice> devices(count);
+  checkVulkan(vkEnumeratePhysicalDevices(instance, &count, devices.data()), "vkEnumeratePhysicalDevices");
+  return devices;
+}
+
+// Index of a queue family with compute, or -1.
+int computeQueueFamily(VkPhysicalDevice device)
+{
+  std::uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
+  for (std::uint32_t i = 0; i < count; ++i)
+  {
+    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT)
+    {
+      return static_cast<int>(i);
+    }
+  }
+  return -1;
+}
+
+bool suitable(VkPhysicalDevice device)
+{
+  VkPhysicalDeviceProperties properties;
+  vkGetPhysicalDeviceProperties(device, &properties);
+  return properties.apiVersion >= VK_API_VERSION_1_1 && computeQueueFamily(device) >= 0;
+}
+
+int typeRank(VkPhysicalDeviceType type)
+{
+  switch (type)
+  {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 1;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 3;
+    default:
+      return 4;
+  }
+}
+
+VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int requested)
+{
+  auto name = [](VkPhysicalDevice d) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(d, &p);
+    return std::string(p.deviceName);
+  };
+  std::string selector;
+  if (requested < 0 && std::getenv("OPAL_VULKAN_DEVICE"))
+  {
+    selector = std::getenv("OPAL_VULKAN_DEVICE");
+    const bool numeric = !selector.empty() && std::all_of(selector.begin(), selector.end(), ::isdigit);
+    if (numeric)
+    {
+      requested = std::atoi(selector.c_str());
+      selector.clear();
+    }
+  }
+  if (requested >= 0)
+  {
+    if (requested >= static_cast<int>(devices.size()))
+    {
+      throw NoVulkanDeviceError("Vulkan device " + std::to_string(requested) + " requested, but only " +
+        std::to_string(devices.size()) + " device(s) exist");
+    }
+    VkPhysicalDevice device = devices[static_cast<std::size_t>(requested)];
+    if (!suitable(device))
+    {
+      throw NoVulkanDeviceError("Vulkan device " + std::to_string(requested) + " (" + name(device) +
+        ") lacks Vulkan 1.1 or a compute queue");
+    }
+    return device;
+  }
+  VkPhysicalDevice best = VK_NULL_HANDLE;
+  int bestRank = 1 << 20;
+  for (VkPhysicalDevice device : devices)
+  {
+    if (!suitable(device) || (!selector.empty() && name(device).find(selector) == std::string::npos))
+    {
+      continue;
+    }
+    VkPhysicalDeviceProperties properties;
+    vkGetPhysicalDeviceProperties(device, &properties);
+    if (typeRank(properties.deviceType) < bestRank)
+    {
+      bestRank = typeRank(properties.deviceType);
+      best = device;
+    }
+  }
+  if (best == VK_NULL_HANDLE)
+  {
+    throw NoVulkanDeviceError(selector.empty()
+        ? "no Vulkan 1.1 device with a compute queue; install mesa-vulkan-drivers for lavapipe"
+        : "no Vulkan device whose name contains \"" + selector + "\" (OPAL_VULKAN_DEVICE)");
+  }
+  return best;
+}
+} // namespace
+
+VulkanContext::VulkanContext(const VulkanOptions& options)
+{
+  const bool validation = options.Validation || environmentFlag("OPAL_VULKAN_VALIDATION");
+  if (validation && !layerAvailable(ValidationLayer))
+  {
+    throw VulkanError("Vulkan validation was requested but VK_LAYER_KHRONOS_validation is not installed "
+                      "(Debian: vulkan-validationlayers)",
+      VK_ERROR_LAYER_NOT_PRESENT);
+  }
+  this->Instance = createInstance(validation);
+  VkInstance instance = this->Instance.get();
+  if (validation)
+  {
+    auto info = vulkanStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+    info.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    info.pfnUserCallback = &VulkanContext::onValidationMessage;
+    info.pUserData = this;
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+    if (!create)
+    {
+      throw VulkanError("vkGetInstanceProcAddr(vkCreateDebugUtilsMessengerEXT) found no function",
+        VK_ERROR_EXTENSION_NOT_PRESENT);
+    }
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    checkVulkan(create(instance, &info, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
+    this->Messenger = VulkanHandle<VkDebugUtilsMessengerEXT>(
+      messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+  }
+
+  const std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+  if (devices.empty())
+  {
+    throw NoVulkanDeviceError("no Vulkan device; install mesa-vulkan-drivers for the CPU device lavapipe");
+  }
+  this->PhysicalDevice = chooseDevice(devices, options.DeviceIndex);
+  vkGetPhysicalDeviceProperties(this->PhysicalDevice, &this->Properties);
+  vkGetPhysicalDeviceMemoryProperties(this->PhysicalDevice, &this->MemoryProperties);
+  this->QueueFamily = static_cast<std::uint32_t>(computeQueueFamily(this->PhysicalDevice));
+
+  const float priority = 1.0f;
+  auto queueInfo = vulkanStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
+  queueInfo.queueFamilyIndex = this->QueueFamily;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  auto deviceInfo = vulkanStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  VkDevice device = VK_NULL_HANDLE;
+  checkVulkan(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");
+  this->Device = VulkanHandle<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
+  vkGetDeviceQueue(device, this->QueueFamily, 0, &this->Queue);
+
+  auto poolInfo = vulkanStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+  poolInfo.queueFamilyIndex = this->QueueFamily;
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  VkCommandPool pool = VK_NULL_HANDLE;
+  checkVulkan(vkCreateCommandPool(device, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
+  this->CommandPool =
+    VulkanHandle<VkCommandPool>(pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
+
+  auto fenceInfo = vulkanStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+  VkFence fence = VK_NULL_HANDLE;
+  checkVulkan(vkCreateFence(device, &fenceInfo, nullptr, &fence), "vkCreateFence");
+  this->Fence = VulkanHandle<VkFence>(fence, [device](VkFence f) { vkDestroyFence(device, f, nullptr); });
+
+  this->MemoryLimit = options.MemoryLimitBytes;
+  if (const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB"))
+  {
+    this->MemoryLimit = static_cast<std::uint64_t>(std::strtoull(limit, nullptr, 10)) << 20;
+  }
+}
+
+VulkanContext::~VulkanContext()
+{
+  if (this->Device)
+  {
+    vkDeviceWaitIdle(this->Device.get());
+  }
+}
+
+std::uint32_t VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const
+{
+  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  {
+    if ((typeBits & (1u << i)) &&
+      (this->MemoryProperties.memoryTypes[i].propertyFlags & properties) == properties)
+    {
+      return i;
+    }
+  }
+  throw VulkanError("vkGetPhysicalDeviceMemoryProperties: no host-visible, coherent memory type for a buffer",
+    VK_ERROR_FEATURE_NOT_PRESENT);
+}
+
+void VulkanContext::reserveMemory(std::uint64_t bytes)
+{
+  if (this->MemoryLimit > 0 && this->MemoryInUse + bytes > this->MemoryLimit)
+  {
+    std::ostringstream message;
+    message << "vkAllocateMemory refused: " << bytes << " more bytes would exceed the device memory limit of "
+            << this->MemoryLimit << " bytes (" << this->MemoryInUse << " in use)";
+    throw VulkanError(message.str(), VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+  this->MemoryInUse += bytes;
+}
+
+void VulkanContext::releaseMemory(std::uint64_t bytes)
+{
+  this->MemoryInUse -= std::min(bytes, this->MemoryInUse);
+}
+
+void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& record)
+{
+  VkDevice device = this->Device.get();
+  auto allocateInfo = vulkanStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+  allocateInfo.commandPool = this->CommandPool.get();
+  allocateInfo.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  allocateInfo.commandBufferCount = 1;
+  VkCommandBuffer raw = VK_NULL_HANDLE;
+  checkVulkan(vkAllocateCommandBuffers(device, &allocateInfo, &raw), "vkAllocateCommandBuffers");
+  VkCommandPool pool = this->CommandPool.get();
+  VulkanHandle<VkCommandBuffer> commands(
+    raw, [device, pool](VkCommandBuffer c) { vkFreeCommandBuffers(device, pool, 1, &c); });
+
+  auto begin = vulkanStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  checkVulkan(vkBeginCommandBuffer(raw, &begin), "vkBeginCommandBuffer");
+  record(raw);
+  checkVulkan(vkEndCommandBuffer(raw), "vkEndCommandBuffer");
+
+  auto submit = vulkanStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &raw;
+  VkFence fence = this->Fence.get();
+  checkVulkan(vkResetFences(device, 1, &fence), "vkResetFences");
+  checkVulkan(vkQueueSubmit(this->Queue, 1, &submit, fence), "vkQueueSubmit");
+  checkVulkan(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+}
+
+std::vector<std::string> VulkanContext::validationMessages() const
+{
+  std::lock_guard<std::mutex> lock(this->MessageMutex);
+  return this->Messages;
+}
+
+VkBool32 VKAPI_PTR VulkanContext::onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+  VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data, void* user)
+{
+  auto* context = static_cast<VulkanContext*>(user);
+  std::lock_guard<std::mutex> lock(context->MessageMutex);
+  context->Messages.emplace_back(data && data->pMessage ? data->pMessage : "(no message)");
+  return VK_FALSE;
+}
+
+std::vector<std::string> VulkanContext::listDevices()
+{
+  VulkanHandle<VkInstance> instance = createInstance(false);
+  std::vector<std::string> names;
+  for (VkPhysicalDevice device : physicalDevices(instance.get()))
+  {
+    VkPhysicalDeviceProperties properties;
+    vkGetPhysicalDeviceProperties(device, &properties);
+    names.emplace_back(properties.deviceName);
+  }
+  return names;
+}
+
+} // namespace opal

@@ -1,0 +1,88 @@
+// A Vulkan instance, one compute-capable device and its queue. Any Vulkan 1.1
+// device with a compute queue will do; on machines without a GPU that is
+// Mesa lavapipe. The Khronos validation layer can be switched on, and then
+// every message it emits is recorded (tests fail on any).
+#pragma once
+
+#include "OpalVulkanHandle.h"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace opal
+{
+
+struct VulkanOptions
+{
+  // Device to use: an index into the physical devices, or -1 to pick the
+  // OPAL_VULKAN_DEVICE environment variable (an index or part of a name),
+  // else the first discrete, integrated, virtual, then CPU device.
+  int DeviceIndex = -1;
+  // Enable VK_LAYER_KHRONOS_validation; also on when OPAL_VULKAN_VALIDATION=1.
+  bool Validation = false;
+  // Refuse device allocations beyond this many bytes in all (0: no limit);
+  // also settable by OPAL_VULKAN_MEMORY_LIMIT_MB. Simulates a small device.
+  std::uint64_t MemoryLimitBytes = 0;
+};
+
+class VulkanContext
+{
+public:
+  // Throws NoVulkanDeviceError if no suitable device exists, VulkanError on any failure.
+  explicit VulkanContext(const VulkanOptions& options = {});
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  VkDevice device() const { return this->Device.get(); }
+  VkPhysicalDevice physicalDevice() const { return this->PhysicalDevice; }
+  const VkPhysicalDeviceLimits& limits() const { return this->Properties.limits; }
+  std::string deviceName() const { return this->Properties.deviceName; }
+
+  // Memory type index with the given properties among the allowed type bits.
+  std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
+
+  // Book-keeping of the optional memory limit; reserve throws a VulkanError
+  // naming the limit when it would be exceeded.
+  void reserveMemory(std::uint64_t bytes);
+  void releaseMemory(std::uint64_t bytes);
+
+  // Records commands into a one-time command buffer, submits it and waits.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+
+  // Messages the validation layer emitted (warnings and errors) so far.
+  std::vector<std::string> validationMessages() const;
+  bool validationEnabled() const { return static_cast<bool>(this->Messenger); }
+
+  // The names of all physical devices, for messages and --list-devices.
+  static std::vector<std::string> listDevices();
+
+private:
+  static VkBool32 VKAPI_PTR onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+    VkDebugUtilsMessageTypeFlagsEXT types, const VkDebugUtilsMessengerCallbackDataEXT* data,
+    void* user);
+
+  // Declared in creation order: members are destroyed in reverse.
+  VulkanHandle<VkInstance> Instance;
+  VulkanHandle<VkDebugUtilsMessengerEXT> Messenger;
+  VkPhysicalDevice PhysicalDevice = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties Properties{};
+  VkPhysicalDeviceMemoryProperties MemoryProperties{};
+  VulkanHandle<VkDevice> Device;
+  VkQueue Queue = VK_NULL_HANDLE;
+  std::uint32_t QueueFamily = 0;
+  VulkanHandle<VkCommandPool> CommandPool;
+  VulkanHandle<VkFence> Fence;
+  std::uint64_t MemoryLimit = 0;
+  std::uint64_t MemoryInUse = 0;
+  mutable std::mutex MessageMutex;
+  std::vector<std::string> Messages;
+};
+
+} // namespace opal
