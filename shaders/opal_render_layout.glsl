@@ -1,5 +1,7 @@
 // Buffers and parameters shared by every Opal render pass. One descriptor set
 // layout serves all passes (bindings 0-12); each pass declares what it uses.
+// The parameters are a uniform block: read-only and never aliased by the
+// storage buffers, so compilers keep them in registers.
 // Lengths are in mm, wavelengths in nm, all positions in the model's frame.
 
 struct RenderParameters
@@ -20,7 +22,7 @@ struct RenderParameters
   vec4 background;      // linear sRGB of the background; w = 8-bit flag unused
 };
 
-layout(std430, set = 0, binding = 0) readonly buffer ParameterBlock { RenderParameters P; };
+layout(std140, set = 0, binding = 0) uniform ParameterBlock { RenderParameters P; };
 
 // Per wavelength i: W[2i] = (lambda, (550/lambda)^4, normalised D65, bin width),
 // W[2i+1] = bin-averaged CIE 1931 x-bar, y-bar, z-bar.

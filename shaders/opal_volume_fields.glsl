@@ -45,11 +45,15 @@ vec3 voxelCentre(ivec3 c)
     result = mix(mix(x00_, x10_, f_.y), mix(x01_, x11_, f_.y), f_.z);                  \
   }
 
+// SurfaceDistance, continued linearly beyond the outermost voxel centres (the
+// opal touches the grid's top and sides; a clamped field there would flatten
+// the surface's gradient and hide the apex).
 float surfaceDistance(vec3 p)
 {
+  vec3 nearest = clamp(p, P.gridOrigin.xyz, P.gridOrigin.xyz + vec3(P.gridDims.xyz - 1) * P.gridSpacing.xyz);
   float d;
-  OPAL_TRILINEAR(surfaceDistanceField, p, d);
-  return d;
+  OPAL_TRILINEAR(surfaceDistanceField, nearest, d);
+  return d + distance(p, nearest);
 }
 
 // Outward unit normal of the smooth surface: the gradient of SurfaceDistance.

@@ -54,23 +54,44 @@ vec3 primaryDirection(vec2 pixel)
     ndc.y * tanHalf * P.up.xyz);
 }
 
-// Distance along the ray to the light sphere, or -1.
-float lightSphereHit(vec3 origin, vec3 direction)
+// Where the mirror ray of the primary ray through `pixel` passes closest to
+// the light's centre; w = 0 if the ray misses the opal or points away.
+vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
 {
-  vec3 oc = origin - P.light.xyz;
-  float b = dot(oc, direction);
-  float c = dot(oc, oc) - P.light.w * P.light.w;
-  float disc = b * b - c;
-  if (disc < 0.0) return -1.0;
-  float t = -b - sqrt(disc);
-  return t > 0.0 ? t : -1.0;
+  vec3 d = primaryDirection(pixel);
+  vec2 box = gridBoxHits(eye, d);
+  cosI = 0.0;
+  if (box.x > box.y) return vec4(0.0);
+  float t = traceSurfaceEntry(eye, d, max(box.x, tFrom), box.y);
+  if (t < 0.0) return vec4(0.0);
+  vec3 hit = eye + t * d;
+  vec3 normal = surfaceNormal(hit);
+  cosI = -dot(d, normal);
+  vec3 mirrored = reflect(d, normal);
+  float along = dot(P.light.xyz - hit, mirrored);
+  if (cosI <= 0.0 || along <= 0.0) return vec4(0.0);
+  return vec4(hit + along * mirrored, 1.0);
 }
 
-// Fresnel reflectance of the light seen in the surface, averaged over the
-// pixel's n x n sub-rays: the highlight and the paper's secondary ray in the
-// mirror direction (the scene holds nothing else to reflect).
-float specularHighlight(vec2 pixel, vec3 eye, float mu)
+// Fresnel reflectance of the light seen in the surface (the highlight, and
+// the paper's secondary ray in the mirror direction: the scene holds nothing
+// else to reflect). The light is often smaller than a pixel, so where the
+// mirror rays of this pixel and its neighbours (ray differentials) pass
+// within reach of it, n x n sub-rays cover the pixel; elsewhere it is 0.
+float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
 {
+  float h = P.gridOrigin.w;
+  float cosI;
+  vec4 centre = mirrorRayNearLight(pixel, eye, tHit - 2.0 * h, cosI);
+  if (centre.w == 0.0) return 0.0;
+  vec4 nextX = mirrorRayNearLight(pixel + vec2(1.0, 0.0), eye, tHit - 4.0 * h, cosI);
+  vec4 nextY = mirrorRayNearLight(pixel + vec2(0.0, 1.0), eye, tHit - 4.0 * h, cosI);
+  float spread = (nextX.w == 0.0 || nextY.w == 0.0) ? 1e30
+    : max(distance(nextX.xyz, centre.xyz), distance(nextY.xyz, centre.xyz));
+  if (distance(centre.xyz, P.light.xyz) > P.light.w + 1.5 * spread)
+  {
+    return 0.0;
+  }
   int n = int(P.lighting.w);
   float sum = 0.0;
   for (int sy = 0; sy < n; ++sy)
@@ -78,17 +99,8 @@ float specularHighlight(vec2 pixel, vec3 eye, float mu)
     for (int sx = 0; sx < n; ++sx)
     {
       vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
-      vec3 d = primaryDirection(sub);
-      vec2 box = gridBoxHits(eye, d);
-      if (box.x > box.y) continue;
-      float t = traceSurfaceEntry(eye, d, box.x, box.y);
-      if (t < 0.0) continue;
-      vec3 hit = eye + t * d;
-      vec3 normal = surfaceNormal(hit);
-      float cosI = -dot(d, normal);
-      if (cosI <= 0.0) continue;
-      vec3 mirrored = reflect(d, normal);
-      if (lightSphereHit(hit + 1e-4 * normal, mirrored) > 0.0)
+      vec4 near = mirrorRayNearLight(sub, eye, tHit - 4.0 * h, cosI);
+      if (near.w > 0.0 && distance(near.xyz, P.light.xyz) <= P.light.w)
       {
         sum += fresnelReflectance(cosI, mu);
       }
@@ -131,7 +143,7 @@ void main()
   vec3 normal = surfaceNormal(entry);
   float cosI = clamp(-dot(direction, normal), 0.0, 1.0);
   float transmitted = 1.0 - fresnelReflectance(cosI, mu);
-  float highlight = specularHighlight(pixel, eye, mu) * P.lighting.y;
+  float highlight = specularHighlight(pixel, eye, tHit, mu) * P.lighting.y;
   vec3 inward = refract(direction, normal, 1.0 / mu);
   vec3 towardEye = -inward;
 

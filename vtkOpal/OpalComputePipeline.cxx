@@ -8,16 +8,19 @@ namespace opal
 {
 
 StorageBufferBindings::StorageBufferBindings(
-  VulkanContext& context, std::uint32_t bindingCount, std::uint32_t pushConstantBytes)
+  VulkanContext& context, const std::vector<VkDescriptorType>& types, std::uint32_t pushConstantBytes)
   : Context(context)
-  , BindingCount(bindingCount)
+  , Types(types)
   , PushConstantBytes(pushConstantBytes)
 {
   VkDevice device = context.device();
+  const auto bindingCount = static_cast<std::uint32_t>(types.size());
   std::vector<VkDescriptorSetLayoutBinding> layoutBindings(bindingCount);
+  std::uint32_t uniformCount = 0;
   for (std::uint32_t i = 0; i < bindingCount; ++i)
   {
-    layoutBindings[i] = { i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr };
+    layoutBindings[i] = { i, types[i], 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr };
+    uniformCount += types[i] == VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER ? 1 : 0;
   }
   auto layoutInfo = vulkanStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   layoutInfo.bindingCount = bindingCount;
@@ -38,11 +41,19 @@ StorageBufferBindings::StorageBufferBindings(
   this->PipelineLayout = VulkanHandle<VkPipelineLayout>(
     pipelineLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 
-  VkDescriptorPoolSize poolSize{ VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount };
+  std::vector<VkDescriptorPoolSize> poolSizes;
+  if (uniformCount > 0)
+  {
+    poolSizes.push_back({ VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniformCount });
+  }
+  if (bindingCount > uniformCount)
+  {
+    poolSizes.push_back({ VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, bindingCount - uniformCount });
+  }
   auto poolInfo = vulkanStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &poolSize;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(poolSizes.size());
+  poolInfo.pPoolSizes = poolSizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
   checkVulkan(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
   this->Pool =
@@ -57,10 +68,10 @@ StorageBufferBindings::StorageBufferBindings(
 
 void StorageBufferBindings::bind(const std::vector<const VulkanBuffer*>& buffers)
 {
-  if (buffers.size() != this->BindingCount)
+  if (buffers.size() != this->Types.size())
   {
     throw VulkanError("vkUpdateDescriptorSets: " + std::to_string(buffers.size()) + " buffers for " +
-      std::to_string(this->BindingCount) + " bindings");
+      std::to_string(this->Types.size()) + " bindings");
   }
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
@@ -71,7 +82,7 @@ void StorageBufferBindings::bind(const std::vector<const VulkanBuffer*>& buffers
     writes[i].dstSet = this->Set;
     writes[i].dstBinding = static_cast<std::uint32_t>(i);
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].descriptorType = this->Types[i];
     writes[i].pBufferInfo = &infos[i];
   }
   vkUpdateDescriptorSets(

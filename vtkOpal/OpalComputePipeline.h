@@ -14,12 +14,14 @@ namespace opal
 class VulkanBuffer;
 class VulkanContext;
 
-// A descriptor set of `bindingCount` storage buffers (bindings 0..n-1) and the
-// pipeline layout every pass shares, with `pushConstantBytes` of push constants.
+// A descriptor set of buffers, binding i of type types[i] (uniform or
+// storage), and the pipeline layout every pass shares, with
+// `pushConstantBytes` of push constants.
 class StorageBufferBindings
 {
 public:
-  StorageBufferBindings(VulkanContext& context, std::uint32_t bindingCount, std::uint32_t pushConstantBytes);
+  StorageBufferBindings(
+    VulkanContext& context, const std::vector<VkDescriptorType>& types, std::uint32_t pushConstantBytes);
 
   // Points every binding at its buffer (index = binding).
   void bind(const std::vector<const VulkanBuffer*>& buffers);
@@ -30,7 +32,7 @@ public:
 
 private:
   VulkanContext& Context;
-  std::uint32_t BindingCount;
+  std::vector<VkDescriptorType> Types;
   std::uint32_t PushConstantBytes;
   VulkanHandle<VkDescriptorSetLayout> SetLayout;
   VulkanHandle<VkPipelineLayout> PipelineLayout;

@@ -1,4 +1,4 @@
-// A storage buffer in host-visible, coherent memory, mapped for its lifetime.
+// A storage (or uniform) buffer in host-visible, coherent memory, mapped for its lifetime.
 // (Every Vulkan device offers such memory; lavapipe has no other kind.)
 #pragma once
 
