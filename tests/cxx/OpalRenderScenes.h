@@ -1,0 +1,142 @@
+// Synthetic scenes for the render tests: a box-shaped opal (a slab) with a
+// uniform scattering coefficient and at most one flat domain, rendered from
+// above with the paper's set-up (light at the eye). Plain C++ around
+// opal::SpectralRenderer, plus helpers to skip without a Vulkan device.
+#pragma once
+
+#include "OpalDomainLayout.h"
+#include "OpalGrid.h"
+#include "OpalSpectralRenderer.h"
+#include "OpalVulkanError.h"
+
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+namespace opaltest
+{
+
+// ctest's SKIP_RETURN_CODE for the Vulkan tests.
+constexpr int SkipReturnCode = 77;
+
+// The renderer with the validation layer on, or nullptr (and a message) if
+// this machine has no Vulkan device.
+inline std::unique_ptr<opal::SpectralRenderer> makeRenderer()
+{
+  try
+  {
+    opal::VulkanOptions options;
+    options.Validation = true;
+    return std::make_unique<opal::SpectralRenderer>(options);
+  }
+  catch (const opal::NoVulkanDeviceError& e)
+  {
+    std::cout << "SKIPPED: no Vulkan device: " << e.what() << std::endl;
+    return nullptr;
+  }
+}
+
+struct SlabScene
+{
+  // An 8 x 2 x 8 mm slab of 80 x 20 x 80 voxels, top face at y = 2.
+  std::array<int, 3> Dimensions{ 80, 20, 80 };
+  double Spacing = 0.1;
+  double Scattering = 0.0;                 // mu_s(550) in 1/mm everywhere inside
+  bool WithDomain = false;
+  glm::dvec3 DomainCentre{ 0.0, 1.0, 0.0 };
+  glm::dvec3 DomainNormal{ 0.0, 1.0, 0.0 };
+  double DomainHalfSize = 2.5;             // mm, a square
+  double PlaneSpacing = 200.0;             // nm, FCC (111) d
+
+  std::vector<float> ScatteringField, DistanceField;
+  std::vector<std::int32_t> DomainField;
+  std::vector<std::array<int, 3>> DomainVoxels;
+  opal::Grid VoxelGrid;
+
+  opal::RenderVolume build()
+  {
+    opal::ModelParameters p;
+    p.Dimensions = this->Dimensions;
+    p.PhysicalSize = { this->Dimensions[0] * this->Spacing, this->Dimensions[1] * this->Spacing,
+      this->Dimensions[2] * this->Spacing };
+    this->VoxelGrid = opal::Grid::fromParameters(p);
+    const std::size_t count = static_cast<std::size_t>(this->VoxelGrid.voxelCount());
+    this->ScatteringField.assign(count, static_cast<float>(this->Scattering));
+    this->DomainField.assign(count, -1);
+    this->DistanceField.resize(count);
+    const double halfX = p.PhysicalSize[0] / 2, top = p.PhysicalSize[1], halfZ = p.PhysicalSize[2] / 2;
+    for (int k = 0; k < this->Dimensions[2]; ++k)
+      for (int j = 0; j < this->Dimensions[1]; ++j)
+        for (int i = 0; i < this->Dimensions[0]; ++i)
+        {
+          const auto x = this->VoxelGrid.position(i, j, k);
+          // Inside a box the signed distance is the largest of the face distances.
+          const double d = std::max({ std::fabs(x[0]) - halfX, x[1] - top, -x[1], std::fabs(x[2]) - halfZ });
+          this->DistanceField[static_cast<std::size_t>(this->VoxelGrid.linearIndex(i, j, k))] = static_cast<float>(d);
+        }
+    opal::RenderVolume volume;
+    volume.Dimensions = this->Dimensions;
+    volume.Origin = this->VoxelGrid.Origin;
+    volume.Spacing = this->VoxelGrid.Spacing;
+    if (this->WithDomain)
+    {
+      const glm::dvec3 n = glm::normalize(this->DomainNormal);
+      const glm::dvec3 helper = std::fabs(n.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+      const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
+      const glm::dvec3 v = glm::cross(n, u);
+      std::vector<std::array<double, 3>> square;
+      for (const auto& corner : { glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1) })
+      {
+        const glm::dvec3 q = this->DomainCentre + this->DomainHalfSize * (corner.x * u + corner.y * v);
+        square.push_back({ q.x, q.y, q.z });
+      }
+      opal::rasterisePolygon(this->VoxelGrid, square, { n.x, n.y, n.z }, this->DomainVoxels);
+      for (const auto& c : this->DomainVoxels)
+      {
+        const auto index = static_cast<std::size_t>(this->VoxelGrid.linearIndex(c[0], c[1], c[2]));
+        this->DomainField[index] = 0;
+        this->ScatteringField[index] = 0.0f; // no scattering in domains (paper §6.2)
+      }
+      volume.Domains.push_back({ static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z),
+        static_cast<float>(this->PlaneSpacing) });
+    }
+    volume.ScatteringCoefficient = this->ScatteringField.data();
+    volume.DomainId = this->DomainField.data();
+    volume.SurfaceDistance = this->DistanceField.data();
+    return volume;
+  }
+};
+
+// The paper's set-up over the slab: light at the eye 28 mm above its top.
+inline opal::RenderParameters slabView(int size = 33)
+{
+  opal::RenderParameters p;
+  p.ImageSize = { size, size };
+  p.EyePosition = { 0.0, 30.0, 0.0 };
+  p.LightPosition = { 0.0, 30.0, 0.0 };
+  p.ViewAngle = 12.0;
+  p.Exposure = 1.0;
+  return p;
+}
+
+inline bool allFinite(const opal::RenderImage& image)
+{
+  auto finite = [](const std::vector<float>& values) {
+    return std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); });
+  };
+  return finite(image.Radiance) && finite(image.XYZ) && finite(image.DominantBraggWavelength) &&
+    finite(image.Depth) && finite(image.Spectrum);
+}
+
+inline std::size_t pixelIndex(const opal::RenderImage& image, int x, int y)
+{
+  return static_cast<std::size_t>(y) * static_cast<std::size_t>(image.Region[2]) + static_cast<std::size_t>(x);
+}
+
+} // namespace opaltest
