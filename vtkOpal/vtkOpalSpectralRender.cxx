@@ -155,8 +155,23 @@ int vtkOpalSpectralRender::RequestInformation(
 }
 
 int vtkOpalSpectralRender::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // A request left over from an earlier image size (after a failed update)
+  // is clipped to the image; one outside it asks for the whole image.
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int whole[6], requested[6];
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), requested);
+  bool overlaps = true;
+  for (int a = 0; a < 3; ++a)
+  {
+    requested[2 * a] = std::max(requested[2 * a], whole[2 * a]);
+    requested[2 * a + 1] = std::min(requested[2 * a + 1], whole[2 * a + 1]);
+    overlaps = overlaps && requested[2 * a] <= requested[2 * a + 1];
+  }
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), overlaps ? requested : whole, 6);
+
   // Every pixel may look through the whole volume: ask for all of it.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   int wholeExtent[6];

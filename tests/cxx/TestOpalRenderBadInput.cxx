@@ -1,0 +1,114 @@
+// Bad input to the render filter: each invalid parameter fails the request
+// with a message naming it; a light inside the opal, a volume without the
+// opal's arrays and a device too small for the volume get clear messages; the
+// filter works again once the input is fixed. Run with no Vulkan driver
+// (VK_ICD_FILENAMES pointing nowhere, argument "no-device") it must say
+// "No Vulkan device" and fail the request.
+#include "OpalRenderParameters.h"
+#include "OpalTestHarness.h"
+#include "OpalTestVolumes.h"
+#include "OpalVulkanContext.h"
+#include "OpalVulkanError.h"
+#include "vtkOpalSpectralRender.h"
+
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkNew.h"
+#include "vtkOutputWindow.h"
+#include "vtkPointData.h"
+#include "vtkRTAnalyticSource.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace
+{
+struct BadCase
+{
+  std::string Description;
+  std::function<void(vtkOpalSpectralRender*)> Break;
+  std::string Expected; // the message must contain it
+};
+} // namespace
+
+int main(int argc, char** argv)
+{
+  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  auto source = opaltest::makeSmallSource();
+  vtkNew<vtkOpalSpectralRender> render;
+  render->SetInputConnection(source->GetOutputPort(0));
+  render->SetImageSize(32, 24);
+  vtkNew<opaltest::MessageRecorder> recorder;
+  recorder->watch(render);
+
+  if (argc > 1 && std::string(argv[1]) == "no-device")
+  {
+    OPAL_CHECK(render->GetExecutive()->Update() == 0, "without a Vulkan driver the request fails");
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, "No Vulkan device"), "the error says: No Vulkan device");
+    return opaltest::finish("TestOpalRenderNoDevice");
+  }
+  try
+  {
+    opal::VulkanContext probe;
+  }
+  catch (const opal::NoVulkanDeviceError& e)
+  {
+    std::cout << "SKIPPED: no Vulkan device: " << e.what() << std::endl;
+    return 77;
+  }
+
+  const std::vector<BadCase> cases = {
+    { "zero image width", [](vtkOpalSpectralRender* r) { r->SetImageSize(0, 24); }, "ImageSize" },
+    { "zero wavelength step", [](vtkOpalSpectralRender* r) { r->SetWavelengthStep(0); }, "WavelengthStep" },
+    { "reversed wavelength range", [](vtkOpalSpectralRender* r) { r->SetWavelengthRange(780, 380); },
+      "WavelengthRange" },
+    { "refractive index below 1", [](vtkOpalSpectralRender* r) { r->SetRefractiveIndex(0.5); }, "RefractiveIndex" },
+    { "bandwidth 2", [](vtkOpalSpectralRender* r) { r->SetBraggBandwidth(2.0); }, "BraggBandwidth" },
+    { "view angle 0", [](vtkOpalSpectralRender* r) { r->SetViewAngle(0); }, "ViewAngle" },
+    { "negative step size", [](vtkOpalSpectralRender* r) { r->SetStepSize(-1); }, "StepSize" },
+    { "region outside the image", [](vtkOpalSpectralRender* r) { r->SetImageRegion(40, 0, 8, 8); }, "ImageRegion" },
+    { "light inside the opal", [](vtkOpalSpectralRender* r) { r->SetLightPosition(0, 2, 0); }, "LightPosition" },
+    { "eye inside the opal", [](vtkOpalSpectralRender* r) { r->SetEyePosition(0, 2, 0); }, "EyePosition" },
+    { "device too small for volume and image",
+      [](vtkOpalSpectralRender* r) {
+        r->SetDeviceMemoryLimit(1);
+        r->SetImageSize(640, 480);
+      },
+      "device memory limit" },
+  };
+  for (const BadCase& bad : cases)
+  {
+    vtkNew<vtkOpalSpectralRender> fresh;
+    render->SetRenderParameters(fresh->GetRenderParameters());
+    render->SetImageSize(32, 24);
+    render->SetDeviceMemoryLimit(0);
+    bad.Break(render);
+    recorder->clear();
+    OPAL_CHECK(render->GetExecutive()->Update() == 0, bad.Description + ": the request fails");
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, bad.Expected),
+      bad.Description + ": the message names " + bad.Expected +
+        (recorder->Errors.empty() ? std::string(" (no message)") : " (got: " + recorder->Errors.front() + ")"));
+  }
+  {
+    vtkNew<vtkOpalSpectralRender> fresh;
+    render->SetRenderParameters(fresh->GetRenderParameters());
+    render->SetImageSize(32, 24);
+    render->SetDeviceMemoryLimit(0);
+    recorder->clear();
+    OPAL_CHECK(render->GetExecutive()->Update() == 1 && recorder->Errors.empty(),
+      "the filter recovers once fixed" + (recorder->Errors.empty() ? std::string() : ": " + recorder->Errors.front()));
+  }
+  {
+    // Image data that is not an opal volume.
+    vtkNew<vtkRTAnalyticSource> wavelet;
+    vtkNew<vtkOpalSpectralRender> other;
+    other->SetInputConnection(wavelet->GetOutputPort());
+    vtkNew<opaltest::MessageRecorder> otherRecorder;
+    otherRecorder->watch(other);
+    OPAL_CHECK(other->GetExecutive()->Update() == 0, "a volume without the opal arrays fails");
+    OPAL_CHECK(otherRecorder->anyContains(otherRecorder->Errors, "ScatteringCoefficient"),
+      "the message names the missing array");
+  }
+  return opaltest::finish("TestOpalRenderBadInput");
+}
