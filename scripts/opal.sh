@@ -20,8 +20,9 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release
 cmake --build "$build" -j2
 
 if [[ "$mode" == run ]]; then
+  # The main job: render the default preset (the paper's figure 12).
   mkdir -p "$build/output"
-  "$build/bin/opal-volume" --preset fig12 -o "$build/output/opal-fig12.vti"
+  "$build/bin/opal-render" --preset fig12 -o "$build/output/opal-fig12.png" -o "$build/output/opal-fig12.exr"
 else
   # Open MPI refuses to run as root unless told (the MPI tests set this too).
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
