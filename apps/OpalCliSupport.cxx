@@ -6,11 +6,13 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkImageData.h"
+#include "vtkLogger.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <unistd.h>
@@ -22,7 +24,31 @@ class StderrOutputWindow : public vtkOutputWindow
 public:
   static StderrOutputWindow* New();
   vtkTypeMacro(StderrOutputWindow, vtkOutputWindow);
-  void DisplayText(const char* text) override { std::cerr << text; }
+  std::string Program;
+
+  // VTK formats "ERROR: In file, line N\nclass (0x...): message\n\n"; keep the message.
+  void DisplayText(const char* text) override
+  {
+    std::string message(text ? text : "");
+    if (message.find("returned failure for request") != std::string::npos)
+    {
+      return; // the executive's echo of an error already shown
+    }
+    const std::size_t objectEnd = message.find("): ");
+    if (objectEnd != std::string::npos)
+    {
+      message = message.substr(objectEnd + 3);
+    }
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+    {
+      message.pop_back();
+    }
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    if (!message.empty())
+    {
+      std::cerr << this->Program << ": " << message << std::endl;
+    }
+  }
 };
 vtkStandardNewMacro(StderrOutputWindow);
 
@@ -43,10 +69,18 @@ void drawProgress(vtkObject* caller, unsigned long, void* label, void* callData)
 }
 } // namespace
 
-void installStderrOutputWindow()
+void installStderrOutputWindow(const std::string& program)
 {
   vtkNew<StderrOutputWindow> window;
+  window->Program = program;
   vtkOutputWindow::SetInstance(window);
+  // ParaView's VTK also logs every error to stderr itself, with file and line.
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+}
+
+std::string oneLineFailure(const std::string& program, const std::string& what)
+{
+  return program + ": " + what + " (see --help)\n";
 }
 
 void showProgress(vtkAlgorithm* algorithm, const std::string& label)

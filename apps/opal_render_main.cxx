@@ -3,6 +3,8 @@
 #include "OpalCliSupport.h"
 #include "OpalImageFiles.h"
 #include "OpalModelOptions.h"
+#include "OpalModelParameters.h"
+#include "OpalRenderParameters.h"
 #include "OpalRenderOptions.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalSpectralRender.h"
@@ -39,13 +41,14 @@ int main(int argc, char** argv)
     ->group("Output");
   app.add_option("--save-volume", saveVolume, "Also write the volume as .vti")->group("Output");
   app.add_option("--save-image", saveImage, "Also write the image with all its arrays as .vti")->group("Output");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-render", e.what()); });
   CLI11_PARSE(app, argc, argv);
   if (outputs.empty() && saveImage.empty())
   {
     std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;
     return 2;
   }
-  installStderrOutputWindow();
+  installStderrOutputWindow("opal-render");
   const auto start = std::chrono::steady_clock::now();
 
   vtkNew<vtkOpalSource> source;
@@ -53,12 +56,22 @@ int main(int argc, char** argv)
   vtkNew<vtkOpalSpectralRender> renderer;
   render.configure(renderer, model.presetName(), model.refractiveIndex());
   renderer->SetWriteSpectrum(spectralChannels || !saveImage.empty());
+  // Bad parameters cost one line and exit status 2, before any work.
+  for (const std::string& error : { opal::validate(source->GetModelParameters()),
+         opal::validate(renderer->GetRenderParameters()) })
+  {
+    if (!error.empty())
+    {
+      std::cerr << "opal-render: " << error << std::endl;
+      return 2;
+    }
+  }
   renderer->SetInputConnection(source->GetOutputPort(0));
   showProgress(source, "volume");
   showProgress(renderer, "render");
   if (!renderer->GetExecutive()->Update())
   {
-    std::cerr << "opal-render: rendering failed (see the message above)." << std::endl;
+    std::cerr << "opal-render: rendering failed." << std::endl;
     return 1;
   }
   vtkImageData* image = renderer->GetOutput();

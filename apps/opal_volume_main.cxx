@@ -2,6 +2,7 @@
 // one-screen summary of what was built.
 #include "OpalCliSupport.h"
 #include "OpalModelOptions.h"
+#include "OpalModelParameters.h"
 #include "vtkOpalSource.h"
 
 #include "vtkDataArray.h"
@@ -25,16 +26,22 @@ int main(int argc, char** argv)
   model.addTo(app);
   std::string output = "opal.vti";
   app.add_option("-o,--output", output, "Output .vti file")->capture_default_str();
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what()); });
   CLI11_PARSE(app, argc, argv);
-  installStderrOutputWindow();
+  installStderrOutputWindow("opal-volume");
 
   vtkNew<vtkOpalSource> source;
   model.configure(source);
+  if (const std::string error = opal::validate(source->GetModelParameters()); !error.empty())
+  {
+    std::cerr << "opal-volume: " << error << std::endl;
+    return 2;
+  }
   showProgress(source, "volume");
   const auto start = std::chrono::steady_clock::now();
   if (!source->GetExecutive()->Update())
   {
-    std::cerr << "opal-volume: the volume could not be built (see the message above)." << std::endl;
+    std::cerr << "opal-volume: the volume could not be built." << std::endl;
     return 1;
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The command-line programs: success writes readable PNG / EXR / VTI files and
+# exits 0; each bad argument costs exactly one line and a non-zero exit;
+# a failed run never replaces an earlier file or leaves a partial one.
+# Usage: test_opal_cli.sh OPAL_RENDER OPAL_VOLUME WORK_DIR
+set -u
+render=$1 volume=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+failures=0
+fail() { echo "FAILED: $*"; failures=$((failures + 1)); }
+small=(--dimensions 40 20 50 --domain-count 30 --width 64 --height 48)
+
+# Renders, or skips where there is no Vulkan device at all.
+"$render" "${small[@]}" -o ok.png -o ok.exr --save-image image.vti --save-volume volume.vti >out.txt 2>err.txt
+status=$?
+if grep -q "No Vulkan device" err.txt; then
+  echo "SKIPPED: no Vulkan device"; exit 77
+fi
+[[ $status == 0 ]] || fail "a good render exits 0 (got $status: $(cat err.txt))"
+for f in ok.png ok.exr image.vti volume.vti; do [[ -s $f ]] || fail "$f written"; done
+grep -q "written: ok.png" out.txt || fail "it prints where the PNG is"
+oiiotool --info -v ok.png | grep -q "64 x   48, 3 channel, uint8" || fail "ok.png is 64 x 48 RGB 8-bit: $(oiiotool --info ok.png)"
+oiiotool --info -v ok.exr | grep -q "64 x   48, 3 channel, .*float" || fail "ok.exr is 64 x 48 RGB float: $(oiiotool --info ok.exr)"
+
+"$render" "${small[@]}" --exr-spectral-channels -o spectral.exr >/dev/null 2>&1 || fail "spectral EXR render"
+oiiotool --info -v spectral.exr | grep -q "44 channel" || fail "spectral.exr has RGB + 41 wavelength channels"
+
+"$volume" --dimensions 40 20 50 --domain-count 30 -o v.vti >v.txt 2>&1 || fail "opal-volume exits 0"
+grep -q "domains placed   30 of 30" v.txt || fail "opal-volume prints its summary"
+
+# Each bad argument: one line on stderr, non-zero exit, nothing written.
+expect_one_line() {
+  local name=$1 pattern=$2; shift 2
+  "$@" >bad.out 2>bad.err
+  local status=$?
+  [[ $status != 0 ]] || fail "$name: exits non-zero"
+  [[ $(wc -l <bad.err) == 1 ]] || fail "$name: one line on stderr, got: $(cat bad.err)"
+  grep -q -- "$pattern" bad.err || fail "$name: the line names $pattern: $(cat bad.err)"
+}
+expect_one_line "zero width" "ImageSize" "$render" --dimensions 40 20 50 --width 0 -o x.png
+expect_one_line "non-numeric width" "--width" "$render" --width abc -o x.png
+expect_one_line "unknown preset" "--preset" "$render" --preset fig99 -o x.png
+expect_one_line "zero wavelength step" "WavelengthStep" "$render" "${small[@]}" --wavelength-step 0 -o x.png
+expect_one_line "volume fraction 0.9" "ScatteringVolumeFraction" "$render" "${small[@]}" --scattering-volume-fraction 0.9 -o x.png
+expect_one_line "three vertex values" "--domain-vertex-range" "$render" --domain-vertex-range 3 4 5 -o x.png
+expect_one_line "nothing to write" "nothing to write" "$render" "${small[@]}"
+expect_one_line "opal-volume bad dimensions" "Dimensions" "$volume" --dimensions 0 20 50 -o x.vti
+[[ ! -e x.png && ! -e x.vti ]] || fail "bad arguments write nothing"
+
+# A failing render leaves an earlier image untouched and no partial file.
+cp ok.png keep.png
+"$render" "${small[@]}" --light-position 0 2 0 -o keep.png >/dev/null 2>bad.err && fail "a light inside the opal fails"
+grep -q "LightPosition" bad.err || fail "the light-inside error names LightPosition: $(cat bad.err)"
+cmp -s ok.png keep.png || fail "the earlier keep.png is untouched"
+"$render" "${small[@]}" -o no/such/folder/x.png >/dev/null 2>bad.err && fail "an unwritable path fails"
+grep -q "could not write" bad.err || fail "an unwritable path says so: $(cat bad.err)"
+ls -a | grep -q partial && fail "no partial files are left behind"
+
+"$render" --help >/dev/null || fail "--help exits 0"
+echo "test_opal_cli: $failures failure(s)"
+[[ $failures == 0 ]]
