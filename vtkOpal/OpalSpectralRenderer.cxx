@@ -221,6 +221,11 @@ RenderImage SpectralRenderer::render(
     p.ImageRegion[2] > 0 ? p.ImageRegion[2] : p.ImageSize[0] - p.ImageRegion[0],
     p.ImageRegion[3] > 0 ? p.ImageRegion[3] : p.ImageSize[1] - p.ImageRegion[1] };
   const std::size_t pixels = static_cast<std::size_t>(region[2]) * region[3];
+  // The automatic exposure's thumbnail of the whole image: at most 96 pixels across.
+  const double thumbnailScale = std::min(1.0, 96.0 / std::max(p.ImageSize[0], p.ImageSize[1]));
+  const std::array<int, 2> thumbnail{ std::max(1, static_cast<int>(std::lround(p.ImageSize[0] * thumbnailScale))),
+    std::max(1, static_cast<int>(std::lround(p.ImageSize[1] * thumbnailScale))) };
+  const std::size_t pixelCapacity = std::max(pixels, static_cast<std::size_t>(thumbnail[0]) * thumbnail[1]);
   const std::size_t voxels =
     static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[1] * volume.Dimensions[2];
   const std::vector<WavelengthBin> bins = sampleWavelengths(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
@@ -271,8 +276,8 @@ RenderImage SpectralRenderer::render(
   VulkanBuffer lightDepth(context, voxels * sizeof(float), "light optical depth volume");
   VulkanBuffer lightGeometry(context, voxels * sizeof(float), "light geometry volume");
   VulkanBuffer domainTable(context, volume.Domains.size() * 4 * sizeof(float), "domain table");
-  VulkanBuffer pixelXYZ(context, pixels * 4 * sizeof(float), "XYZ image");
-  VulkanBuffer pixelBragg(context, pixels * 4 * sizeof(float), "Bragg image");
+  VulkanBuffer pixelXYZ(context, pixelCapacity * 4 * sizeof(float), "XYZ image");
+  VulkanBuffer pixelBragg(context, pixelCapacity * 4 * sizeof(float), "Bragg image");
   VulkanBuffer pixelSpectrum(context, p.WriteSpectrum ? pixels * wavelengths * sizeof(float) : 16, "Spectrum image");
   VulkanBuffer pixelRadiance(context, pixels * 4 * sizeof(float), "Radiance image");
   VulkanBuffer pixelRGB8(context, pixels * sizeof(std::uint32_t), "RGB image");
@@ -351,34 +356,49 @@ RenderImage SpectralRenderer::render(
   }
   image.Timings.LightPass = secondsSince(lightStart);
 
-  const auto marchStart = Clock::now();
-  const int tilesX = (region[2] + MarchTile - 1) / MarchTile;
-  const int tilesY = (region[3] + MarchTile - 1) / MarchTile;
-  for (int ty = 0; ty < tilesY; ++ty)
-  {
-    for (int tx = 0; tx < tilesX; ++tx)
+  // March a rectangle of an image of the given size, in tiles (one submit
+  // each, so no frame trips a device timeout), reporting progress in [from, to].
+  GpuParameters* block = parameters.as<GpuParameters>();
+  auto marchRegion = [&](const std::array<int, 2>& size, const std::array<int, 4>& rect, bool spectrum,
+                       double from, double to) {
+    block->Right[3] = static_cast<float>(size[0]);
+    block->Up[3] = static_cast<float>(size[1]);
+    std::copy(rect.begin(), rect.end(), block->Rect);
+    block->Forward[3] = spectrum ? 1.0f : 0.0f;
+    const int tilesX = (rect[2] + MarchTile - 1) / MarchTile;
+    const int tilesY = (rect[3] + MarchTile - 1) / MarchTile;
+    for (int ty = 0; ty < tilesY; ++ty)
     {
-      const std::int32_t origin[4] = { tx * MarchTile, ty * MarchTile, 0, 0 };
-      context.submitAndWait([&](VkCommandBuffer commands) {
-        march->dispatch(commands, origin, MarchTile / 8, MarchTile / 8);
-      });
-      if (!report(0.2 + 0.75 * static_cast<double>(ty * tilesX + tx + 1) / (tilesX * tilesY)))
+      for (int tx = 0; tx < tilesX; ++tx)
       {
-        return RenderImage{};
+        const std::int32_t origin[4] = { tx * MarchTile, ty * MarchTile, 0, 0 };
+        context.submitAndWait([&](VkCommandBuffer commands) {
+          march->dispatch(commands, origin, MarchTile / 8, MarchTile / 8);
+        });
+        if (!report(from + (to - from) * static_cast<double>(ty * tilesX + tx + 1) / (tilesX * tilesY)))
+        {
+          return false;
+        }
       }
     }
-  }
-  image.Timings.March = secondsSince(marchStart);
+    return true;
+  };
 
-  // Exposure: fixed, or the body's median luminance to a mid grey (0.18).
-  const auto colourStart = Clock::now();
+  // Automatic exposure: the body's median luminance to a mid grey (0.18),
+  // measured on a thumbnail of the whole image, so that any region or piece
+  // of the image gets the same exposure and pieces agree with the whole.
+  const auto marchStart = Clock::now();
   const float* xyz = pixelXYZ.as<float>();
   const float* bragg = pixelBragg.as<float>();
   double exposure = p.Exposure;
   if (exposure <= 0)
   {
+    if (!marchRegion(thumbnail, { 0, 0, thumbnail[0], thumbnail[1] }, false, 0.2, 0.25))
+    {
+      return RenderImage{};
+    }
     std::vector<float> luminance;
-    for (std::size_t i = 0; i < pixels; ++i)
+    for (std::size_t i = 0; i < static_cast<std::size_t>(thumbnail[0]) * thumbnail[1]; ++i)
     {
       if (bragg[4 * i + 2] > 0.5f && xyz[4 * i + 1] > 0)
       {
@@ -392,8 +412,15 @@ RenderImage SpectralRenderer::render(
       exposure = 0.18 / luminance[luminance.size() / 2];
     }
   }
+  if (!marchRegion(p.ImageSize, region, p.WriteSpectrum, 0.25, 0.95))
+  {
+    return RenderImage{};
+  }
+  image.Timings.March = secondsSince(marchStart);
+
+  const auto colourStart = Clock::now();
   image.Exposure = exposure;
-  parameters.as<GpuParameters>()->Colour[0] = static_cast<float>(exposure);
+  block->Colour[0] = static_cast<float>(exposure);
   constexpr std::size_t ColourChunk = 65535 * 64;
   for (std::size_t first = 0; first < pixels; first += ColourChunk)
   {

@@ -172,10 +172,13 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), overlaps ? requested : whole, 6);
 
-  // Every pixel may look through the whole volume: ask for all of it.
+  // Every pixel may look through the whole volume: ask for all of it, as one
+  // piece, whichever piece of the image this process renders.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   int wholeExtent[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
   return 1;
 }

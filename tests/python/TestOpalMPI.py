@@ -1,0 +1,75 @@
+"""pvpython: `mpiexec -np N pvbatch` builds the opal volume (and renders it) as
+N pieces, one per rank, and the result equals the one-process run.
+
+Volume: every array exactly. Render: each rank renders its rows and columns of
+the image from the whole volume (every rank generates it, by the volume's
+determinism) with the same automatic exposure (taken from a thumbnail of the
+whole image), so RGB must match exactly and the float arrays to 1e-5 relative
+(identical arithmetic; the tolerance only allows for a different CPU path).
+Usage: pvpython TestOpalMPI.py N volume|render"""
+import os
+import sys
+
+import numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader
+
+import opal_test_config as config
+from opal_test_support import run
+
+ranks, kind = int(sys.argv[1]), sys.argv[2]
+arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else [])
+here = os.path.dirname(os.path.abspath(__file__))
+writer = os.path.join(here, "opal_write_pipeline.py")
+os.makedirs(config.OUTPUT_DIRECTORY, exist_ok=True)
+serial = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_serial.vti")
+parallel = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_parallel.pvti")
+
+run([config.PVBATCH, writer, serial] + arguments)
+run([config.MPIEXEC, "-np", str(ranks), config.PVBATCH, writer, parallel] + arguments)
+
+
+def read(reader_class, path):
+    reader = reader_class()
+    reader.SetFileName(path)
+    reader.Update()
+    return reader
+
+
+serial_data = read(vtkXMLImageDataReader, serial).GetOutput()
+parallel_reader = read(vtkXMLPImageDataReader, parallel)
+parallel_data = parallel_reader.GetOutput()
+failures = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAILED:", what)
+
+
+check(parallel_reader.GetNumberOfPieces() == ranks,
+      f"{ranks} pieces written, got {parallel_reader.GetNumberOfPieces()}")
+check(serial_data.GetDimensions() == parallel_data.GetDimensions(), "same grid")
+if kind == "volume":
+    exact = ["VoxelType", "ParticleDiameter", "Normal", "DomainId", "BraggLambdaMax",
+             "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance"]
+    close = []
+else:
+    exact = ["RGB"]
+    close = ["Radiance", "XYZ", "DominantBraggWavelength", "Depth"]
+for name in exact + close:
+    a = serial_data.GetPointData().GetArray(name)
+    b = parallel_data.GetPointData().GetArray(name)
+    check(a is not None and b is not None, f"{name} present in both")
+    if a is None or b is None:
+        continue
+    a, b = vtk_to_numpy(a), vtk_to_numpy(b)
+    if name in exact:
+        check(numpy.array_equal(a, b), f"{name}: {ranks}-rank result equals the one-process result")
+    else:
+        check(numpy.allclose(a, b, rtol=1e-5, atol=1e-7),
+              f"{name}: {ranks}-rank result within 1e-5 of one process "
+              f"(largest difference {numpy.max(numpy.abs(a - b))})")
+print("TestOpalMPI:", "FAILED" if failures else "passed", f"({kind}, {ranks} ranks)")
+sys.exit(1 if failures else 0)
