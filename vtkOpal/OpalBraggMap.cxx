@@ -1,0 +1,43 @@
+#include "OpalBraggMap.h"
+
+#include "OpalColorimetry.h"
+#include "OpalOptics.h"
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+namespace opal
+{
+
+BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array<double, 3>& normal,
+  double diameterNm, const BraggMapSettings& s)
+{
+  const glm::dvec3 p(position[0], position[1], position[2]);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(normal[0], normal[1], normal[2]));
+  const glm::dvec3 towardLight = glm::normalize(glm::dvec3(s.LightPosition[0], s.LightPosition[1], s.LightPosition[2]) - p);
+  // The glancing angle theta1 between the light and the lattice planes.
+  const double glancing = std::asin(std::min(1.0, std::fabs(glm::dot(towardLight, n))));
+  BraggMapValue value;
+  value.Wavelength = braggSnellWavelength(diameterNm, s.RefractiveIndex, glancing, s.Order);
+  const bool visible = value.Wavelength >= s.VisibleRange[0] && value.Wavelength <= s.VisibleRange[1];
+  double weight = 1.0;
+  if (s.MosaicSpread > 0)
+  {
+    // Gaussian in the angle between the lattice normal and the bisector of
+    // the directions to light and eye (as the render's mosaicWeight).
+    const glm::dvec3 towardEye = glm::normalize(glm::dvec3(s.EyePosition[0], s.EyePosition[1], s.EyePosition[2]) - p);
+    const glm::dvec3 bisector = glm::normalize(towardLight + towardEye);
+    const double angle = std::acos(std::min(1.0, std::fabs(glm::dot(n, bisector))));
+    const double spread = s.MosaicSpread * Pi / 180.0;
+    weight = std::exp(-0.5 * (angle / spread) * (angle / spread));
+  }
+  value.Visible = visible ? weight : 0.0;
+  if (visible)
+  {
+    value.Colour = wavelengthToSrgb8(value.Wavelength);
+  }
+  return value;
+}
+
+} // namespace opal

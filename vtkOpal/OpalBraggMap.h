@@ -1,0 +1,34 @@
+// The Bragg-Snell wavelength each domain diffracts for a given light (and,
+// with a mosaic spread, how strongly towards a given eye): paper eq. 3-5 and
+// DESIGN.md §3, evaluated per domain voxel or domain polygon.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace opal
+{
+
+struct BraggMapSettings
+{
+  std::array<double, 3> LightPosition{ 0.0, 60.0, 0.0 }; // mm
+  std::array<double, 3> EyePosition{ 0.0, 60.0, 0.0 };   // mm
+  double RefractiveIndex = 1.45;
+  int Order = 1;                                       // Bragg order k
+  double MosaicSpread = 0.0;                           // degrees; 0 = off
+  std::array<double, 2> VisibleRange{ 380.0, 780.0 };  // nm
+};
+
+struct BraggMapValue
+{
+  double Wavelength = 0;                  // nm, lambda_B
+  double Visible = 0;                     // 1 inside the visible range (times the mosaic weight), else 0
+  std::array<std::uint8_t, 3> Colour{};   // sRGB of lambda_B, black if not visible
+};
+
+// For a domain at `position` with lattice-plane normal `normal` and spheres
+// of diameter `diameterNm`.
+BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array<double, 3>& normal,
+  double diameterNm, const BraggMapSettings& settings);
+
+} // namespace opal

@@ -1,0 +1,58 @@
+/**
+ * @class vtkOpalBraggMap
+ * @brief The Bragg-Snell wavelength each opal domain diffracts for a light.
+ *
+ * Input: the opal volume (point arrays) or the domain polygons (cell arrays)
+ * of vtkOpalSource, with DomainId, Normal and ParticleDiameter. Adds, on the
+ * same association, BraggWavelength (nm: lambda_B = 2 d sqrt(mu^2 - cos^2
+ * theta1) / k, theta1 the glancing angle of the light on the lattice planes,
+ * d = sqrt(2/3) l), BraggVisible (1 where lambda_B lies in the visible range,
+ * times the mosaic weight towards the eye when MosaicSpread > 0; else 0) and
+ * BraggColor (uint8 x 3, the sRGB colour of lambda_B). Outside domains all
+ * three are 0.
+ */
+#pragma once
+
+#include "vtkOpalModule.h" // for export macro
+#include "vtkPassInputTypeAlgorithm.h"
+
+class VTKOPAL_EXPORT vtkOpalBraggMap : public vtkPassInputTypeAlgorithm
+{
+public:
+  static vtkOpalBraggMap* New();
+  vtkTypeMacro(vtkOpalBraggMap, vtkPassInputTypeAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Light position in mm. Default (0, 60, 0), the paper's.
+  vtkSetVector3Macro(LightPosition, double);
+  vtkGetVector3Macro(LightPosition, double);
+  /// Eye position in mm, for the mosaic weight. Default (0, 60, 0).
+  vtkSetVector3Macro(EyePosition, double);
+  vtkGetVector3Macro(EyePosition, double);
+  /// Refractive index mu of opal. Default 1.45.
+  vtkSetMacro(RefractiveIndex, double);
+  vtkGetMacro(RefractiveIndex, double);
+  /// Bragg order k. Default 1.
+  vtkSetMacro(BraggOrder, int);
+  vtkGetMacro(BraggOrder, int);
+  /// Angular spread in degrees of the mosaic weight; 0 = off (the paper).
+  vtkSetMacro(MosaicSpread, double);
+  vtkGetMacro(MosaicSpread, double);
+
+protected:
+  vtkOpalBraggMap();
+  ~vtkOpalBraggMap() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double LightPosition[3];
+  double EyePosition[3];
+  double RefractiveIndex;
+  int BraggOrder;
+  double MosaicSpread;
+
+private:
+  vtkOpalBraggMap(const vtkOpalBraggMap&) = delete;
+  void operator=(const vtkOpalBraggMap&) = delete;
+};
