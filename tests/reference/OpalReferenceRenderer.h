@@ -1,0 +1,62 @@
+// The reference renderer: the paper's algorithm (§6) followed literally, as an
+// independent oracle and speed baseline for the Vulkan renderer. For every
+// wavelength separately it marches the view ray, and at every sample it
+// marches towards the light for T_L (eq. 6, 7); Rayleigh per eq. 1 and 8,
+// Bragg per eq. 4 and 9; Fresnel and Snell at the surface; CIE colour
+// matching. Where DESIGN.md §3 amends the paper it follows the amendment:
+// 1/r^2 to the sample, the view transmittance at each step's midpoint, the
+// 1/pi on diffraction, domains counted once per crossing, the box band
+// averaged over each wavelength bin.
+//
+// Straightforward rather than clever: single-threaded, the same sampling and
+// voxel lookups as the product (voxel-by-voxel steps, nearest-voxel
+// coefficients, trilinear SurfaceDistance), and no code shared with the
+// product: only the CIE tables (data files).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace opalreference
+{
+
+struct Scene
+{
+  std::array<int, 3> Dimensions{};
+  std::array<double, 3> Origin{};  // centre of voxel (0, 0, 0), mm
+  std::array<double, 3> Spacing{}; // mm
+  std::vector<float> Scattering;   // mu_s(550) in 1/mm per voxel, x fastest
+  std::vector<int> DomainId;       // -1 or an index into Domains
+  std::vector<float> SurfaceDistance;
+  std::vector<std::array<double, 4>> Domains; // lattice normal x y z, plane spacing d (nm)
+};
+
+struct View
+{
+  int Width = 64, Height = 48;
+  std::array<double, 3> Eye{ 0, 60, 0 }, FocalPoint{ 0, 0, 0 }, ViewUp{ 0, 0, -1 };
+  double ViewAngle = 24;  // vertical, degrees
+  std::array<double, 3> Light{ 0, 60, 0 };
+  double LightRadius = 0.5;
+  double RefractiveIndex = 1.45;
+  double BraggBandwidth = 0.04;
+  double DiffractionGain = 4;
+  double LambdaMin = 380, LambdaMax = 780, LambdaStep = 10;
+  int SpecularSamples = 4;
+};
+
+struct Image
+{
+  std::vector<double> XYZ;       // 3 per pixel, rows top to bottom
+  std::vector<double> Dominant;  // dominant Bragg wavelength per pixel (0: none)
+  std::vector<std::uint8_t> Hit; // 1 where the ray meets the opal
+  std::vector<double> CosIncidence; // cosine of the primary ray's incidence angle (0 where missed)
+  std::vector<double> Highlight;    // the light's Fresnel highlight: the fraction of sub-rays, times F
+};
+
+// Renders with the CIE tables read from `cieDirectory` (the product's data files).
+Image render(const Scene& scene, const View& view, const std::string& cieDirectory);
+
+} // namespace opalreference
