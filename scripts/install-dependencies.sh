@@ -46,3 +46,14 @@ if ((${#missing[@]})); then
 else
   echo "All ${#packages[@]} Debian packages are present."
 fi
+
+# colour-science (PyPI) for the independent colorimetry test, into the system
+# Python that pvpython uses; its only dependency, numpy, comes from Debian.
+if ! /usr/bin/python3 -c "import colour" 2>/dev/null; then
+  echo "Installing colour-science 0.4.7 from PyPI for /usr/bin/python3"
+  sudo=()
+  if ((EUID != 0)); then
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" /usr/bin/python3 -m pip install -q --break-system-packages --no-deps colour-science==0.4.7
+fi
