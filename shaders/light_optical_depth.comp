@@ -62,14 +62,23 @@ void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
   float t = 0.0;
   float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
   float entry = tEnd;
+  // The path cannot leave the opal within the surface distance of a point on
+  // it (a distance field changes at most as fast as one moves): test for the
+  // exit only beyond the distance known to be safe, as sphere tracing does.
+  float safe = 0.0;
   for (int i = 0; i < 65536 && t < tEnd; ++i)
   {
     float step = min(h, tEnd - t);
-    if (surfaceDistance(p + (t + step) * direction) > 0.0)
+    if (t + step > safe)
     {
-      entry = opalExit(p, direction, t, t + step);
-      tau += scatteringAt(p + 0.5 * (t + entry) * direction) * (entry - t);
-      break;
+      float d = surfaceDistance(p + (t + step) * direction);
+      if (d > 0.0)
+      {
+        entry = opalExit(p, direction, t, t + step);
+        tau += scatteringAt(p + 0.5 * (t + entry) * direction) * (entry - t);
+        break;
+      }
+      safe = t + step - 0.9 * d;
     }
     tau += scatteringAt(p + (t + 0.5 * step) * direction) * step;
     t += step;
