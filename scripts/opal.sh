@@ -27,4 +27,10 @@ else
   # Open MPI refuses to run as root unless told (the MPI tests set this too).
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   ctest --test-dir "$build" --output-on-failure
+  # The second configuration: the C++ tests (the Vulkan ones on lavapipe
+  # included) and the programs under AddressSanitizer and UBSan.
+  sanitize="${build}-sanitize"
+  cmake -S "$root" -B "$sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPAL_SANITIZE=ON
+  cmake --build "$sanitize" -j2 --target opal-cxx-tests
+  ctest --test-dir "$sanitize" --output-on-failure -L cxx
 fi
