@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <vector>
@@ -48,6 +49,9 @@ int main(int argc, char** argv)
     std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;
     return 2;
   }
+  // A full disk or a file-size limit then fails the write (and is reported)
+  // instead of killing the process half way through a file.
+  std::signal(SIGXFSZ, SIG_IGN);
   installStderrOutputWindow("opal-render");
   const auto start = std::chrono::steady_clock::now();
 

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 
@@ -28,6 +29,9 @@ int main(int argc, char** argv)
   app.add_option("-o,--output", output, "Output .vti file")->capture_default_str();
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what()); });
   CLI11_PARSE(app, argc, argv);
+  // A full disk or a file-size limit then fails the write (and is reported)
+  // instead of killing the process half way through a file.
+  std::signal(SIGXFSZ, SIG_IGN);
   installStderrOutputWindow("opal-volume");
 
   vtkNew<vtkOpalSource> source;

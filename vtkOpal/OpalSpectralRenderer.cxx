@@ -2,6 +2,7 @@
 
 #include "OpalComputePipeline.h"
 #include "OpalEmbeddedData.h"
+#include "OpalMemory.h"
 #include "OpalSpectralSampling.h"
 #include "OpalVulkanBuffer.h"
 #include "OpalVulkanError.h"
@@ -244,7 +245,27 @@ RenderImage SpectralRenderer::render(
     gpu.Background[c] = static_cast<float>(b <= 0.04045 ? b / 12.92 : std::pow((b + 0.055) / 1.055, 2.4));
   }
 
+  // Refuse up front what cannot fit, with the estimate: on the device, the
+  // volume's fields and the light field (5 floats per voxel) and the images;
+  // on the host, the output arrays.
   VulkanContext& context = *this->Context;
+  const std::uint64_t spectrumBytes = p.WriteSpectrum ? static_cast<std::uint64_t>(pixels) * wavelengths * 4 : 0;
+  const std::uint64_t deviceBytes = static_cast<std::uint64_t>(voxels) * 5 * 4 +
+    static_cast<std::uint64_t>(pixelCapacity) * 4 * 4 * 3 + static_cast<std::uint64_t>(pixels) * 4 + spectrumBytes;
+  if (deviceBytes > context.memoryBudget())
+  {
+    throw VulkanError("the render needs about " + formatBytes(deviceBytes) + " of device memory (volume " +
+        formatBytes(static_cast<std::uint64_t>(voxels) * 20) + "), more than the device memory limit of " +
+        formatBytes(context.memoryBudget()) + "; use fewer voxels or pixels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+  const std::uint64_t hostBytes = static_cast<std::uint64_t>(pixels) * (3 + 12 + 12 + 4 + 4 + 1) + spectrumBytes;
+  if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())
+  {
+    throw std::invalid_argument("ImageSize " + std::to_string(p.ImageSize[0]) + " x " +
+      std::to_string(p.ImageSize[1]) + " needs about " + formatBytes(hostBytes + deviceBytes) +
+      ", more than this machine's " + formatBytes(physicalMemoryBytes()) + " of memory.");
+  }
   VulkanBuffer parameters(context, sizeof(GpuParameters), "render parameters");
   VulkanBuffer wavelengthTable(context, bins.size() * 8 * sizeof(float), "wavelength table");
   VulkanBuffer scattering(context, voxels * sizeof(float), "ScatteringCoefficient volume");

@@ -279,6 +279,24 @@ void VulkanContext::reserveMemory(std::uint64_t bytes)
   this->MemoryInUse += bytes;
 }
 
+std::uint64_t VulkanContext::memoryBudget() const
+{
+  if (this->MemoryLimit > 0)
+  {
+    return this->MemoryLimit;
+  }
+  std::uint64_t largest = 0;
+  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  {
+    const VkMemoryType& type = this->MemoryProperties.memoryTypes[i];
+    if (type.propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+    {
+      largest = std::max<std::uint64_t>(largest, this->MemoryProperties.memoryHeaps[type.heapIndex].size);
+    }
+  }
+  return largest;
+}
+
 void VulkanContext::releaseMemory(std::uint64_t bytes)
 {
   this->MemoryInUse -= std::min(bytes, this->MemoryInUse);

@@ -53,6 +53,10 @@ public:
   void reserveMemory(std::uint64_t bytes);
   void releaseMemory(std::uint64_t bytes);
 
+  // What the render may use: the memory limit if one is set, else the largest
+  // heap with host-visible memory (where the buffers live).
+  std::uint64_t memoryBudget() const;
+
   // Records commands into a one-time command buffer, submits it and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 

@@ -56,6 +56,14 @@ cmp -s ok.png keep.png || fail "the earlier keep.png is untouched"
 grep -q "could not write" bad.err || fail "an unwritable path says so: $(cat bad.err)"
 ls -a | grep -q partial && fail "no partial files are left behind"
 
+# A full disk (simulated by a file-size limit of 8 KB): a clear error, the
+# earlier file kept, no partial file.
+cp ok.exr keep.exr
+( ulimit -f 8; "$render" "${small[@]}" -o keep.exr >/dev/null 2>bad.err ) && fail "a full disk fails the write"
+grep -q "could not write keep.exr" bad.err || fail "a full disk says so: $(cat bad.err)"
+cmp -s ok.exr keep.exr || fail "the earlier keep.exr is untouched by the failed write"
+ls -a | grep -q partial && fail "no partial file after a full disk"
+
 "$render" --help >/dev/null || fail "--help exits 0"
 echo "test_opal_cli: $failures failure(s)"
 [[ $failures == 0 ]]

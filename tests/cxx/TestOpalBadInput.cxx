@@ -61,6 +61,7 @@ int main()
     { "refractive index below 1", [](vtkOpalSource* s) { s->SetRefractiveIndex(0.9); }, "RefractiveIndex" },
     { "no placement attempts", [](vtkOpalSource* s) { s->SetMaxPlacementAttempts(0); }, "MaxPlacementAttempts" },
     { "unknown preset", [](vtkOpalSource* s) { s->SetPreset(99); }, "Preset" },
+    { "more voxels than memory", [](vtkOpalSource* s) { s->SetDimensions(4000, 4000, 4000); }, "of memory" },
   };
 
   for (const BadCase& bad : cases)

@@ -1,0 +1,20 @@
+// Memory estimates, so requests that cannot fit are refused up front with a
+// message that states the estimate, instead of failing half way.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace opal
+{
+
+// Physical memory of this machine in bytes (0 if unknown).
+std::uint64_t physicalMemoryBytes();
+
+// "2.4 GB", "310 MB": bytes for messages.
+std::string formatBytes(std::uint64_t bytes);
+
+// Bytes per voxel of the volume's point arrays (DESIGN.md §2 fields).
+constexpr std::uint64_t VolumeBytesPerVoxel = 1 + 4 + 12 + 4 + 4 + 4 + 4 + 4;
+
+} // namespace opal
