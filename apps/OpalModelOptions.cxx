@@ -3,7 +3,6 @@
 #include "OpalCliArrays.h"
 
 #include "OpalPresets.h"
-#include "vtkOpalSource.h"
 
 
 
@@ -48,10 +47,16 @@ void OpalModelOptions::addTo(CLI::App& app)
     ->group("Model");
 }
 
-void OpalModelOptions::configure(vtkOpalSource* source) const
+opal::ModelParameters OpalModelOptions::parameters() const
 {
-  source->SetModelParameters(this->Parameters);
+  opal::ModelParameters resolved = this->Parameters;
+  resolved.applyPreset(this->presetIndex());
+  return resolved;
+}
+
+int OpalModelOptions::presetIndex() const
+{
   // An explicit --domain-diameter-range wins over the preset's.
   const bool ownDiameters = this->DomainDiameterRangeOption && this->DomainDiameterRangeOption->count() > 0;
-  source->SetPreset(ownDiameters ? opal::CustomPreset : opal::presetIndexByName(this->Preset));
+  return ownDiameters ? opal::CustomPreset : opal::presetIndexByName(this->Preset);
 }

@@ -2,7 +2,6 @@
 
 #include "OpalCliArrays.h"
 #include "OpalPresets.h"
-#include "vtkOpalSpectralRender.h"
 
 void OpalRenderOptions::addTo(CLI::App& app)
 {
@@ -53,8 +52,7 @@ void OpalRenderOptions::addTo(CLI::App& app)
     ->group(group);
 }
 
-void OpalRenderOptions::configure(
-  vtkOpalSpectralRender* render, const std::string& presetName, double refractiveIndex) const
+opal::RenderParameters OpalRenderOptions::parameters(const std::string& presetName, double refractiveIndex) const
 {
   opal::RenderParameters p = this->Parameters;
   if (const opal::PresetSettings* preset = opal::presetByIndex(opal::presetIndexByName(presetName)))
@@ -73,7 +71,5 @@ void OpalRenderOptions::configure(
     }
   }
   p.RefractiveIndex = refractiveIndex;
-  render->SetRenderParameters(p);
-  render->SetDeviceIndex(this->DeviceIndex);
-  render->SetDeviceMemoryLimit(this->DeviceMemoryLimit);
+  return p;
 }

@@ -1,5 +1,6 @@
 // Command-line flags for every render parameter, named after the render
 // filter's properties in kebab-case (--wavelength-step, --mosaic-spread, ...).
+// No VTK here: the argument fuzzer uses it too.
 #pragma once
 
 #include "OpalRenderParameters.h"
@@ -8,16 +9,16 @@
 
 #include <string>
 
-class vtkOpalSpectralRender;
-
 class OpalRenderOptions
 {
 public:
   void addTo(CLI::App& app);
 
-  // Configures the filter: the preset's image size and rotation unless given
+  // The parameters: the preset's image size and rotation unless given
   // explicitly; the refractive index is the model's.
-  void configure(vtkOpalSpectralRender* render, const std::string& presetName, double refractiveIndex) const;
+  opal::RenderParameters parameters(const std::string& presetName, double refractiveIndex) const;
+  int deviceIndex() const { return this->DeviceIndex; }
+  int deviceMemoryLimit() const { return this->DeviceMemoryLimit; }
 
 private:
   opal::RenderParameters Parameters;

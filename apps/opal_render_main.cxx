@@ -56,9 +56,12 @@ int main(int argc, char** argv)
   const auto start = std::chrono::steady_clock::now();
 
   vtkNew<vtkOpalSource> source;
-  model.configure(source);
+  source->SetModelParameters(model.parameters());
+  source->SetPreset(model.presetIndex());
   vtkNew<vtkOpalSpectralRender> renderer;
-  render.configure(renderer, model.presetName(), model.refractiveIndex());
+  renderer->SetRenderParameters(render.parameters(model.presetName(), model.refractiveIndex()));
+  renderer->SetDeviceIndex(render.deviceIndex());
+  renderer->SetDeviceMemoryLimit(render.deviceMemoryLimit());
   renderer->SetWriteSpectrum(spectralChannels || !saveImage.empty());
   // Bad parameters cost one line and exit status 2, before any work.
   for (const std::string& error : { opal::validate(source->GetModelParameters()),

@@ -35,7 +35,8 @@ int main(int argc, char** argv)
   installStderrOutputWindow("opal-volume");
 
   vtkNew<vtkOpalSource> source;
-  model.configure(source);
+  source->SetModelParameters(model.parameters());
+  source->SetPreset(model.presetIndex());
   if (const std::string error = opal::validate(source->GetModelParameters()); !error.empty())
   {
     std::cerr << "opal-volume: " << error << std::endl;

@@ -16,6 +16,8 @@ packages=(
   libbenchmark-dev
   # headless ParaView GUI tests
   xvfb xauth
+  # fuzzing (libFuzzer) and the sanitizer configuration
+  clang libclang-rt-14-dev libfuzzer-14-dev
   # what paraview-dev's CMake configuration looks for beyond its package dependencies
   qtbase5-dev qttools5-dev qttools5-dev-tools libqt5svg5-dev libqt5opengl5-dev
   libqt5x11extras5-dev qtmultimedia5-dev qtxmlpatterns5-dev-tools libhdf5-mpi-dev

@@ -33,4 +33,9 @@ else
   cmake -S "$root" -B "$sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPAL_SANITIZE=ON
   cmake --build "$sanitize" -j2 --target opal-cxx-tests
   ctest --test-dir "$sanitize" --output-on-failure -L cxx
+  # The fuzz targets (libFuzzer, clang): kept regression inputs, then a bounded run each.
+  fuzz="${build}-fuzz"
+  cmake -S "$root/fuzz" -B "$fuzz" -DCMAKE_CXX_COMPILER=clang++
+  cmake --build "$fuzz" -j2
+  ctest --test-dir "$fuzz" --output-on-failure
 fi

@@ -2,7 +2,10 @@
 
 #include "OpalPresets.h"
 
+#include <cmath>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace opal
 {
@@ -63,6 +66,57 @@ std::string withinRangeError(const char* name, const std::array<double, 2>& rang
 std::string validate(const ModelParameters& p)
 {
   std::ostringstream message;
+  // Every real-valued parameter must be a finite number before anything else.
+  const std::pair<const char*, std::vector<double>> reals[] = {
+    { "PhysicalSize", { p.PhysicalSize.begin(), p.PhysicalSize.end() } },
+    { "SemiAxes", { p.SemiAxes.begin(), p.SemiAxes.end() } },
+    { "ScatteringDiameterRange", { p.ScatteringDiameterRange.begin(), p.ScatteringDiameterRange.end() } },
+    { "ScatteringVolumeFraction", { p.ScatteringVolumeFraction } },
+    { "DomainRadiusRange", { p.DomainRadiusRange.begin(), p.DomainRadiusRange.end() } },
+    { "DomainVertexJitter", { p.DomainVertexJitter.begin(), p.DomainVertexJitter.end() } },
+    { "DomainAngleRange", { p.DomainAngleRange.begin(), p.DomainAngleRange.end() } },
+    { "DomainRotationRange", { p.DomainRotationRange.begin(), p.DomainRotationRange.end() } },
+    { "DomainDiameterRange", { p.DomainDiameterRange.begin(), p.DomainDiameterRange.end() } },
+    { "RefractiveIndex", { p.RefractiveIndex } },
+  };
+  for (const auto& [name, values] : reals)
+  {
+    for (double value : values)
+    {
+      if (!std::isfinite(value))
+      {
+        message << name << " must be a finite number, got " << value << ".";
+        return message.str();
+      }
+    }
+  }
+  // Plausible magnitudes: beyond them lengths squared overflow or underflow.
+  const struct
+  {
+    const char* Name;
+    std::vector<double> Values;
+    double Lo, Hi;
+    const char* Unit;
+  } magnitudes[] = {
+    { "PhysicalSize", { p.PhysicalSize.begin(), p.PhysicalSize.end() }, 1e-6, 1e4, "mm" },
+    { "SemiAxes", { p.SemiAxes.begin(), p.SemiAxes.end() }, 1e-6, 1e4, "mm" },
+    { "ScatteringDiameterRange", { p.ScatteringDiameterRange.begin(), p.ScatteringDiameterRange.end() }, 1e-3, 1e5, "nm" },
+    { "DomainDiameterRange", { p.DomainDiameterRange.begin(), p.DomainDiameterRange.end() }, 1e-3, 1e5, "nm" },
+    { "DomainRadiusRange", { p.DomainRadiusRange.begin(), p.DomainRadiusRange.end() }, 1e-6, 1e4, "mm" },
+    { "RefractiveIndex", { p.RefractiveIndex }, 1.0, 10.0, "" },
+  };
+  for (const auto& magnitude : magnitudes)
+  {
+    for (double value : magnitude.Values)
+    {
+      if (std::fabs(value) > magnitude.Hi || (value > 0 && value < magnitude.Lo))
+      {
+        message << magnitude.Name << " must lie within [" << magnitude.Lo << ", " << magnitude.Hi << "] "
+                << magnitude.Unit << ", got " << value << ".";
+        return message.str();
+      }
+    }
+  }
   static const char* axis = "xyz";
   for (int a = 0; a < 3; ++a)
   {

@@ -28,13 +28,17 @@ std::string validate(const RenderParameters& p)
     m << "ImageRegion (" << p.ImageRegion[0] << ", " << p.ImageRegion[1] << ", " << p.ImageRegion[2] << ", "
       << p.ImageRegion[3] << ") must lie within the " << p.ImageSize[0] << " x " << p.ImageSize[1] << " image.";
   }
-  else if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition))
+  else if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition) || !finite3(p.ViewUp))
   {
-    m << "EyePosition, FocalPoint and LightPosition must be finite.";
+    m << "EyePosition, FocalPoint, LightPosition and ViewUp must be finite.";
   }
   else if (p.EyePosition == p.FocalPoint)
   {
     m << "FocalPoint must differ from EyePosition.";
+  }
+  else if (!(p.ViewUp[0] * p.ViewUp[0] + p.ViewUp[1] * p.ViewUp[1] + p.ViewUp[2] * p.ViewUp[2] > 0))
+  {
+    m << "ViewUp must not be the zero vector.";
   }
   else if (!(p.ViewAngle > 0 && p.ViewAngle < 179))
   {

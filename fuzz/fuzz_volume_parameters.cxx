@@ -1,0 +1,114 @@
+// libFuzzer target: random, bounded parameter sets for the volume model.
+// Every set either fails validation with a message naming a parameter, or
+// builds (domain layout and every voxel's fields) without a crash, a hang or
+// a non-finite value. Sizes are bounded (at most 24^3 voxels, 40 domains, 50
+// attempts) so each input runs in milliseconds.
+#include "OpalDomainLayout.h"
+#include "OpalGrid.h"
+#include "OpalModelParameters.h"
+#include "OpalVolumeFiller.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+namespace
+{
+// Reads the fuzzer's bytes as parameters; when they run out, zeros.
+class ByteReader
+{
+public:
+  ByteReader(const std::uint8_t* data, std::size_t size)
+    : Data(data)
+    , Size(size)
+  {
+  }
+  std::uint8_t byte() { return this->Offset < this->Size ? this->Data[this->Offset++] : 0; }
+  int integer(int lo, int hi) { return lo + this->byte() % (hi - lo + 1); }
+  // A real in [lo, hi], or now and then a raw double (NaN, infinity, huge).
+  double real(double lo, double hi)
+  {
+    const std::uint8_t mode = this->byte();
+    if (mode == 0xff)
+    {
+      double raw = 0;
+      std::uint8_t bytes[8];
+      for (auto& b : bytes)
+      {
+        b = this->byte();
+      }
+      std::memcpy(&raw, bytes, sizeof(raw));
+      return raw;
+    }
+    return lo + (hi - lo) * (static_cast<double>(this->byte()) * 256 + mode) / 65535.0;
+  }
+
+private:
+  const std::uint8_t* Data;
+  std::size_t Size;
+  std::size_t Offset = 0;
+};
+
+void require(bool condition, const char* what)
+{
+  if (!condition)
+  {
+    std::fprintf(stderr, "violated: %s\n", what);
+    std::abort();
+  }
+}
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
+{
+  ByteReader in(data, size);
+  opal::ModelParameters p;
+  for (int a = 0; a < 3; ++a)
+  {
+    p.Dimensions[static_cast<std::size_t>(a)] = in.integer(-1, 24);
+    p.PhysicalSize[static_cast<std::size_t>(a)] = in.real(-2, 30);
+    p.SemiAxes[static_cast<std::size_t>(a)] = in.real(-1, 16);
+  }
+  p.ScatteringDiameterRange = { in.real(-10, 60), in.real(-10, 60) };
+  p.ScatteringVolumeFraction = in.real(-0.2, 1.0);
+  p.DomainCount = in.integer(-2, 40);
+  p.DomainVertexRange = { in.integer(0, 12), in.integer(0, 12) };
+  p.DomainRadiusRange = { in.real(-1, 6), in.real(-1, 6) };
+  p.DomainVertexJitter = { in.real(-0.5, 1.5), in.real(-0.5, 1.5) };
+  p.DomainAngleRange = { in.real(-10, 200), in.real(-10, 200) };
+  p.DomainRotationRange = { in.real(-10, 120), in.real(-10, 120) };
+  p.DomainDiameterRange = { in.real(-10, 500), in.real(-10, 500) };
+  p.RefractiveIndex = in.real(0.5, 3);
+  p.MaxPlacementAttempts = in.integer(-1, 50);
+  p.Seed = static_cast<std::uint32_t>(in.byte()) << 8 | in.byte();
+
+  if (!opal::validate(p).empty())
+  {
+    return 0; // refused with a message: fine
+  }
+  const opal::DomainLayout layout = opal::DomainLayout::build(p);
+  require(layout.placedCount() <= p.DomainCount, "placed <= requested");
+  const opal::Grid grid = opal::Grid::fromParameters(p);
+  const std::size_t count = static_cast<std::size_t>(grid.voxelCount());
+  std::vector<std::uint8_t> type(count);
+  std::vector<float> diameter(count), normal(3 * count), lambdaMax(count), lambdaMin(count), scattering(count),
+    distance(count);
+  std::vector<std::int32_t> domain(count);
+  const opal::VolumeFields fields{ type.data(), diameter.data(), normal.data(), domain.data(), lambdaMax.data(),
+    lambdaMin.data(), scattering.data(), distance.data() };
+  const std::array<int, 6> extent{ 0, p.Dimensions[0] - 1, 0, p.Dimensions[1] - 1, 0, p.Dimensions[2] - 1 };
+  opal::VolumeFiller(p, layout).fill(extent, 0, p.Dimensions[2], fields);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    require(type[i] <= 2, "VoxelType 0-2");
+    require(std::isfinite(diameter[i]), "finite ParticleDiameter");
+    require(std::isfinite(scattering[i]), "finite ScatteringCoefficient");
+    require(std::isfinite(distance[i]), "finite SurfaceDistance");
+    require(std::isfinite(lambdaMax[i]) && std::isfinite(lambdaMin[i]), "finite Bragg wavelengths");
+    require(domain[i] >= -1 && domain[i] < layout.placedCount(), "DomainId -1 or a placed domain");
+  }
+  return 0;
+}
