@@ -7,16 +7,14 @@
 // share of the frame at any resolution) and set against the measured Vulkan
 // frame.
 #include "OpalReferenceRenderer.h"
+#include "OpalReferenceScene.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalSpectralRender.h"
 
-#include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
-#include "vtkPointData.h"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -48,34 +46,7 @@ int main(int argc, char** argv)
   source->Update();
   vtkImageData* volume = source->GetOutput();
 
-  opalreference::Scene scene;
-  int dims[3];
-  volume->GetDimensions(dims);
-  for (int a = 0; a < 3; ++a)
-  {
-    scene.Dimensions[static_cast<std::size_t>(a)] = dims[a];
-    scene.Origin[static_cast<std::size_t>(a)] = volume->GetOrigin()[a];
-    scene.Spacing[static_cast<std::size_t>(a)] = volume->GetSpacing()[a];
-  }
-  vtkPointData* pd = volume->GetPointData();
-  for (vtkIdType i = 0; i < volume->GetNumberOfPoints(); ++i)
-  {
-    scene.Scattering.push_back(static_cast<float>(pd->GetArray("ScatteringCoefficient")->GetComponent(i, 0)));
-    scene.SurfaceDistance.push_back(static_cast<float>(pd->GetArray("SurfaceDistance")->GetComponent(i, 0)));
-    const int id = static_cast<int>(pd->GetArray("DomainId")->GetComponent(i, 0));
-    scene.DomainId.push_back(id);
-    if (id >= 0 && scene.Domains.size() <= static_cast<std::size_t>(id))
-    {
-      scene.Domains.resize(static_cast<std::size_t>(id) + 1);
-    }
-    if (id >= 0)
-    {
-      double n[3];
-      pd->GetArray("Normal")->GetTuple(i, n);
-      scene.Domains[static_cast<std::size_t>(id)] = { n[0], n[1], n[2],
-        std::sqrt(2.0 / 3.0) * pd->GetArray("ParticleDiameter")->GetComponent(i, 0) };
-    }
-  }
+  const opalreference::Scene scene = opalreference::sceneFromVolume(volume);
 
   const opalreference::View view; // 64 x 48, the paper's set-up
   const double referenceSmall = secondsOf([&] { opalreference::render(scene, view, cie); });

@@ -18,6 +18,7 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpalArrayCopy.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkOpalParallel.h"
@@ -30,17 +31,7 @@ vtkStandardNewMacro(vtkOpalSource);
 
 namespace
 {
-template <typename T, std::size_t N>
-void copyArray(const std::array<T, N>& from, T* to)
-{
-  std::copy(from.begin(), from.end(), to);
-}
-
-template <typename T, std::size_t N>
-void copyArray(const T* from, std::array<T, N>& to)
-{
-  std::copy(from, from + N, to.begin());
-}
+using vtkOpalArrayCopy::copy;
 
 // Share of the work spent placing domains; filling the voxels takes the rest.
 constexpr double LayoutProgressShare = 0.1;
@@ -70,18 +61,18 @@ bool vtkOpalSource::SetPresetByName(const char* name)
 opal::ModelParameters vtkOpalSource::GetModelParameters() const
 {
   opal::ModelParameters p;
-  copyArray(this->Dimensions, p.Dimensions);
-  copyArray(this->PhysicalSize, p.PhysicalSize);
-  copyArray(this->SemiAxes, p.SemiAxes);
-  copyArray(this->ScatteringDiameterRange, p.ScatteringDiameterRange);
+  copy(this->Dimensions, p.Dimensions);
+  copy(this->PhysicalSize, p.PhysicalSize);
+  copy(this->SemiAxes, p.SemiAxes);
+  copy(this->ScatteringDiameterRange, p.ScatteringDiameterRange);
   p.ScatteringVolumeFraction = this->ScatteringVolumeFraction;
   p.DomainCount = this->DomainCount;
-  copyArray(this->DomainVertexRange, p.DomainVertexRange);
-  copyArray(this->DomainRadiusRange, p.DomainRadiusRange);
-  copyArray(this->DomainVertexJitter, p.DomainVertexJitter);
-  copyArray(this->DomainAngleRange, p.DomainAngleRange);
-  copyArray(this->DomainRotationRange, p.DomainRotationRange);
-  copyArray(this->DomainDiameterRange, p.DomainDiameterRange);
+  copy(this->DomainVertexRange, p.DomainVertexRange);
+  copy(this->DomainRadiusRange, p.DomainRadiusRange);
+  copy(this->DomainVertexJitter, p.DomainVertexJitter);
+  copy(this->DomainAngleRange, p.DomainAngleRange);
+  copy(this->DomainRotationRange, p.DomainRotationRange);
+  copy(this->DomainDiameterRange, p.DomainDiameterRange);
   p.RefractiveIndex = this->RefractiveIndex;
   p.MaxPlacementAttempts = this->MaxPlacementAttempts;
   p.Seed = static_cast<std::uint32_t>(this->Seed);
@@ -91,18 +82,18 @@ opal::ModelParameters vtkOpalSource::GetModelParameters() const
 
 void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
 {
-  copyArray(p.Dimensions, this->Dimensions);
-  copyArray(p.PhysicalSize, this->PhysicalSize);
-  copyArray(p.SemiAxes, this->SemiAxes);
-  copyArray(p.ScatteringDiameterRange, this->ScatteringDiameterRange);
+  copy(p.Dimensions, this->Dimensions);
+  copy(p.PhysicalSize, this->PhysicalSize);
+  copy(p.SemiAxes, this->SemiAxes);
+  copy(p.ScatteringDiameterRange, this->ScatteringDiameterRange);
   this->ScatteringVolumeFraction = p.ScatteringVolumeFraction;
   this->DomainCount = p.DomainCount;
-  copyArray(p.DomainVertexRange, this->DomainVertexRange);
-  copyArray(p.DomainRadiusRange, this->DomainRadiusRange);
-  copyArray(p.DomainVertexJitter, this->DomainVertexJitter);
-  copyArray(p.DomainAngleRange, this->DomainAngleRange);
-  copyArray(p.DomainRotationRange, this->DomainRotationRange);
-  copyArray(p.DomainDiameterRange, this->DomainDiameterRange);
+  copy(p.DomainVertexRange, this->DomainVertexRange);
+  copy(p.DomainRadiusRange, this->DomainRadiusRange);
+  copy(p.DomainVertexJitter, this->DomainVertexJitter);
+  copy(p.DomainAngleRange, this->DomainAngleRange);
+  copy(p.DomainRotationRange, this->DomainRotationRange);
+  copy(p.DomainDiameterRange, this->DomainDiameterRange);
   this->RefractiveIndex = p.RefractiveIndex;
   this->MaxPlacementAttempts = p.MaxPlacementAttempts;
   this->Seed = static_cast<int>(p.Seed);

@@ -14,6 +14,7 @@
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpalArrayCopy.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -28,17 +29,7 @@ vtkStandardNewMacro(vtkOpalSpectralRender);
 
 namespace
 {
-template <typename T, std::size_t N>
-void copyArray(const std::array<T, N>& from, T* to)
-{
-  std::copy(from.begin(), from.end(), to);
-}
-
-template <typename T, std::size_t N>
-void copyArray(const T* from, std::array<T, N>& to)
-{
-  std::copy(from, from + N, to.begin());
-}
+using vtkOpalArrayCopy::copy;
 
 // The input's float (or int) values as a contiguous vector of the wanted type.
 template <typename T>
@@ -65,16 +56,16 @@ vtkOpalSpectralRender::~vtkOpalSpectralRender() = default;
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
 {
   opal::RenderParameters p;
-  copyArray(this->ImageSize, p.ImageSize);
-  copyArray(this->ImageRegion, p.ImageRegion);
-  copyArray(this->EyePosition, p.EyePosition);
-  copyArray(this->FocalPoint, p.FocalPoint);
-  copyArray(this->ViewUp, p.ViewUp);
+  copy(this->ImageSize, p.ImageSize);
+  copy(this->ImageRegion, p.ImageRegion);
+  copy(this->EyePosition, p.EyePosition);
+  copy(this->FocalPoint, p.FocalPoint);
+  copy(this->ViewUp, p.ViewUp);
   p.ViewAngle = this->ViewAngle;
-  copyArray(this->LightPosition, p.LightPosition);
+  copy(this->LightPosition, p.LightPosition);
   p.LightRadius = this->LightRadius;
-  copyArray(this->ModelRotation, p.ModelRotation);
-  copyArray(this->WavelengthRange, p.WavelengthRange);
+  copy(this->ModelRotation, p.ModelRotation);
+  copy(this->WavelengthRange, p.WavelengthRange);
   p.WavelengthStep = this->WavelengthStep;
   p.RefractiveIndex = this->RefractiveIndex;
   p.BraggBandwidth = this->BraggBandwidth;
@@ -82,7 +73,7 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
   p.BraggOrders = this->BraggOrders;
   p.MosaicSpread = this->MosaicSpread;
   p.Exposure = this->Exposure;
-  copyArray(this->Background, p.Background);
+  copy(this->Background, p.Background);
   p.StepSize = this->StepSize;
   p.SpecularSamples = this->SpecularSamples;
   p.LightFalloffAtEntry = this->LightFalloffAtEntry;
@@ -92,16 +83,16 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
 
 void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
 {
-  copyArray(p.ImageSize, this->ImageSize);
-  copyArray(p.ImageRegion, this->ImageRegion);
-  copyArray(p.EyePosition, this->EyePosition);
-  copyArray(p.FocalPoint, this->FocalPoint);
-  copyArray(p.ViewUp, this->ViewUp);
+  copy(p.ImageSize, this->ImageSize);
+  copy(p.ImageRegion, this->ImageRegion);
+  copy(p.EyePosition, this->EyePosition);
+  copy(p.FocalPoint, this->FocalPoint);
+  copy(p.ViewUp, this->ViewUp);
   this->ViewAngle = p.ViewAngle;
-  copyArray(p.LightPosition, this->LightPosition);
+  copy(p.LightPosition, this->LightPosition);
   this->LightRadius = p.LightRadius;
-  copyArray(p.ModelRotation, this->ModelRotation);
-  copyArray(p.WavelengthRange, this->WavelengthRange);
+  copy(p.ModelRotation, this->ModelRotation);
+  copy(p.WavelengthRange, this->WavelengthRange);
   this->WavelengthStep = p.WavelengthStep;
   this->RefractiveIndex = p.RefractiveIndex;
   this->BraggBandwidth = p.BraggBandwidth;
@@ -109,7 +100,7 @@ void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
   this->BraggOrders = p.BraggOrders;
   this->MosaicSpread = p.MosaicSpread;
   this->Exposure = p.Exposure;
-  copyArray(p.Background, this->Background);
+  copy(p.Background, this->Background);
   this->StepSize = p.StepSize;
   this->SpecularSamples = p.SpecularSamples;
   this->LightFalloffAtEntry = p.LightFalloffAtEntry;

@@ -25,6 +25,21 @@ namespace opaltest
 // ctest's SKIP_RETURN_CODE for the Vulkan tests.
 constexpr int SkipReturnCode = 77;
 
+// Whether this machine has a Vulkan device; says why not if it has none.
+inline bool vulkanDeviceAvailable()
+{
+  try
+  {
+    opal::VulkanContext probe;
+    return true;
+  }
+  catch (const opal::NoVulkanDeviceError& e)
+  {
+    std::cout << "SKIPPED: no Vulkan device: " << e.what() << std::endl;
+    return false;
+  }
+}
+
 // The renderer with the validation layer on, or nullptr (and a message) if
 // this machine has no Vulkan device.
 inline std::unique_ptr<opal::SpectralRenderer> makeRenderer()

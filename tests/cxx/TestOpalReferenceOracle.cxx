@@ -4,10 +4,10 @@
 // scattering-only and a diffraction-only case; DominantBraggWavelength equal
 // wherever a domain is seen.
 #include "OpalReferenceRenderer.h"
+#include "OpalReferenceScene.h"
 #include "OpalTestHarness.h"
 #include "OpalTestVolumes.h"
-#include "OpalVulkanContext.h"
-#include "OpalVulkanError.h"
+#include "OpalRenderScenes.h"
 #include "vtkOpalSpectralRender.h"
 
 #include "vtkDataArray.h"
@@ -24,44 +24,6 @@
 
 namespace
 {
-opalreference::Scene sceneOf(vtkImageData* volume)
-{
-  opalreference::Scene scene;
-  int dims[3];
-  volume->GetDimensions(dims);
-  double origin[3], spacing[3];
-  volume->GetOrigin(origin);
-  volume->GetSpacing(spacing);
-  for (int a = 0; a < 3; ++a)
-  {
-    scene.Dimensions[static_cast<std::size_t>(a)] = dims[a];
-    scene.Origin[static_cast<std::size_t>(a)] = origin[a];
-    scene.Spacing[static_cast<std::size_t>(a)] = spacing[a];
-  }
-  vtkPointData* pd = volume->GetPointData();
-  const vtkIdType n = volume->GetNumberOfPoints();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    scene.Scattering.push_back(static_cast<float>(pd->GetArray("ScatteringCoefficient")->GetComponent(i, 0)));
-    scene.SurfaceDistance.push_back(static_cast<float>(pd->GetArray("SurfaceDistance")->GetComponent(i, 0)));
-    const int id = static_cast<int>(pd->GetArray("DomainId")->GetComponent(i, 0));
-    scene.DomainId.push_back(id);
-    if (id >= 0)
-    {
-      if (scene.Domains.size() <= static_cast<std::size_t>(id))
-      {
-        scene.Domains.resize(static_cast<std::size_t>(id) + 1, { 0, 0, 0, 0 });
-      }
-      double normal[3];
-      pd->GetArray("Normal")->GetTuple(i, normal);
-      // FCC (111) plane spacing, eq. 3.
-      scene.Domains[static_cast<std::size_t>(id)] = { normal[0], normal[1], normal[2],
-        std::sqrt(2.0 / 3.0) * pd->GetArray("ParticleDiameter")->GetComponent(i, 0) };
-    }
-  }
-  return scene;
-}
-
 struct Comparison
 {
   double WorstRelative = 0;   // per pixel and XYZ component, against a floor
@@ -82,7 +44,7 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
   OPAL_CHECK(render->GetNumberOfValidationMessages() == 0, what + ": the validation layer is silent");
   vtkImageData* image = render->GetOutput();
   const opalreference::View view; // the same defaults: the paper's set-up, 64 x 48
-  const opalreference::Image reference = opalreference::render(sceneOf(volume), view, cie);
+  const opalreference::Image reference = opalreference::render(opalreference::sceneFromVolume(volume), view, cie);
 
   vtkDataArray* xyz = image->GetPointData()->GetArray("XYZ");
   vtkDataArray* dominant = image->GetPointData()->GetArray("DominantBraggWavelength");
@@ -151,14 +113,9 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
 
 int main(int argc, char** argv)
 {
-  try
+  if (!opaltest::vulkanDeviceAvailable())
   {
-    opal::VulkanContext probe;
-  }
-  catch (const opal::NoVulkanDeviceError& e)
-  {
-    std::cout << "SKIPPED: no Vulkan device: " << e.what() << std::endl;
-    return 77;
+    return opaltest::SkipReturnCode;
   }
   const std::string cie = argc > 1 ? argv[1] : "";
 
