@@ -132,7 +132,7 @@ public:
   {
     double g[3];
     int c0[3], c1[3];
-    dvec3 nearest;
+    dvec3 nearest(0.0);
     for (int a = 0; a < 3; ++a)
     {
       const double lo = this->S.Origin[a];
