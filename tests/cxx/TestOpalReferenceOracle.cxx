@@ -63,11 +63,11 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
       const std::size_t p = static_cast<std::size_t>(y) * 64 + static_cast<std::size_t>(x);
       const vtkIdType id = static_cast<vtkIdType>(47 - y) * 64 + x; // VTK rows run bottom up
       // Per-pixel agreement away from the silhouette and the highlight: at
-      // grazing incidence (over 60 degrees) the two root finders' surface
+      // grazing incidence (over 45 degrees) the two root finders' surface
       // points and normals differ most and the Fresnel and Snell terms are
       // steepest; the highlight is a 16-sub-ray coverage of the light's
       // image, where one sub-ray crossing its edge moves the pixel by 1/16.
-      const bool comparable = !reference.Hit[p] || (reference.CosIncidence[p] >= 0.5 && reference.Highlight[p] == 0);
+      const bool comparable = !reference.Hit[p] || (reference.CosIncidence[p] >= 0.7 && reference.Highlight[p] == 0);
       double worstHere = 0;
       for (int c = 0; c < 3 && comparable; ++c)
       {
@@ -154,10 +154,10 @@ int main(int argc, char** argv)
   // (the depth to the light read trilinearly from values at voxel centres
   // against a march from each sample; the surface found by sphere tracing
   // against fine fixed steps), per opal pixel, the worst XYZ component,
-  // against a floor of 5% of the mean luminance: 5% for 95% of the pixels,
-  // 2% on average, 25% at worst (a few pixels where the two surfaces differ
-  // by a voxel-scale step in the coarse 0.4 mm test grid).
-  const double percentileAllowed = 0.05, meanAllowed = 0.02, worstAllowed = 0.25;
+  // against a floor of 5% of the mean luminance: 4% for 95% of the pixels,
+  // 2% on average, 15% at worst (measured: 2.5%, 1.2%, 11.8% - the worst a
+  // bluish pixel of the coarse 0.4 mm test grid, noted on the issue).
+  const double percentileAllowed = 0.04, meanAllowed = 0.02, worstAllowed = 0.15;
   auto agrees = [&](const Comparison& c) {
     return c.Percentile95 < percentileAllowed && c.MeanRelative < meanAllowed && c.WorstRelative < worstAllowed;
   };
