@@ -2,9 +2,11 @@
 // what went wrong, and a recorder of the errors and warnings VTK objects emit.
 #pragma once
 
+#include "vtkAlgorithm.h"
 #include "vtkCommand.h"
 #include "vtkObject.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -72,6 +74,30 @@ public:
   }
   std::vector<std::string> Errors;
   std::vector<std::string> Warnings;
+};
+
+// Aborts an algorithm, as ParaView's stop button does, once its progress
+// reaches AbortAt; remembers when.
+class AbortOnProgress : public vtkCommand
+{
+public:
+  static AbortOnProgress* New() { return new AbortOnProgress; }
+  void Execute(vtkObject* caller, unsigned long, void* callData) override
+  {
+    if (!this->Aborted && *static_cast<double*>(callData) >= this->AbortAt)
+    {
+      static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
+      this->Aborted = true;
+      this->When = std::chrono::steady_clock::now();
+    }
+  }
+  double secondsSinceAbort() const
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->When).count();
+  }
+  double AbortAt = 0.3;
+  bool Aborted = false;
+  std::chrono::steady_clock::time_point When;
 };
 
 } // namespace opaltest

@@ -1,40 +1,18 @@
-// Abort mid-render, as the GUI's stop button does: the filter stops promptly
-// (within a tile of the march), the request fails without an image, and the
-// pipeline renders normally once the abort is cleared.
+// Abort mid-way, as the GUI's stop button does, for the volume source and
+// the render: each stops promptly (between slabs; within a tile of the
+// march), the request fails without partial output, and the pipeline works
+// normally once the abort is cleared.
 #include "OpalTestHarness.h"
 #include "OpalRenderScenes.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalSpectralRender.h"
 
-#include "vtkCallbackCommand.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 
-#include <chrono>
 #include <iostream>
-
-namespace
-{
-struct AbortState
-{
-  double AbortAt = 0.3;
-  bool Aborted = false;
-  std::chrono::steady_clock::time_point When;
-};
-
-void abortOnProgress(vtkObject* caller, unsigned long, void* clientData, void* callData)
-{
-  auto* state = static_cast<AbortState*>(clientData);
-  if (!state->Aborted && *static_cast<double*>(callData) >= state->AbortAt)
-  {
-    static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1);
-    state->Aborted = true;
-    state->When = std::chrono::steady_clock::now();
-  }
-}
-} // namespace
 
 int main()
 {
@@ -48,16 +26,12 @@ int main()
   vtkNew<vtkOpalSpectralRender> render;
   render->SetInputConnection(source->GetOutputPort(0));
   render->SetImageSize(320, 240);
-  AbortState state;
-  vtkNew<vtkCallbackCommand> abort;
-  abort->SetCallback(abortOnProgress);
-  abort->SetClientData(&state);
+  vtkNew<opaltest::AbortOnProgress> abort;
   render->AddObserver(vtkCommand::ProgressEvent, abort);
 
   const int status = render->GetExecutive()->Update();
-  const double stopSeconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - state.When).count();
-  OPAL_CHECK(state.Aborted, "the abort was requested mid-render");
+  const double stopSeconds = abort->secondsSinceAbort();
+  OPAL_CHECK(abort->Aborted, "the abort was requested mid-render");
   OPAL_CHECK(status == 0, "an aborted render fails the request");
   OPAL_CHECK(render->GetOutput()->GetNumberOfPoints() == 0, "an aborted render leaves no partial image");
   OPAL_CHECK(stopSeconds < 2.0, "the render stops promptly: " + std::to_string(stopSeconds) + " s after the abort");
@@ -69,5 +43,19 @@ int main()
   int dims[3];
   render->GetOutput()->GetDimensions(dims);
   OPAL_CHECK(dims[0] == 320 && dims[1] == 240, "and the image is whole");
-  return opaltest::finish("TestOpalRenderAbort");
+
+  // The volume source at paper scale.
+  vtkNew<vtkOpalSource> volume;
+  vtkNew<opaltest::AbortOnProgress> abortVolume;
+  abortVolume->AbortAt = 0.5;
+  volume->AddObserver(vtkCommand::ProgressEvent, abortVolume);
+  OPAL_CHECK(volume->GetExecutive()->Update() == 0, "an aborted volume fails the request");
+  OPAL_CHECK(abortVolume->Aborted && abortVolume->secondsSinceAbort() < 1.0, "the volume stops promptly");
+  OPAL_CHECK(volume->GetOutput()->GetNumberOfPoints() == 0, "an aborted volume leaves no partial arrays");
+  volume->RemoveObserver(abortVolume);
+  volume->SetAbortExecute(0);
+  volume->Modified();
+  OPAL_CHECK(volume->GetExecutive()->Update() == 1 && volume->GetOutput()->GetNumberOfPoints() == 160 * 80 * 200,
+    "the volume builds whole after the abort");
+  return opaltest::finish("TestOpalAbort");
 }
