@@ -126,6 +126,29 @@ glm::dvec3 apexOf(const RenderVolume& volume)
   return { x, volume.Origin[1] + (ny - 0.5) * volume.Spacing[1], z };
 }
 
+// Whether the light sits above the grid steeply enough for the layer sweep:
+// every path to it rises through each layer moving at most two voxels sideways.
+bool lightAboveGrid(const RenderVolume& volume, const glm::dvec3& light)
+{
+  const glm::dvec3 spacing = vec(volume.Spacing);
+  const glm::dvec3 low = vec(volume.Origin) - 0.5 * spacing;
+  const glm::dvec3 high = low + glm::dvec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2]) * spacing;
+  if (light.y < high.y + spacing.y)
+  {
+    return false;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 p((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y, (corner & 4) ? high.z : low.z);
+    const glm::dvec3 d = light - p;
+    if (std::fabs(d.x) / d.y * spacing.y > 2 * spacing.x || std::fabs(d.z) / d.y * spacing.y > 2 * spacing.z)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 void checkVolume(const RenderVolume& v)
 {
   for (int a = 0; a < 3; ++a)
@@ -315,16 +338,41 @@ RenderImage SpectralRenderer::render(
   auto report = [&](double fraction) { return !progress || progress(fraction); };
 
   const auto lightStart = Clock::now();
-  for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
+  if (lightAboveGrid(volume, light))
   {
-    const std::int32_t count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
-    const std::int32_t work[4] = { static_cast<std::int32_t>(first), count, 0, 0 };
-    context.submitAndWait([&](VkCommandBuffer commands) {
-      this->LightPass->dispatch(commands, work, static_cast<std::uint32_t>((count + 255) / 256));
-    });
-    if (!report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
+    // Sweep layer by layer from the top: each layer reads the one above.
+    const int layers = volume.Dimensions[1];
+    const std::uint32_t groups =
+      static_cast<std::uint32_t>((volume.Dimensions[0] * volume.Dimensions[2] + 255) / 256);
+    constexpr int LayersPerSubmit = 16;
+    for (int top = layers - 1; top >= 0; top -= LayersPerSubmit)
     {
-      return RenderImage{};
+      context.submitAndWait([&](VkCommandBuffer commands) {
+        for (int layer = top; layer > top - LayersPerSubmit && layer >= 0; --layer)
+        {
+          const std::int32_t work[4] = { 1, 0, 0, layer };
+          this->LightPass->dispatch(commands, work, groups);
+        }
+      });
+      if (!report(0.2 * static_cast<double>(layers - std::max(0, top - LayersPerSubmit + 1)) / layers))
+      {
+        return RenderImage{};
+      }
+    }
+  }
+  else
+  {
+    for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
+    {
+      const std::int32_t count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
+      const std::int32_t work[4] = { 0, static_cast<std::int32_t>(first), count, 0 };
+      context.submitAndWait([&](VkCommandBuffer commands) {
+        this->LightPass->dispatch(commands, work, static_cast<std::uint32_t>((count + 255) / 256));
+      });
+      if (!report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
+      {
+        return RenderImage{};
+      }
     }
   }
   image.Timings.LightPass = secondsSince(lightStart);

