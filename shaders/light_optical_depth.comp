@@ -25,18 +25,6 @@ layout(push_constant) uniform Work { int mode; int first; int count; int layer; 
 
 float apexDistance2() { return P.lighting.x; }
 
-// Where the path from p towards the light (unit direction) leaves the opal
-// within distance `span`: bisection on SurfaceDistance (positive there).
-float opalExit(vec3 p, vec3 direction, float lo, float hi)
-{
-  for (int k = 0; k < 12; ++k)
-  {
-    float m = 0.5 * (lo + hi);
-    if (surfaceDistance(p + m * direction) > 0.0) hi = m; else lo = m;
-  }
-  return lo;
-}
-
 // The light's geometric factor at p, given where its path enters the opal:
 // Fresnel transmission there times the inverse-square fall-off, 1 at the apex.
 // DESIGN.md §3: 1/r^2 to the sample; the paper's eq. 6 stops it at L_in (an option).
@@ -74,7 +62,7 @@ void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
       float d = surfaceDistance(p + (t + step) * direction);
       if (d > 0.0)
       {
-        entry = opalExit(p, direction, t, t + step);
+        entry = bisectSurface(p, direction, t + step, t);
         tau += scatteringAt(p + 0.5 * (t + entry) * direction) * (entry - t);
         break;
       }
@@ -120,7 +108,7 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   if (distanceQ > 0.0)
   {
     // The light enters the opal between p and q.
-    float entry = opalExit(p, direction, 0.0, step);
+    float entry = bisectSurface(p, direction, step, 0.0);
     lightOpticalDepth[index] = scatteringAt(p + 0.5 * entry * direction) * entry;
     lightGeometry[index] = entryGeometry(p, p + entry * direction, direction);
     return;

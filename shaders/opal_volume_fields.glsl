@@ -80,6 +80,18 @@ vec2 gridBoxHits(vec3 origin, vec3 direction)
   return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), tMax.z));
 }
 
+// The zero of SurfaceDistance along a ray between a point outside (at
+// outsideT) and one inside (at insideT), by bisection; returns the inside end.
+float bisectSurface(vec3 origin, vec3 direction, float outsideT, float insideT)
+{
+  for (int k = 0; k < 12; ++k)
+  {
+    float m = 0.5 * (outsideT + insideT);
+    if (surfaceDistance(origin + m * direction) > 0.0) outsideT = m; else insideT = m;
+  }
+  return insideT;
+}
+
 // First zero of SurfaceDistance along the ray in [tStart, tEnd] going from
 // outside (positive) to inside: sphere tracing, then bisection. -1 if none.
 float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
@@ -92,13 +104,7 @@ float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
     float d = surfaceDistance(origin + t * direction);
     if (d <= 0.0)
     {
-      float a = previous, b = t;
-      for (int k = 0; k < 12; ++k)
-      {
-        float m = 0.5 * (a + b);
-        if (surfaceDistance(origin + m * direction) > 0.0) a = m; else b = m;
-      }
-      return b;
+      return bisectSurface(origin, direction, previous, t);
     }
     previous = t;
     t += max(0.9 * d, 0.05 * h);
@@ -117,13 +123,7 @@ float traceSurfaceExit(vec3 origin, vec3 direction, float tEnd)
     float d = surfaceDistance(origin + t * direction);
     if (d > 0.0)
     {
-      float a = previous, b = t;
-      for (int k = 0; k < 12; ++k)
-      {
-        float m = 0.5 * (a + b);
-        if (surfaceDistance(origin + m * direction) > 0.0) b = m; else a = m;
-      }
-      return a;
+      return bisectSurface(origin, direction, t, previous);
     }
     previous = t;
     t += max(-0.9 * d, 0.05 * h);
