@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -74,6 +75,16 @@ public:
   }
   std::vector<std::string> Errors;
   std::vector<std::string> Warnings;
+};
+
+// One invalid input for a bad-input test: how to break the algorithm and the
+// text its error message must contain (the parameter's name).
+template <typename Algorithm>
+struct BadCase
+{
+  std::string Description;
+  std::function<void(Algorithm*)> Break;
+  std::string Expected;
 };
 
 // Aborts an algorithm, as ParaView's stop button does, once its progress

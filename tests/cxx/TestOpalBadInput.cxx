@@ -14,15 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace
-{
-struct BadCase
-{
-  std::string Description;
-  std::function<void(vtkOpalSource*)> Break;
-  std::string Parameter; // the message must name it
-};
-} // namespace
+using BadCase = opaltest::BadCase<vtkOpalSource>;
 
 int main()
 {
@@ -72,8 +64,8 @@ int main()
     bad.Break(source);
     const int status = source->GetExecutive()->Update();
     OPAL_CHECK(status == 0, bad.Description + ": the request fails");
-    OPAL_CHECK(recorder->anyContains(recorder->Errors, bad.Parameter),
-      bad.Description + ": the error names " + bad.Parameter);
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, bad.Expected),
+      bad.Description + ": the error names " + bad.Expected);
     // Fixed again, the same source works.
     auto fresh = opaltest::makeSmallSource();
     source->SetModelParameters(fresh->GetModelParameters());

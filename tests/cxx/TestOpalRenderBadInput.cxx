@@ -21,15 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace
-{
-struct BadCase
-{
-  std::string Description;
-  std::function<void(vtkOpalSpectralRender*)> Break;
-  std::string Expected; // the message must contain it
-};
-} // namespace
+using BadCase = opaltest::BadCase<vtkOpalSpectralRender>;
 
 int main(int argc, char** argv)
 {
