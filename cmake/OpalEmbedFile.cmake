@@ -1,5 +1,5 @@
 # Embeds a file into C++ source (run with cmake -P):
-#   -DINPUT=file -DOUTPUT=file.cxx -DFUNCTION=name -DKIND=spirv|text
+#   -DINPUT=file -DOUTPUT=file.cxx -DFUNCTION=name -DKIND=spirv|text -DHEADER=declaring header
 # spirv: defines opal::embedded::Spirv FUNCTION() over the file's 32-bit words.
 # text:  defines const char* FUNCTION() returning the file's text.
 file(READ "${INPUT}" content HEX)
@@ -10,7 +10,7 @@ if (KIND STREQUAL "spirv")
   string(REGEX REPLACE "([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])([0-9a-f][0-9a-f])"
     "0x\\4\\3\\2\\1u," words "${content}")
   file(WRITE "${OUTPUT}" "// Generated from ${INPUT} by OpalEmbedFile.cmake; do not edit.
-#include \"OpalEmbeddedData.h\"
+#include \"${HEADER}\"
 namespace opal::embedded
 {
 namespace
@@ -26,7 +26,7 @@ Spirv ${FUNCTION}()
 else ()
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "'\\\\x\\1'," chars "${content}")
   file(WRITE "${OUTPUT}" "// Generated from ${INPUT} by OpalEmbedFile.cmake; do not edit.
-#include \"OpalEmbeddedData.h\"
+#include \"${HEADER}\"
 namespace opal::embedded
 {
 namespace

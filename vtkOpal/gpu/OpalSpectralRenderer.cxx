@@ -1,7 +1,7 @@
 #include "OpalSpectralRenderer.h"
 
 #include "OpalComputePipeline.h"
-#include "OpalEmbeddedData.h"
+#include "OpalEmbeddedShaders.h"
 #include "OpalMemory.h"
 #include "OpalSpectralSampling.h"
 #include "OpalVulkanBuffer.h"

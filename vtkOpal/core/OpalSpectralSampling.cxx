@@ -1,6 +1,6 @@
 #include "OpalSpectralSampling.h"
 
-#include "OpalEmbeddedData.h"
+#include "OpalEmbeddedTables.h"
 
 #include <algorithm>
 #include <array>

@@ -1,0 +1,21 @@
+// The SPIR-V of the render passes, compiled by glslangValidator from shaders/
+// at build time and embedded into the library (cmake/OpalEmbed.cmake).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace opal::embedded
+{
+
+struct Spirv
+{
+  const std::uint32_t* Words;
+  std::size_t WordCount;
+};
+
+Spirv lightOpticalDepthShader();
+Spirv viewMarchShader();
+Spirv spectrumToColourShader();
+
+} // namespace opal::embedded
