@@ -2,7 +2,6 @@
 // 640 x 480 pixels, 41 wavelengths) on the default Vulkan device, printing the
 // total and its split. The first render includes creating the pipelines.
 #include "OpalRenderParameters.h"
-#include "OpalSpectralRenderer.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalSpectralRender.h"
 

@@ -7,32 +7,30 @@
 // follows as tau(lambda) = tau(550) (550/lambda)^4; this replaces the paper's
 // march towards the light at every sample and wavelength (eq. 6, 7).
 // With the light above the grid, a sweep layer by layer from the top makes it
-// O(1) per voxel (mode 1); otherwise each voxel marches to the light (mode 0).
+// O(1) per voxel (LightPassSweepFromAbove); otherwise each voxel marches to
+// the light (LightPassMarchTowardsLight).
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 256) in;
 
-#include "opal_render_layout.glsl"
+#include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 
-layout(std430, set = 0, binding = 5) buffer LightOpticalDepthField { float lightOpticalDepth[]; };
-layout(std430, set = 0, binding = 6) buffer LightGeometryField { float lightGeometry[]; };
+layout(std430, set = 0, binding = LightOpticalDepthBinding) buffer LightOpticalDepthField { float lightOpticalDepth[]; };
+layout(std430, set = 0, binding = LightGeometryBinding) buffer LightGeometryField { float lightGeometry[]; };
 
-// mode 0: march the voxels [first, first + count) towards the light;
-// mode 1: sweep one layer y = layer from the layer above (light above the grid).
-layout(push_constant) uniform Work { int mode; int first; int count; int layer; } work;
+layout(push_constant) uniform LightPassPush { LightPassWork work; };
 
-float apexDistance2() { return P.lighting.x; }
 
 // The light's geometric factor at p, given where its path enters the opal:
 // Fresnel transmission there times the inverse-square fall-off, 1 at the apex.
 // DESIGN.md §3: 1/r^2 to the sample; the paper's eq. 6 stops it at L_in (an option).
 float entryGeometry(vec3 p, vec3 lightEntry, vec3 direction)
 {
-  float transmission = 1.0 - fresnelReflectance(dot(surfaceNormal(lightEntry), direction), P.optics.x);
-  float r = P.lighting.z > 0.5 ? distance(P.light.xyz, lightEntry) : distance(P.light.xyz, p);
-  return transmission * apexDistance2() / (r * r);
+  float transmission = 1.0 - fresnelReflectance(dot(surfaceNormal(lightEntry), direction), P.refractiveIndex);
+  float r = P.lightFalloffAtEntry != 0 ? distance(P.light, lightEntry) : distance(P.light, p);
+  return transmission * P.apexDistanceSquared / (r * r);
 }
 
 float scatteringAt(vec3 p)
@@ -41,11 +39,11 @@ float scatteringAt(vec3 p)
   return insideGrid(v) ? scatteringField[voxelIndex(v)] : 0.0;
 }
 
-// mode 0: march towards the light, one sample per voxel length at the midpoints,
+// LightPassMarchTowardsLight: march towards the light, one sample per voxel length at the midpoints,
 // until the path leaves the opal at L_in (eq. 7, absorption 0).
 void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
 {
-  float h = P.gridOrigin.w;
+  float h = P.smallestSpacing;
   float tau = 0.0;
   float t = 0.0;
   float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
@@ -75,7 +73,7 @@ void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
   lightGeometry[index] = entryGeometry(p, p + entry * direction, direction);
 }
 
-// mode 1: the path from p to the light crosses the plane of the layer above
+// LightPassSweepFromAbove: the path from p to the light crosses the plane of the layer above
 // at q; the optical depth and geometry there are interpolated from that
 // layer (over its voxels inside the opal only, so the outside's unattenuated
 // values do not leak in) and the short segment p-q is added. O(1) per voxel.
@@ -83,12 +81,12 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
 {
   float step = P.gridSpacing.y / direction.y;
   vec3 q = p + step * direction;
-  bool topLayer = c.y == P.gridDims.y - 1;
+  bool topLayer = c.y == P.gridDimensions.y - 1;
   // q lies in the plane of the layer above's centres: bilinear there in x, z.
-  ivec3 layerAbove = ivec3(0, min(c.y + 1, P.gridDims.y - 1), 0);
-  vec2 g = clamp((q.xz - P.gridOrigin.xz) / P.gridSpacing.xz, vec2(0.0), vec2(P.gridDims.xz - 1));
-  ivec2 c0 = clamp(ivec2(floor(g)), ivec2(0), max(P.gridDims.xz - 2, ivec2(0)));
-  ivec2 c1 = min(c0 + 1, P.gridDims.xz - 1);
+  ivec3 layerAbove = ivec3(0, min(c.y + 1, P.gridDimensions.y - 1), 0);
+  vec2 g = clamp((q.xz - P.gridOrigin.xz) / P.gridSpacing.xz, vec2(0.0), vec2(P.gridDimensions.xz - 1));
+  ivec2 c0 = clamp(ivec2(floor(g)), ivec2(0), max(P.gridDimensions.xz - 2, ivec2(0)));
+  ivec2 c1 = min(c0 + 1, P.gridDimensions.xz - 1);
   vec2 f = clamp(g - vec2(c0), 0.0, 1.0);
   int corners[4];
   float weights[4];
@@ -135,28 +133,28 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   lightOpticalDepth[index] = tauQ + 0.5 * step *
     (scatteringField[below] + scatteringAt(p + 0.75 * step * direction));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
-  float rq = distance(P.light.xyz, q), rp = distance(P.light.xyz, p);
-  lightGeometry[index] = P.lighting.z > 0.5 ? geometryQ : geometryQ * (rq * rq) / (rp * rp);
+  float rq = distance(P.light, q), rp = distance(P.light, p);
+  lightGeometry[index] = P.lightFalloffAtEntry != 0 ? geometryQ : geometryQ * (rq * rq) / (rp * rp);
 }
 
 void main()
 {
-  int nx = P.gridDims.x, ny = P.gridDims.y;
+  int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   int local = int(gl_GlobalInvocationID.x);
   int index;
-  if (work.mode == 0)
+  if (work.mode == LightPassMarchTowardsLight)
   {
     if (local >= work.count) return;
     index = work.first + local;
   }
   else
   {
-    if (local >= nx * P.gridDims.z) return;
+    if (local >= nx * P.gridDimensions.z) return;
     index = local % nx + nx * (work.layer + ny * (local / nx));
   }
   ivec3 c = ivec3(index % nx, (index / nx) % ny, index / (nx * ny));
   vec3 p = voxelCentre(c);
-  vec3 toLight = P.light.xyz - p;
+  vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
   // A voxel centre: its own SurfaceDistance, no interpolation needed.
@@ -164,10 +162,10 @@ void main()
   {
     // Outside the opal: unattenuated light.
     lightOpticalDepth[index] = 0.0;
-    lightGeometry[index] = apexDistance2() / (distanceToLight * distanceToLight);
+    lightGeometry[index] = P.apexDistanceSquared / (distanceToLight * distanceToLight);
     return;
   }
-  if (work.mode == 0)
+  if (work.mode == LightPassMarchTowardsLight)
   {
     marchTowardsLight(index, p, direction, distanceToLight);
   }

@@ -2,41 +2,41 @@
 // values (scattering coefficient, domain id), trilinear for the smooth ones
 // (surface distance, light optical depth and geometry), clamped at the edges.
 
-layout(std430, set = 0, binding = 2) readonly buffer ScatteringField { float scatteringField[]; };
-layout(std430, set = 0, binding = 3) readonly buffer DomainIdField { int domainIdField[]; };
-layout(std430, set = 0, binding = 4) readonly buffer SurfaceDistanceField { float surfaceDistanceField[]; };
+layout(std430, set = 0, binding = ScatteringBinding) readonly buffer ScatteringField { float scatteringField[]; };
+layout(std430, set = 0, binding = DomainIdBinding) readonly buffer DomainIdField { int domainIdField[]; };
+layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { float surfaceDistanceField[]; };
 
 int voxelIndex(ivec3 c)
 {
-  return c.x + P.gridDims.x * (c.y + P.gridDims.y * c.z);
+  return c.x + P.gridDimensions.x * (c.y + P.gridDimensions.y * c.z);
 }
 
 bool insideGrid(ivec3 c)
 {
-  return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, P.gridDims.xyz));
+  return all(greaterThanEqual(c, ivec3(0))) && all(lessThan(c, P.gridDimensions));
 }
 
 // The voxel whose cell [centre - spacing/2, centre + spacing/2) holds p.
 ivec3 voxelOf(vec3 p)
 {
-  return ivec3(floor((p - P.gridOrigin.xyz) / P.gridSpacing.xyz + 0.5));
+  return ivec3(floor((p - P.gridOrigin) / P.gridSpacing + 0.5));
 }
 
 vec3 voxelCentre(ivec3 c)
 {
-  return P.gridOrigin.xyz + vec3(c) * P.gridSpacing.xyz;
+  return P.gridOrigin + vec3(c) * P.gridSpacing;
 }
 
 // Trilinear interpolation of a float field over voxel centres, clamped.
 // (A macro: GLSL cannot pass a buffer's array to a function.)
 #define OPAL_TRILINEAR(FIELD, position, result)                                          \
   {                                                                                    \
-    vec3 g_ = clamp((position - P.gridOrigin.xyz) / P.gridSpacing.xyz, vec3(0.0),     \
-      vec3(P.gridDims.xyz - 1));                                                       \
-    ivec3 c0_ = clamp(ivec3(floor(g_)), ivec3(0), max(P.gridDims.xyz - 2, ivec3(0)));  \
-    ivec3 c1_ = min(c0_ + 1, P.gridDims.xyz - 1);                                      \
+    vec3 g_ = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(0.0),     \
+      vec3(P.gridDimensions - 1));                                                       \
+    ivec3 c0_ = clamp(ivec3(floor(g_)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));  \
+    ivec3 c1_ = min(c0_ + 1, P.gridDimensions - 1);                                      \
     vec3 f_ = clamp(g_ - vec3(c0_), 0.0, 1.0);                                         \
-    int sy_ = P.gridDims.x, sz_ = P.gridDims.x * P.gridDims.y;                         \
+    int sy_ = P.gridDimensions.x, sz_ = P.gridDimensions.x * P.gridDimensions.y;                         \
     int y0_ = c0_.y * sy_, y1_ = c1_.y * sy_, z0_ = c0_.z * sz_, z1_ = c1_.z * sz_;    \
     float x00_ = mix(FIELD[c0_.x + y0_ + z0_], FIELD[c1_.x + y0_ + z0_], f_.x);        \
     float x10_ = mix(FIELD[c0_.x + y1_ + z0_], FIELD[c1_.x + y1_ + z0_], f_.x);        \
@@ -50,7 +50,7 @@ vec3 voxelCentre(ivec3 c)
 // the surface's gradient and hide the apex).
 float surfaceDistance(vec3 p)
 {
-  vec3 nearest = clamp(p, P.gridOrigin.xyz, P.gridOrigin.xyz + vec3(P.gridDims.xyz - 1) * P.gridSpacing.xyz);
+  vec3 nearest = clamp(p, P.gridOrigin, P.gridOrigin + vec3(P.gridDimensions - 1) * P.gridSpacing);
   float d;
   OPAL_TRILINEAR(surfaceDistanceField, nearest, d);
   return d + distance(p, nearest);
@@ -59,7 +59,7 @@ float surfaceDistance(vec3 p)
 // Outward unit normal of the smooth surface: the gradient of SurfaceDistance.
 vec3 surfaceNormal(vec3 p)
 {
-  vec3 h = P.gridSpacing.xyz;
+  vec3 h = P.gridSpacing;
   vec3 g = vec3(surfaceDistance(p + vec3(h.x, 0, 0)) - surfaceDistance(p - vec3(h.x, 0, 0)),
     surfaceDistance(p + vec3(0, h.y, 0)) - surfaceDistance(p - vec3(0, h.y, 0)),
     surfaceDistance(p + vec3(0, 0, h.z)) - surfaceDistance(p - vec3(0, 0, h.z))) / (2.0 * h);
@@ -70,8 +70,8 @@ vec3 surfaceNormal(vec3 p)
 // Entry and exit distances of a ray with the grid's box; tNear > tFar if it misses.
 vec2 gridBoxHits(vec3 origin, vec3 direction)
 {
-  vec3 lo = P.gridOrigin.xyz - 0.5 * P.gridSpacing.xyz;
-  vec3 hi = lo + vec3(P.gridDims.xyz) * P.gridSpacing.xyz;
+  vec3 lo = P.gridOrigin - 0.5 * P.gridSpacing;
+  vec3 hi = lo + vec3(P.gridDimensions) * P.gridSpacing;
   vec3 inverse = 1.0 / direction;
   vec3 t0 = (lo - origin) * inverse;
   vec3 t1 = (hi - origin) * inverse;
@@ -96,7 +96,7 @@ float bisectSurface(vec3 origin, vec3 direction, float outsideT, float insideT)
 // outside (positive) to inside: sphere tracing, then bisection. -1 if none.
 float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
 {
-  float h = P.gridOrigin.w;
+  float h = P.smallestSpacing;
   float t = tStart;
   float previous = t;
   for (int i = 0; i < 1024 && t <= tEnd; ++i)
@@ -115,7 +115,7 @@ float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
 // Where a ray starting inside leaves the surface (SurfaceDistance turns positive), or tEnd.
 float traceSurfaceExit(vec3 origin, vec3 direction, float tEnd)
 {
-  float h = P.gridOrigin.w;
+  float h = P.smallestSpacing;
   float t = 0.0;
   float previous = t;
   for (int i = 0; i < 4096 && t <= tEnd; ++i)

@@ -6,13 +6,13 @@
 
 layout(local_size_x = 64) in;
 
-#include "opal_render_layout.glsl"
+#include "opal_render_bindings.glsl"
 
-layout(std430, set = 0, binding = 8) readonly buffer PixelXYZ { vec4 pixelXYZ[]; };
-layout(std430, set = 0, binding = 9) readonly buffer PixelBragg { vec4 pixelBragg[]; };
+layout(std430, set = 0, binding = PixelColourBinding) readonly buffer PixelColourImage { PixelColour pixelColour[]; };
+layout(std430, set = 0, binding = PixelBraggBinding) readonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
 // Linear sRGB radiance (before exposure) and packed 8-bit sRGB per pixel.
-layout(std430, set = 0, binding = 11) writeonly buffer PixelRadiance { vec4 pixelRadiance[]; };
-layout(std430, set = 0, binding = 12) writeonly buffer PixelRGB8 { uint pixelRGB8[]; };
+layout(std430, set = 0, binding = PixelRadianceBinding) writeonly buffer PixelRadiance { float pixelRadiance[]; };
+layout(std430, set = 0, binding = PixelRGB8Binding) writeonly buffer PixelRGB8 { uint pixelRGB8[]; };
 
 // IEC 61966-2-1 XYZ (D65) to linear sRGB.
 const mat3 XYZ_TO_SRGB = mat3(3.2404542, -0.9692660, 0.0556434,
@@ -40,19 +40,20 @@ vec3 huePreservingToneMap(vec3 rgb)
   return highest > 1.0 ? rgb / highest : rgb;
 }
 
-layout(push_constant) uniform PixelRange { int first; } range;
+layout(push_constant) uniform ColourPush { ColourRange range; };
 
 void main()
 {
   int index = range.first + int(gl_GlobalInvocationID.x);
-  if (index >= P.rect.z * P.rect.w)
+  if (index >= P.rectSize.x * P.rectSize.y)
   {
     return;
   }
-  bool hit = pixelBragg[index].z > 0.5;
-  vec3 linear = XYZ_TO_SRGB * pixelXYZ[index].xyz;
-  vec3 display = hit ? huePreservingToneMap(linear * P.colour.x) : clamp(P.background.rgb, 0.0, 1.0);
-  pixelRadiance[index] = vec4(hit ? linear : P.background.rgb, 0.0);
+  bool hit = pixelBragg[index].hit != 0;
+  vec3 linear = XYZ_TO_SRGB * pixelColour[index].xyz;
+  vec3 display = hit ? huePreservingToneMap(linear * P.exposure) : clamp(P.background, 0.0, 1.0);
+  vec3 radiance = hit ? linear : P.background;
+  for (int c = 0; c < 3; ++c) pixelRadiance[3 * index + c] = radiance[c];
   uvec3 bytes = uvec3(round(255.0 * vec3(srgbTransfer(display.r), srgbTransfer(display.g),
     srgbTransfer(display.b))));
   pixelRGB8[index] = bytes.r | (bytes.g << 8) | (bytes.b << 16);

@@ -11,23 +11,21 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int WAVELENGTHS = 41;
 
-#include "opal_render_layout.glsl"
+#include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 
-layout(std430, set = 0, binding = 5) readonly buffer LightOpticalDepthField { float lightOpticalDepth[]; };
-layout(std430, set = 0, binding = 6) readonly buffer LightGeometryField { float lightGeometry[]; };
-// Per domain: lattice-plane normal (y >= 0) and FCC (111) plane spacing d in nm.
-layout(std430, set = 0, binding = 7) readonly buffer DomainTable { vec4 domains[]; };
+layout(std430, set = 0, binding = LightOpticalDepthBinding) readonly buffer LightOpticalDepthField { float lightOpticalDepth[]; };
+layout(std430, set = 0, binding = LightGeometryBinding) readonly buffer LightGeometryField { float lightGeometry[]; };
+layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
-layout(std430, set = 0, binding = 8) writeonly buffer PixelXYZ { vec4 pixelXYZ[]; };
+layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
 // Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
-layout(std430, set = 0, binding = 9) writeonly buffer PixelBragg { vec4 pixelBragg[]; };
-// Per pixel, WAVELENGTHS spectral radiances (only if P.forward.w > 0.5).
-layout(std430, set = 0, binding = 10) writeonly buffer PixelSpectrum { float pixelSpectrum[]; };
+layout(std430, set = 0, binding = PixelBraggBinding) writeonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
+// Per pixel, WAVELENGTHS spectral radiances (only if P.writeSpectrum != 0).
+layout(std430, set = 0, binding = PixelSpectrumBinding) writeonly buffer PixelSpectrum { float pixelSpectrum[]; };
 
-// The tile of the rendered rectangle this dispatch covers.
-layout(push_constant) uniform Tile { ivec2 origin; } tile;
+layout(push_constant) uniform MarchPush { MarchTile tile; };
 
 float radiance[WAVELENGTHS];
 
@@ -47,11 +45,11 @@ float lightGeometryAt(vec3 p)
 
 vec3 primaryDirection(vec2 pixel)
 {
-  float width = P.right.w, height = P.up.w;
-  float tanHalf = P.eye.w;
+  float width = float(P.imageWidth), height = float(P.imageHeight);
+  float tanHalf = P.tanHalfViewAngle;
   vec2 ndc = vec2(2.0 * pixel.x / width - 1.0, 1.0 - 2.0 * pixel.y / height);
-  return normalize(P.forward.xyz + ndc.x * tanHalf * (width / height) * P.right.xyz +
-    ndc.y * tanHalf * P.up.xyz);
+  return normalize(P.forward + ndc.x * tanHalf * (width / height) * P.right +
+    ndc.y * tanHalf * P.up);
 }
 
 // Where the mirror ray of the primary ray through `pixel` passes closest to
@@ -68,7 +66,7 @@ vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
   vec3 normal = surfaceNormal(hit);
   cosI = -dot(d, normal);
   vec3 mirrored = reflect(d, normal);
-  float along = dot(P.light.xyz - hit, mirrored);
+  float along = dot(P.light - hit, mirrored);
   if (cosI <= 0.0 || along <= 0.0) return vec4(0.0);
   return vec4(hit + along * mirrored, 1.0);
 }
@@ -80,7 +78,7 @@ vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
 // within reach of it, n x n sub-rays cover the pixel; elsewhere it is 0.
 float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
 {
-  float h = P.gridOrigin.w;
+  float h = P.smallestSpacing;
   float cosI;
   vec4 centre = mirrorRayNearLight(pixel, eye, tHit - 2.0 * h, cosI);
   if (centre.w == 0.0) return 0.0;
@@ -88,11 +86,11 @@ float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
   vec4 nextY = mirrorRayNearLight(pixel + vec2(0.0, 1.0), eye, tHit - 4.0 * h, cosI);
   float spread = (nextX.w == 0.0 || nextY.w == 0.0) ? 1e30
     : max(distance(nextX.xyz, centre.xyz), distance(nextY.xyz, centre.xyz));
-  if (distance(centre.xyz, P.light.xyz) > P.light.w + 1.5 * spread)
+  if (distance(centre.xyz, P.light) > P.lightRadius + 1.5 * spread)
   {
     return 0.0;
   }
-  int n = int(P.lighting.w);
+  int n = P.specularSamples;
   float sum = 0.0;
   for (int sy = 0; sy < n; ++sy)
   {
@@ -100,7 +98,7 @@ float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
     {
       vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
       vec4 near = mirrorRayNearLight(sub, eye, tHit - 4.0 * h, cosI);
-      if (near.w > 0.0 && distance(near.xyz, P.light.xyz) <= P.light.w)
+      if (near.w > 0.0 && distance(near.xyz, P.light) <= P.lightRadius)
       {
         sum += fresnelReflectance(cosI, mu);
       }
@@ -112,23 +110,23 @@ float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
 void main()
 {
   ivec2 local = ivec2(gl_GlobalInvocationID.xy) + tile.origin; // within the rectangle
-  if (local.x >= P.rect.z || local.y >= P.rect.w)
+  if (local.x >= P.rectSize.x || local.y >= P.rectSize.y)
   {
     return;
   }
-  int pixelIndex = local.x + P.rect.z * local.y;
-  vec2 pixel = vec2(P.rect.xy + local) + 0.5;
-  vec3 eye = P.eye.xyz;
+  int pixelIndex = local.x + P.rectSize.x * local.y;
+  vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
+  vec3 eye = P.eye;
   vec3 direction = primaryDirection(pixel);
-  float mu = P.optics.x;
-  bool writeSpectrum = P.forward.w > 0.5;
+  float mu = P.refractiveIndex;
+  bool writeSpectrum = P.writeSpectrum != 0;
 
   vec2 box = gridBoxHits(eye, direction);
   float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y) : -1.0;
   if (tHit < 0.0)
   {
-    pixelXYZ[pixelIndex] = vec4(0.0);
-    pixelBragg[pixelIndex] = vec4(0.0);
+    pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
+    pixelBragg[pixelIndex] = PixelBragg(0.0, 0.0, 0);
     if (writeSpectrum)
     {
       for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
@@ -143,27 +141,27 @@ void main()
   vec3 normal = surfaceNormal(entry);
   float cosI = clamp(-dot(direction, normal), 0.0, 1.0);
   float transmitted = 1.0 - fresnelReflectance(cosI, mu);
-  float highlight = specularHighlight(pixel, eye, tHit, mu) * P.lighting.y;
+  float highlight = specularHighlight(pixel, eye, tHit, mu) * P.lightRadiance;
   vec3 inward = refract(direction, normal, 1.0 / mu);
   vec3 towardEye = -inward;
 
   // March the refracted ray voxel by voxel to where it leaves the opal.
-  vec3 origin = entry - 1e-4 * P.gridOrigin.w * normal;
+  vec3 origin = entry - 1e-4 * P.smallestSpacing * normal;
   float tExit = traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y);
-  vec3 cellLow = P.gridOrigin.xyz - 0.5 * P.gridSpacing.xyz;
+  vec3 cellLow = P.gridOrigin - 0.5 * P.gridSpacing;
   ivec3 cell = voxelOf(origin);
   ivec3 stepDir = ivec3(sign(inward));
   vec3 inverse = 1.0 / max(abs(inward), vec3(1e-20));
-  vec3 nextBoundary = cellLow + (vec3(cell) + max(vec3(stepDir), vec3(0.0))) * P.gridSpacing.xyz;
+  vec3 nextBoundary = cellLow + (vec3(cell) + max(vec3(stepDir), vec3(0.0))) * P.gridSpacing;
   vec3 tMax = (nextBoundary - origin) * inverse * sign(inward) ;
   tMax = mix(tMax, vec3(1e30), equal(stepDir, ivec3(0)));
-  vec3 tDelta = P.gridSpacing.xyz * inverse;
+  vec3 tDelta = P.gridSpacing * inverse;
 
-  float stepLimit = P.gridSpacing.w;
-  float gain = P.optics.z;
-  float bandwidth = P.optics.y;
-  float spread = P.optics.w;
-  int orders = P.counts.y;
+  float stepLimit = P.marchStep;
+  float gain = P.diffractionGain;
+  float bandwidth = P.braggBandwidth;
+  float spread = P.mosaicSpread;
+  int orders = P.braggOrders;
   float tauView = 0.0;       // optical depth at 550 nm from P_in along the view path
   int lastDomain = -1;       // the domain being crossed, counted once
   float dominantLambda = 0.0;
@@ -186,25 +184,24 @@ void main()
           // glancing angle of the light on the lattice planes; the box band B
           // averaged per bin; gain G and 1/pi turn the reflected irradiance into radiance.
           vec3 at = origin + (t + 0.5 * segment) * inward;
-          vec4 lattice = domains[domain];
-          vec3 towardLight = normalize(P.light.xyz - at);
-          float sinGlancing = abs(dot(towardLight, lattice.xyz));
+          DomainRecord lattice = domains[domain];
+          vec3 towardLight = normalize(P.light - at);
+          float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
           float tauLight = lightOpticalDepthAt(at);
           float geometry = lightGeometryAt(at);
-          float weight = gain * geometry * mosaicWeight(lattice.xyz, towardLight, towardEye, spread) / OPAL_PI;
+          float weight = gain * geometry * mosaicWeight(lattice.latticeNormal, towardLight, towardEye, spread) / OPAL_PI;
           for (int k = 1; k <= orders; ++k)
           {
-            float lambdaB = braggSnellWavelength(lattice.w, mu, sinGlancing, k);
+            float lambdaB = braggSnellWavelength(lattice.planeSpacing, mu, sinGlancing, k);
             float contributionY = 0.0;
             for (int l = 0; l < WAVELENGTHS; ++l)
             {
-              vec4 bin = W[2 * l];
-              float band = braggBandAverage(bin.x, bin.w, lambdaB, bandwidth);
+              float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, bandwidth);
               if (band > 0.0)
               {
-                float value = weight * band * exp(-(tauLight + tauView) * bin.y);
+                float value = weight * band * exp(-(tauLight + tauView) * bins[l].rayleighScale);
                 radiance[l] += value;
-                contributionY += value * bin.z * W[2 * l + 1].y * bin.w;
+                contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
               }
             }
             if (contributionY > dominantY)
@@ -232,7 +229,7 @@ void main()
             float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
             for (int l = 0; l < WAVELENGTHS; ++l)
             {
-              float s = W[2 * l].y;
+              float s = bins[l].rayleighScale;
               radiance[l] += weight * s * exp(-tauTotal * s);
             }
             tauView += mus * ds;
@@ -253,11 +250,10 @@ void main()
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    vec4 bin = W[2 * l];
-    float value = (transmitted * radiance[l] + highlight) * bin.z;
-    xyz += value * W[2 * l + 1].xyz * bin.w;
+    float value = (transmitted * radiance[l] + highlight) * bins[l].illuminant;
+    xyz += value * bins[l].colourMatching * bins[l].width;
     if (writeSpectrum) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
   }
-  pixelXYZ[pixelIndex] = vec4(xyz, tHit);
-  pixelBragg[pixelIndex] = vec4(dominantLambda, dominantY * transmitted, 1.0, 0.0);
+  pixelColour[pixelIndex] = PixelColour(xyz, tHit);
+  pixelBragg[pixelIndex] = PixelBragg(dominantLambda, dominantY * transmitted, 1);
 }

@@ -1,10 +1,12 @@
 #include "vtkOpalFieldData.h"
 
+#include "OpalDomainLayout.h"
 #include "OpalModelParameters.h"
 #include "OpalPresets.h"
 
 #include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
+#include "vtkFloatArray.h"
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -57,5 +59,24 @@ void AddModelParameters(
   presetName->InsertNextValue(settings ? settings->Name : "custom");
   f->AddArray(presetName);
   addArray<vtkIntArray>(f, "DomainsPlaced", { domainsPlaced });
+}
+
+void AddDomainTable(vtkDataObject* data, const opal::DomainLayout& layout)
+{
+  const auto count = static_cast<vtkIdType>(layout.domains().size());
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("DomainNormal");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(count);
+  vtkNew<vtkFloatArray> diameters;
+  diameters->SetName("DomainParticleDiameter");
+  diameters->SetNumberOfTuples(count);
+  for (const opal::Domain& domain : layout.domains())
+  {
+    normals->SetTuple(domain.Id, domain.Normal.data());
+    diameters->SetValue(domain.Id, static_cast<float>(domain.ParticleDiameter));
+  }
+  data->GetFieldData()->AddArray(normals);
+  data->GetFieldData()->AddArray(diameters);
 }
 } // namespace vtkOpalFieldData

@@ -5,6 +5,7 @@
 #include "OpalModelParameters.h"
 #include "OpalOptics.h"
 #include "OpalPresets.h"
+#include "OpalRenderParameters.h"
 #include "OpalVolumeFiller.h"
 #include "vtkOpalFieldData.h"
 
@@ -14,6 +15,9 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleKey.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationIntegerVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -28,6 +32,9 @@
 #include <algorithm>
 
 vtkStandardNewMacro(vtkOpalSource);
+vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_IMAGE_SIZE, IntegerVector, 2);
+vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_ROTATION, DoubleVector, 3);
+vtkInformationKeyMacro(vtkOpalSource, REFRACTIVE_INDEX, Double);
 
 namespace
 {
@@ -151,6 +158,12 @@ int vtkOpalSource::RequestInformation(
   outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin.data(), 3);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 1);
+  const opal::PresetSettings* preset = opal::presetByIndex(this->Preset);
+  const opal::RenderParameters defaults;
+  outInfo->Set(PRESET_IMAGE_SIZE(), preset ? preset->ImageSize.data() : defaults.ImageSize.data(), 2);
+  const double rotation[3] = { preset ? preset->RotateXDegrees : 0.0, 0.0, 0.0 };
+  outInfo->Set(PRESET_ROTATION(), rotation, 3);
+  outInfo->Set(REFRACTIVE_INDEX(), this->RefractiveIndex);
   return 1;
 }
 
@@ -279,6 +292,7 @@ int vtkOpalSource::RequestData(
   pointData->AddArray(scattering);
   pointData->AddArray(distance);
   vtkOpalFieldData::AddModelParameters(image, parameters, this->Preset, layout.placedCount());
+  vtkOpalFieldData::AddDomainTable(image, layout);
 
   // The layout is small: the first piece carries all of it, the others none.
   vtkInformation* polyInfo = outputVector->GetInformationObject(1);

@@ -4,10 +4,16 @@
  *
  * Output port 0 is a vtkImageData whose points are voxel centres, with the
  * point arrays VoxelType, ParticleDiameter, Normal, DomainId, BraggLambdaMax,
- * BraggLambdaMin, ScatteringCoefficient and SurfaceDistance (DESIGN.md §2).
- * Output port 1 is the diffraction-domain layout as polygons, one cell per
- * domain, with DomainId, ParticleDiameter, Normal and BraggLambdaMax as cell
- * data. Both carry the parameters used and DomainsPlaced as field data.
+ * BraggLambdaMin, ScatteringCoefficient and SurfaceDistance (docs/design.md
+ * §2.5), and the domain table as field data (DomainNormal, DomainParticleDiameter,
+ * indexed by DomainId) for the render. Output port 1 is the diffraction-domain
+ * layout as polygons, one cell per domain, with DomainId, ParticleDiameter,
+ * Normal and BraggLambdaMax as cell data. Both carry the parameters used and
+ * DomainsPlaced as field data.
+ *
+ * The render settings the preset implies travel in port 0's information
+ * (PRESET_IMAGE_SIZE, PRESET_ROTATION, REFRACTIVE_INDEX), so a
+ * vtkOpalSpectralRender downstream renders what opal-render renders.
  *
  * The source can produce any sub-extent; every value derives from the global
  * voxel index and the seed, so pieces agree exactly with the whole volume.
@@ -22,6 +28,10 @@
 #include "vtkOpalModule.h" // for export macro
 
 #include <string>
+
+class vtkInformationDoubleKey;
+class vtkInformationDoubleVectorKey;
+class vtkInformationIntegerVectorKey;
 
 namespace opal
 {
@@ -137,6 +147,15 @@ public:
   opal::ModelParameters GetModelParameters() const;
   /// Sets every model parameter at once; the preset is left as it is.
   void SetModelParameters(const opal::ModelParameters& parameters);
+
+  ///@{
+  /// Output information keys for the render downstream: the preset's image
+  /// size (pixels), its placement of the stone (degrees about x, y, z) and
+  /// the refractive index of the model.
+  static vtkInformationIntegerVectorKey* PRESET_IMAGE_SIZE();
+  static vtkInformationDoubleVectorKey* PRESET_ROTATION();
+  static vtkInformationDoubleKey* REFRACTIVE_INDEX();
+  ///@}
 
 protected:
   vtkOpalSource();

@@ -1,52 +1,35 @@
 #include "vtkOpalSpectralRender.h"
 
+#include "OpalRenderCamera.h"
 #include "OpalRenderParameters.h"
-#include "OpalSpectralRenderer.h"
+#include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
+#include "vtkOpalRenderInput.h"
+#include "vtkOpalRenderOutput.h"
 
-#include "vtkDataArray.h"
-#include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
-#include "vtkIntArray.h"
-#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpalArrayCopy.h"
-#include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtkStringArray.h"
-#include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
-#include <vector>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
 
 namespace
 {
 using vtkOpalArrayCopy::copy;
-
-// The input's float (or int) values as a contiguous vector of the wanted type.
-template <typename T>
-std::vector<T> valuesOf(vtkDataArray* array)
-{
-  std::vector<T> values(static_cast<std::size_t>(array->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < array->GetNumberOfTuples(); ++i)
-  {
-    values[static_cast<std::size_t>(i)] = static_cast<T>(array->GetComponent(i, 0));
-  }
-  return values;
-}
 } // namespace
 
 vtkOpalSpectralRender::vtkOpalSpectralRender()
 {
   this->SetRenderParameters(opal::RenderParameters());
+  // The volume's image size and refractive index unless set.
+  this->ImageSize[0] = this->ImageSize[1] = 0;
+  this->RefractiveIndex = 0;
   this->DeviceIndex = -1;
   this->DeviceMemoryLimit = 0;
 }
@@ -113,6 +96,22 @@ int vtkOpalSpectralRender::GetNumberOfValidationMessages() const
   return this->ValidationMessages;
 }
 
+opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(vtkInformation* inputInformation) const
+{
+  const vtkOpalRenderInput::VolumeSettings volume = vtkOpalRenderInput::ReadSettings(inputInformation);
+  opal::RenderParameters p = this->GetRenderParameters();
+  if (p.ImageSize[0] == 0 && p.ImageSize[1] == 0)
+  {
+    p.ImageSize = volume.ImageSize;
+  }
+  if (p.RefractiveIndex == 0)
+  {
+    p.RefractiveIndex = volume.RefractiveIndex;
+  }
+  p.PresetRotation = volume.PresetRotation;
+  return p;
+}
+
 int vtkOpalSpectralRender::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
@@ -120,9 +119,9 @@ int vtkOpalSpectralRender::FillInputPortInformation(int, vtkInformation* info)
 }
 
 int vtkOpalSpectralRender::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const opal::RenderParameters p = this->GetRenderParameters();
+  const opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0));
   const std::string error = opal::validate(p);
   if (!error.empty())
   {
@@ -130,10 +129,11 @@ int vtkOpalSpectralRender::RequestInformation(
     return 0;
   }
   // VTK image rows run bottom to top; ImageRegion counts from the top.
-  const int width = p.ImageRegion[2] > 0 ? p.ImageRegion[2] : p.ImageSize[0] - p.ImageRegion[0];
-  const int height = p.ImageRegion[3] > 0 ? p.ImageRegion[3] : p.ImageSize[1] - p.ImageRegion[1];
-  const int top = p.ImageSize[1] - 1 - p.ImageRegion[1];
-  const int wholeExtent[6] = { p.ImageRegion[0], p.ImageRegion[0] + width - 1, top - height + 1, top, 0, 0 };
+  opal::RenderImage frame;
+  frame.ImageSize = p.ImageSize;
+  frame.Region = opal::renderedRegion(p);
+  int wholeExtent[6];
+  vtkOpalRenderOutput::ExtentOf(frame, wholeExtent);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
   const double spacing[3] = { 1, 1, 1 };
@@ -174,6 +174,45 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
   return 1;
 }
 
+opal::RenderSession& vtkOpalSpectralRender::Session()
+{
+  if (!this->RenderSession || this->SessionDeviceIndex != this->DeviceIndex ||
+    this->SessionMemoryLimit != this->DeviceMemoryLimit)
+  {
+    this->RenderSession.reset();
+    this->UploadedVolume = nullptr;
+    opal::VulkanOptions options;
+    options.DeviceIndex = this->DeviceIndex;
+    options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
+    this->RenderSession = std::make_unique<opal::RenderSession>(options);
+    this->SessionDeviceIndex = this->DeviceIndex;
+    this->SessionMemoryLimit = this->DeviceMemoryLimit;
+  }
+  return *this->RenderSession;
+}
+
+bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
+{
+  opal::RenderSession& session = this->Session(); // a new session holds no volume
+  if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime())
+  {
+    return true;
+  }
+  opal::RenderVolume volume;
+  vtkOpalRenderInput::Storage storage;
+  const std::string error = vtkOpalRenderInput::Read(input, volume, storage);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  this->UploadedVolume = nullptr; // until the upload succeeds
+  session.setVolume(volume);
+  this->UploadedVolume = input;
+  this->UploadedVolumeTime = input->GetMTime();
+  return true;
+}
+
 int vtkOpalSpectralRender::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -185,62 +224,8 @@ int vtkOpalSpectralRender::RequestData(
     vtkErrorMacro("The input is not image data; connect an Opal Volume.");
     return 0;
   }
-
-  opal::RenderVolume volume;
-  int dims[3];
-  input->GetDimensions(dims);
-  double origin[3], spacing[3];
-  input->GetOrigin(origin);
-  input->GetSpacing(spacing);
-  int inputExtent[6];
-  input->GetExtent(inputExtent);
-  for (int a = 0; a < 3; ++a)
-  {
-    volume.Dimensions[static_cast<std::size_t>(a)] = dims[a];
-    volume.Origin[static_cast<std::size_t>(a)] = origin[a] + inputExtent[2 * a] * spacing[a];
-    volume.Spacing[static_cast<std::size_t>(a)] = spacing[a];
-  }
-  vtkPointData* pd = input->GetPointData();
-  for (const char* name : { "ScatteringCoefficient", "DomainId", "SurfaceDistance", "Normal", "ParticleDiameter" })
-  {
-    if (!pd->GetArray(name))
-    {
-      vtkErrorMacro("The input lacks the point array " << name << "; connect an Opal Volume.");
-      return 0;
-    }
-  }
-  const std::vector<float> scattering = valuesOf<float>(pd->GetArray("ScatteringCoefficient"));
-  const std::vector<std::int32_t> domainIds = valuesOf<std::int32_t>(pd->GetArray("DomainId"));
-  const std::vector<float> distance = valuesOf<float>(pd->GetArray("SurfaceDistance"));
-  volume.ScatteringCoefficient = scattering.data();
-  volume.DomainId = domainIds.data();
-  volume.SurfaceDistance = distance.data();
-  // The domain table: each domain's lattice normal and FCC (111) spacing d = sqrt(2/3) l (eq. 3).
-  vtkDataArray* normals = pd->GetArray("Normal");
-  vtkDataArray* diameters = pd->GetArray("ParticleDiameter");
-  for (std::size_t i = 0; i < domainIds.size(); ++i)
-  {
-    const int id = domainIds[i];
-    if (id < 0)
-    {
-      continue;
-    }
-    if (static_cast<std::size_t>(id) >= volume.Domains.size())
-    {
-      volume.Domains.resize(static_cast<std::size_t>(id) + 1, { 0.0f, 1.0f, 0.0f, 0.0f });
-    }
-    auto& domain = volume.Domains[static_cast<std::size_t>(id)];
-    if (domain[3] == 0.0f)
-    {
-      double n[3];
-      normals->GetTuple(static_cast<vtkIdType>(i), n);
-      domain = { static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2]),
-        static_cast<float>(std::sqrt(2.0 / 3.0) * diameters->GetComponent(static_cast<vtkIdType>(i), 0)) };
-    }
-  }
-
   // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::RenderParameters p = this->GetRenderParameters();
+  opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0));
   int extent[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
   if (extent[1] < extent[0] || extent[3] < extent[2])
@@ -249,139 +234,69 @@ int vtkOpalSpectralRender::RequestData(
     return 1;
   }
   p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
-
-  opal::RenderImage image;
   try
   {
-    if (!this->Renderer || this->RendererDeviceIndex != this->DeviceIndex ||
-      this->RendererMemoryLimit != this->DeviceMemoryLimit)
+    if (!this->UploadVolume(input))
     {
-      this->Renderer.reset();
-      opal::VulkanOptions options;
-      options.DeviceIndex = this->DeviceIndex;
-      options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
-      this->Renderer = std::make_unique<opal::SpectralRenderer>(options);
-      this->RendererDeviceIndex = this->DeviceIndex;
-      this->RendererMemoryLimit = this->DeviceMemoryLimit;
+      return 0;
     }
-    image = this->Renderer->render(volume, p, [this](double fraction) {
+    const opal::RenderFrame frame = this->Session().render(p, [this](double fraction) {
       this->UpdateProgress(fraction);
       return !this->GetAbortExecute();
     });
-    this->ValidationMessages = static_cast<int>(this->Renderer->context().validationMessages().size());
+    this->ValidationMessages = static_cast<int>(this->Session().context().validationMessages().size());
+    if (frame.Status == opal::FrameStatus::Aborted)
+    {
+      output->Initialize();
+      return 0;
+    }
+    vtkOpalRenderOutput::Fill(frame.Image, this->Session().context().deviceName(), output);
+    return 1;
   }
   catch (const opal::NoVulkanDeviceError& e)
   {
     vtkErrorMacro("No Vulkan device: " << e.what());
-    return 0;
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
-    return 0;
   }
-  if (image.ImageSize[0] == 0)
-  {
-    output->Initialize(); // aborted
-    return 0;
-  }
-
-  output->SetExtent(extent);
-  const int width = image.Region[2];
-  const int height = image.Region[3];
-  const vtkIdType count = static_cast<vtkIdType>(width) * height;
-  const int wavelengths = static_cast<int>(image.Wavelengths.size());
-  auto makeArray = [count](auto array, const char* name, int components) {
-    array->SetName(name);
-    array->SetNumberOfComponents(components);
-    array->SetNumberOfTuples(count);
-    return array;
-  };
-  vtkNew<vtkUnsignedCharArray> rgb;
-  vtkNew<vtkFloatArray> radiance, xyz, dominant, depth, spectrum;
-  makeArray(rgb.Get(), "RGB", 3);
-  makeArray(radiance.Get(), "Radiance", 3);
-  makeArray(xyz.Get(), "XYZ", 3);
-  makeArray(dominant.Get(), "DominantBraggWavelength", 1);
-  makeArray(depth.Get(), "Depth", 1);
-  if (p.WriteSpectrum)
-  {
-    makeArray(spectrum.Get(), "Spectrum", wavelengths);
-  }
-  for (int row = 0; row < height; ++row)
-  {
-    // Image row `row` (from the top) is VTK row height - 1 - row of the extent.
-    const std::size_t from = static_cast<std::size_t>(row) * width;
-    const std::size_t to = static_cast<std::size_t>(height - 1 - row) * width;
-    std::copy_n(&image.RGB[3 * from], 3 * width, rgb->GetPointer(static_cast<vtkIdType>(3 * to)));
-    std::copy_n(&image.Radiance[3 * from], 3 * width, radiance->GetPointer(static_cast<vtkIdType>(3 * to)));
-    std::copy_n(&image.XYZ[3 * from], 3 * width, xyz->GetPointer(static_cast<vtkIdType>(3 * to)));
-    std::copy_n(&image.DominantBraggWavelength[from], width, dominant->GetPointer(static_cast<vtkIdType>(to)));
-    std::copy_n(&image.Depth[from], width, depth->GetPointer(static_cast<vtkIdType>(to)));
-    if (p.WriteSpectrum)
-    {
-      std::copy_n(&image.Spectrum[from * wavelengths], static_cast<std::size_t>(width) * wavelengths,
-        spectrum->GetPointer(static_cast<vtkIdType>(to * wavelengths)));
-    }
-  }
-  vtkPointData* outPD = output->GetPointData();
-  outPD->SetScalars(rgb);
-  outPD->AddArray(radiance);
-  outPD->AddArray(xyz);
-  outPD->AddArray(dominant);
-  outPD->AddArray(depth);
-  if (p.WriteSpectrum)
-  {
-    outPD->AddArray(spectrum);
-  }
-  vtkNew<vtkDoubleArray> lambdas;
-  lambdas->SetName("Wavelengths");
-  for (double lambda : image.Wavelengths)
-  {
-    lambdas->InsertNextValue(lambda);
-  }
-  output->GetFieldData()->AddArray(lambdas);
-  vtkNew<vtkDoubleArray> exposure;
-  exposure->SetName("Exposure");
-  exposure->InsertNextValue(image.Exposure);
-  output->GetFieldData()->AddArray(exposure);
-  vtkNew<vtkStringArray> device;
-  device->SetName("VulkanDevice");
-  device->InsertNextValue(this->Renderer->context().deviceName());
-  output->GetFieldData()->AddArray(device);
-  vtkNew<vtkDoubleArray> timings;
-  timings->SetName("RenderTimings");
-  timings->SetNumberOfComponents(6);
-  timings->SetComponentName(0, "Setup");
-  timings->SetComponentName(1, "Upload");
-  timings->SetComponentName(2, "LightPass");
-  timings->SetComponentName(3, "March");
-  timings->SetComponentName(4, "Colour");
-  timings->SetComponentName(5, "Readback");
-  const double t[6] = { image.Timings.Setup, image.Timings.Upload, image.Timings.LightPass, image.Timings.March,
-    image.Timings.Colour, image.Timings.Readback };
-  timings->InsertNextTuple(t);
-  output->GetFieldData()->AddArray(timings);
-  return 1;
+  return 0;
 }
 
 void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "ImageSize: " << this->ImageSize[0] << " x " << this->ImageSize[1] << "\n";
-  os << indent << "EyePosition: " << this->EyePosition[0] << " " << this->EyePosition[1] << " "
-     << this->EyePosition[2] << "\n";
-  os << indent << "LightPosition: " << this->LightPosition[0] << " " << this->LightPosition[1] << " "
-     << this->LightPosition[2] << "\n";
-  os << indent << "ModelRotation: " << this->ModelRotation[0] << " " << this->ModelRotation[1] << " "
-     << this->ModelRotation[2] << "\n";
-  os << indent << "WavelengthRange: " << this->WavelengthRange[0] << " - " << this->WavelengthRange[1]
-     << " step " << this->WavelengthStep << "\n";
-  os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
-  os << indent << "BraggBandwidth: " << this->BraggBandwidth << "\n";
-  os << indent << "DiffractionGain: " << this->DiffractionGain << "\n";
-  os << indent << "MosaicSpread: " << this->MosaicSpread << "\n";
-  os << indent << "Exposure: " << this->Exposure << "\n";
-  os << indent << "StepSize: " << this->StepSize << "\n";
-  os << indent << "DeviceIndex: " << this->DeviceIndex << "\n";
+  auto print = [&os, indent](const char* name, const auto* values, int count) {
+    os << indent << name << ":";
+    for (int i = 0; i < count; ++i)
+    {
+      os << " " << values[i];
+    }
+    os << "\n";
+  };
+  print("ImageSize", this->ImageSize, 2);
+  print("ImageRegion", this->ImageRegion, 4);
+  print("EyePosition", this->EyePosition, 3);
+  print("FocalPoint", this->FocalPoint, 3);
+  print("ViewUp", this->ViewUp, 3);
+  print("ViewAngle", &this->ViewAngle, 1);
+  print("LightPosition", this->LightPosition, 3);
+  print("LightRadius", &this->LightRadius, 1);
+  print("ModelRotation", this->ModelRotation, 3);
+  print("WavelengthRange", this->WavelengthRange, 2);
+  print("WavelengthStep", &this->WavelengthStep, 1);
+  print("RefractiveIndex", &this->RefractiveIndex, 1);
+  print("BraggBandwidth", &this->BraggBandwidth, 1);
+  print("DiffractionGain", &this->DiffractionGain, 1);
+  print("BraggOrders", &this->BraggOrders, 1);
+  print("MosaicSpread", &this->MosaicSpread, 1);
+  print("Exposure", &this->Exposure, 1);
+  print("Background", this->Background, 3);
+  print("StepSize", &this->StepSize, 1);
+  print("SpecularSamples", &this->SpecularSamples, 1);
+  print("LightFalloffAtEntry", &this->LightFalloffAtEntry, 1);
+  print("WriteSpectrum", &this->WriteSpectrum, 1);
+  print("DeviceIndex", &this->DeviceIndex, 1);
+  print("DeviceMemoryLimit", &this->DeviceMemoryLimit, 1);
 }

@@ -3,13 +3,14 @@
  * @brief Spectral render of an opal volume on Vulkan compute.
  *
  * Input: the volume of vtkOpalSource (point arrays ScatteringCoefficient,
- * DomainId, SurfaceDistance, Normal, ParticleDiameter). Output: a 2-D image
+ * DomainId, SurfaceDistance; the domain table DomainNormal and
+ * DomainParticleDiameter in its field data). Output: a 2-D image
  * (rows bottom to top, as VTK images go) with point arrays RGB (uint8 x 3,
  * sRGB), Radiance (linear sRGB), XYZ, DominantBraggWavelength (nm),
  * Depth (mm) and, with WriteSpectrum on, Spectrum (one value per wavelength;
  * the wavelengths are in the field data array Wavelengths).
  *
- * The render follows the paper (§6) with DESIGN.md §3's amendments: the light
+ * The render follows the paper (§6) with docs/design.md §4's amendments: the light
  * optical depth is one scalar field per light position; the view ray refracts
  * at the smooth surface and crosses the voxels by 3-D DDA, gathering Rayleigh
  * single scattering and Bragg-Snell diffraction once per domain crossing.
@@ -17,6 +18,17 @@
  * The output can be produced in pieces: each piece renders its rows from the
  * whole input volume, so pieces under MPI equal the one-process image.
  * With no Vulkan device the request fails with an error saying so.
+ *
+ * By default the settings a volume implies come from it (a vtkOpalSource
+ * records them in its output information): ImageSize 0 x 0 takes the preset's
+ * image size (640 x 480 for custom), RefractiveIndex 0 the model's, and the
+ * preset's placement of the stone (fig13: 5 degrees about x) comes before
+ * ModelRotation. A value set here is used as set.
+ *
+ * The filter keeps a render session (docs/design.md §5): the volume stays on
+ * the device while the input is unchanged, and the light field while the
+ * light, the rotation and the refractive index are, so a new camera re-renders
+ * without upload or light pass.
  */
 #pragma once
 
@@ -28,7 +40,7 @@
 namespace opal
 {
 struct RenderParameters;
-class SpectralRenderer;
+class RenderSession;
 }
 
 class VTKOPAL_EXPORT vtkOpalSpectralRender : public vtkImageAlgorithm
@@ -38,7 +50,8 @@ public:
   vtkTypeMacro(vtkOpalSpectralRender, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Image width and height in pixels. Default 640 x 480 (paper §7).
+  /// Image width and height in pixels; 0 x 0 (the default): the volume's
+  /// preset's (640 x 480, paper §7; fig15 and fig17 300 x 300).
   vtkSetVector2Macro(ImageSize, int);
   vtkGetVector2Macro(ImageSize, int);
   /// Sub-rectangle x0, y0 (from the top left), width, height to render; a
@@ -63,7 +76,8 @@ public:
   /// Radius of the light's sphere in mm (for its highlight). Default 0.5.
   vtkSetMacro(LightRadius, double);
   vtkGetMacro(LightRadius, double);
-  /// Model rotation in degrees about x, then y, then z. fig13: (5, 0, 0).
+  /// Turns the stone by degrees about x, then y, then z, after the volume's
+  /// preset placement (fig13: 5 about x). Default 0.
   vtkSetVector3Macro(ModelRotation, double);
   vtkGetVector3Macro(ModelRotation, double);
   /// Wavelength range in nm. Default 380-780.
@@ -72,7 +86,7 @@ public:
   /// Wavelength step in nm. Default 10 (41 wavelengths).
   vtkSetMacro(WavelengthStep, double);
   vtkGetMacro(WavelengthStep, double);
-  /// Refractive index mu of opal. Default 1.45.
+  /// Refractive index mu of opal; 0 (the default): the volume's.
   vtkSetMacro(RefractiveIndex, double);
   vtkGetMacro(RefractiveIndex, double);
   /// Relative full width of the Bragg band B. Default 0.04.
@@ -114,10 +128,16 @@ public:
   vtkSetMacro(DeviceMemoryLimit, int);
   vtkGetMacro(DeviceMemoryLimit, int);
 
-  /// The parameters as the next render will use them.
+  /// The parameters as set on the filter (ImageSize and RefractiveIndex may
+  /// be 0: the volume's; PresetRotation is the volume's and not a property).
   opal::RenderParameters GetRenderParameters() const;
-  /// Sets every render parameter at once.
+  /// Sets every render parameter at once (PresetRotation is ignored: it is the volume's).
   void SetRenderParameters(const opal::RenderParameters& parameters);
+
+  /// The parameters a render of this input uses: the properties with the
+  /// volume's settings where ImageSize and RefractiveIndex are 0 and the
+  /// preset's placement (from the input's pipeline information).
+  opal::RenderParameters GetResolvedRenderParameters(vtkInformation* inputInformation) const;
 
   /// Validation-layer messages of the last render (OPAL_VULKAN_VALIDATION=1).
   int GetNumberOfValidationMessages() const;
@@ -160,8 +180,15 @@ private:
   vtkOpalSpectralRender(const vtkOpalSpectralRender&) = delete;
   void operator=(const vtkOpalSpectralRender&) = delete;
 
-  std::unique_ptr<opal::SpectralRenderer> Renderer;
-  int RendererDeviceIndex = -2;
-  int RendererMemoryLimit = -1;
+  // The session for the current device settings, created on first use.
+  opal::RenderSession& Session();
+  // Uploads the input volume unless the session already holds this version of it.
+  bool UploadVolume(vtkImageData* input);
+
+  std::unique_ptr<opal::RenderSession> RenderSession;
+  int SessionDeviceIndex = -2;
+  int SessionMemoryLimit = -1;
+  vtkDataObject* UploadedVolume = nullptr; // identity and version of the volume on the device
+  vtkMTimeType UploadedVolumeTime = 0;
   int ValidationMessages = 0;
 };

@@ -17,10 +17,8 @@ void OpalRenderOptions::addTo(CLI::App& app)
   app.add_option("--view-angle", p.ViewAngle, "Vertical view angle in degrees")->capture_default_str()->group(group);
   addArrayOption(app, "--light-position", p.LightPosition, "D65 point light position in mm (0 60 0)", group);
   app.add_option("--light-radius", p.LightRadius, "Radius of the light's sphere in mm")->capture_default_str()->group(group);
-  this->RotateXOption =
-    app.add_option("--rotate-x", p.ModelRotation[0], "Model rotation about x in degrees (fig13: 5)")->group(group);
-  this->ModelRotationOption =
-    addArrayOption(app, "--model-rotation", p.ModelRotation, "Model rotation about x, y, z in degrees", group);
+  app.add_option("--rotate-x", p.ModelRotation[0], "Turn the stone about x by degrees, after the preset's placement (fig13: 5)")->group(group);
+  addArrayOption(app, "--model-rotation", p.ModelRotation, "Turn the stone about x, y, z by degrees, after the preset's placement", group);
   addArrayOption(app, "--wavelength-range", p.WavelengthRange, "Wavelengths MIN MAX in nm (380 780)", group);
   app.add_option("--wavelength-step", p.WavelengthStep, "Wavelength step in nm")->capture_default_str()->group(group);
   app.add_option("--bragg-bandwidth", p.BraggBandwidth, "Relative full width of the Bragg band")
@@ -65,10 +63,7 @@ opal::RenderParameters OpalRenderOptions::parameters(const std::string& presetNa
     {
       p.ImageSize[1] = preset->ImageSize[1];
     }
-    if (this->RotateXOption->count() == 0 && this->ModelRotationOption->count() == 0)
-    {
-      p.ModelRotation[0] = preset->RotateXDegrees;
-    }
+    p.PresetRotation = { preset->RotateXDegrees, 0.0, 0.0 };
   }
   p.RefractiveIndex = refractiveIndex;
   return p;

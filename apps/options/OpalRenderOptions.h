@@ -14,8 +14,9 @@ class OpalRenderOptions
 public:
   void addTo(CLI::App& app);
 
-  // The parameters: the preset's image size and rotation unless given
-  // explicitly; the refractive index is the model's.
+  // The parameters: the preset's image size unless given explicitly, the
+  // preset's placement of the stone (PresetRotation) under --model-rotation;
+  // the refractive index is the model's.
   opal::RenderParameters parameters(const std::string& presetName, double refractiveIndex) const;
   int deviceIndex() const { return this->DeviceIndex; }
   int deviceMemoryLimit() const { return this->DeviceMemoryLimit; }
@@ -26,6 +27,4 @@ private:
   int DeviceMemoryLimit = 0;
   CLI::Option* WidthOption = nullptr;
   CLI::Option* HeightOption = nullptr;
-  CLI::Option* RotateXOption = nullptr;
-  CLI::Option* ModelRotationOption = nullptr;
 };

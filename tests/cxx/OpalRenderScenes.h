@@ -1,12 +1,12 @@
 // Synthetic scenes for the render tests: a box-shaped opal (a slab) with a
 // uniform scattering coefficient and at most one flat domain, rendered from
 // above with the paper's set-up (light at the eye). Plain C++ around
-// opal::SpectralRenderer, plus helpers to skip without a Vulkan device.
+// opal::RenderSession, plus helpers to skip without a Vulkan device.
 #pragma once
 
 #include "OpalDomainLayout.h"
 #include "OpalGrid.h"
-#include "OpalSpectralRenderer.h"
+#include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
 
 #include <glm/glm.hpp>
@@ -17,6 +17,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 namespace opaltest
@@ -40,15 +41,38 @@ inline bool vulkanDeviceAvailable()
   }
 }
 
+// A render session that renders a scene per call: its volume, then a frame
+// that must complete.
+class SceneRenderer
+{
+public:
+  explicit SceneRenderer(const opal::VulkanOptions& options) : Session(options) {}
+
+  opal::RenderImage render(const opal::RenderVolume& volume, const opal::RenderParameters& parameters)
+  {
+    this->Session.setVolume(volume);
+    opal::RenderFrame frame = this->Session.render(parameters);
+    if (frame.Status != opal::FrameStatus::Completed)
+    {
+      throw std::runtime_error("the frame did not complete");
+    }
+    return std::move(frame.Image);
+  }
+
+  opal::VulkanContext& context() { return this->Session.context(); }
+
+  opal::RenderSession Session;
+};
+
 // The renderer with the validation layer on, or nullptr (and a message) if
 // this machine has no Vulkan device.
-inline std::unique_ptr<opal::SpectralRenderer> makeRenderer()
+inline std::unique_ptr<SceneRenderer> makeRenderer()
 {
   try
   {
     opal::VulkanOptions options;
     options.Validation = true;
-    return std::make_unique<opal::SpectralRenderer>(options);
+    return std::make_unique<SceneRenderer>(options);
   }
   catch (const opal::NoVulkanDeviceError& e)
   {
@@ -118,8 +142,8 @@ struct SlabScene
         this->DomainField[index] = 0;
         this->ScatteringField[index] = 0.0f; // no scattering in domains (paper §6.2)
       }
-      volume.Domains.push_back({ static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z),
-        static_cast<float>(this->PlaneSpacing) });
+      volume.Domains.push_back(
+        { { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) }, static_cast<float>(this->PlaneSpacing) });
     }
     volume.ScatteringCoefficient = this->ScatteringField.data();
     volume.DomainId = this->DomainField.data();

@@ -16,7 +16,7 @@ namespace
 {
 constexpr double Mu = 1.45;
 
-void checkRender(opal::SpectralRenderer& renderer, const opal::RenderImage& image, const std::string& what)
+void checkRender(opaltest::SceneRenderer& renderer, const opal::RenderImage& image, const std::string& what)
 {
   OPAL_CHECK(opaltest::allFinite(image), what + ": no NaN or Inf in any output");
   const auto messages = renderer.context().validationMessages();

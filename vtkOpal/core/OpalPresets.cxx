@@ -6,12 +6,12 @@ namespace opal
 const std::vector<PresetSettings>& presets()
 {
   static const std::vector<PresetSettings> table = {
-    { "fig10", { 175.0, 175.0 }, { 640, 480 }, 0.0, "blue" },
-    { "fig11", { 190.0, 210.0 }, { 640, 480 }, 0.0, "green" },
-    { "fig12", { 250.0, 350.0 }, { 640, 480 }, 0.0, "red" },
-    { "fig13", { 250.0, 350.0 }, { 640, 480 }, 5.0, "fig12 rotated 5 deg about x: domains change colour" },
-    { "fig15", { 200.0, 235.0 }, { 300, 300 }, 0.0, "like a real white opal" },
-    { "fig17", { 220.0, 300.0 }, { 300, 300 }, 0.0, "like a real white opal" },
+    { "fig10", { 175.0, 175.0 }, { 640, 480 }, 0.0 },
+    { "fig11", { 190.0, 210.0 }, { 640, 480 }, 0.0 },
+    { "fig12", { 250.0, 350.0 }, { 640, 480 }, 0.0 },
+    { "fig13", { 250.0, 350.0 }, { 640, 480 }, 5.0 },
+    { "fig15", { 200.0, 235.0 }, { 300, 300 }, 0.0 },
+    { "fig17", { 220.0, 300.0 }, { 300, 300 }, 0.0 },
   };
   return table;
 }

@@ -14,8 +14,7 @@ struct PresetSettings
   const char* Name;
   std::array<double, 2> DomainDiameterRange; // nm
   std::array<int, 2> ImageSize;              // pixels, width x height
-  double RotateXDegrees;                     // model rotation about x
-  const char* PaperObservation;
+  double RotateXDegrees;                     // the stone's placement: rotation about x
 };
 
 // Index 0 of the preset enumeration is "custom" (no preset); presets are 1-based.

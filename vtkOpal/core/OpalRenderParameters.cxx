@@ -48,9 +48,9 @@ std::string validate(const RenderParameters& p)
   {
     m << "LightRadius must be positive, got " << p.LightRadius << " mm.";
   }
-  else if (!finite3(p.ModelRotation))
+  else if (!finite3(p.ModelRotation) || !finite3(p.PresetRotation))
   {
-    m << "ModelRotation must be finite.";
+    m << (finite3(p.ModelRotation) ? "PresetRotation" : "ModelRotation") << " must be finite.";
   }
   else if (!(p.WavelengthRange[0] >= 200 && p.WavelengthRange[1] <= 1000 &&
              p.WavelengthRange[0] <= p.WavelengthRange[1]))

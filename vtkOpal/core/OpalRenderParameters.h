@@ -19,7 +19,9 @@ struct RenderParameters
   double ViewAngle = 24.0;                             // vertical, degrees
   std::array<double, 3> LightPosition{ 0.0, 60.0, 0.0 }; // mm
   double LightRadius = 0.5;                            // mm: a 1 mm light
-  std::array<double, 3> ModelRotation{ 0.0, 0.0, 0.0 }; // degrees about x, then y, then z (fig13: 5 about x)
+  std::array<double, 3> PresetRotation{ 0.0, 0.0, 0.0 }; // the preset's placement of the stone (fig13: 5 deg
+                                                       // about x), degrees about x, then y, then z; first
+  std::array<double, 3> ModelRotation{ 0.0, 0.0, 0.0 }; // a further turn of the stone, same convention
   std::array<double, 2> WavelengthRange{ 380.0, 780.0 }; // nm
   double WavelengthStep = 10.0;                        // nm: 41 wavelengths
   double RefractiveIndex = 1.45;                       // mu

@@ -31,8 +31,8 @@ VulkanBuffer::VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const st
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
-  context.reserveMemory(requirements.size);
-  this->Reserved = requirements.size;
+  // Released by the member's destructor also when a later step throws.
+  this->Reservation = context.reserveMemory(requirements.size);
   auto allocate = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   allocate.allocationSize = requirements.size;
   allocate.memoryTypeIndex = context.memoryType(
@@ -41,8 +41,6 @@ VulkanBuffer::VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const st
   const VkResult result = vkAllocateMemory(device, &allocate, nullptr, &memory);
   if (result != VK_SUCCESS)
   {
-    context.releaseMemory(this->Reserved);
-    this->Reserved = 0;
     checkVulkan(result, ("vkAllocateMemory (" + what + ", " + std::to_string(requirements.size) + " bytes)").c_str());
   }
   this->Memory =
@@ -57,9 +55,6 @@ VulkanBuffer::~VulkanBuffer()
   {
     vkUnmapMemory(this->Context.device(), this->Memory.get());
   }
-  this->Memory.reset();
-  this->Buffer.reset();
-  this->Context.releaseMemory(this->Reserved);
 }
 
 } // namespace opal

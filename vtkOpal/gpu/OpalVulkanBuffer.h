@@ -2,6 +2,7 @@
 // (Every Vulkan device offers such memory; lavapipe has no other kind.)
 #pragma once
 
+#include "OpalVulkanContext.h"
 #include "OpalVulkanHandle.h"
 
 #include <vulkan/vulkan.h>
@@ -39,7 +40,8 @@ public:
 private:
   VulkanContext& Context;
   std::uint64_t Size;
-  std::uint64_t Reserved = 0;
+  // Declared first, so released last: after the buffer and its memory.
+  MemoryReservation Reservation;
   VulkanHandle<VkBuffer> Buffer;
   VulkanHandle<VkDeviceMemory> Memory;
   void* Mapped = nullptr;

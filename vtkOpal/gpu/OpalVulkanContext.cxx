@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
+#include <utility>
 
 namespace opal
 {
@@ -267,7 +268,27 @@ std::uint32_t VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryProperty
     VK_ERROR_FEATURE_NOT_PRESENT);
 }
 
-void VulkanContext::reserveMemory(std::uint64_t bytes)
+MemoryReservation& MemoryReservation::operator=(MemoryReservation&& other) noexcept
+{
+  if (this != &other)
+  {
+    this->release();
+    this->Context = std::exchange(other.Context, nullptr);
+    this->Bytes = std::exchange(other.Bytes, 0);
+  }
+  return *this;
+}
+
+void MemoryReservation::release()
+{
+  if (this->Context)
+  {
+    this->Context->releaseMemory(this->Bytes);
+    this->Context = nullptr;
+  }
+}
+
+MemoryReservation VulkanContext::reserveMemory(std::uint64_t bytes)
 {
   if (this->MemoryLimit > 0 && this->MemoryInUse + bytes > this->MemoryLimit)
   {
@@ -277,6 +298,7 @@ void VulkanContext::reserveMemory(std::uint64_t bytes)
     throw VulkanError(message.str(), VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
   this->MemoryInUse += bytes;
+  return MemoryReservation(this, bytes);
 }
 
 std::uint64_t VulkanContext::memoryBudget() const
@@ -343,19 +365,6 @@ VkBool32 VKAPI_PTR VulkanContext::onValidationMessage(VkDebugUtilsMessageSeverit
   std::lock_guard<std::mutex> lock(context->MessageMutex);
   context->Messages.emplace_back(data && data->pMessage ? data->pMessage : "(no message)");
   return VK_FALSE;
-}
-
-std::vector<std::string> VulkanContext::listDevices()
-{
-  VulkanHandle<VkInstance> instance = createInstance(false);
-  std::vector<std::string> names;
-  for (VkPhysicalDevice device : physicalDevices(instance.get()))
-  {
-    VkPhysicalDeviceProperties properties;
-    vkGetPhysicalDeviceProperties(device, &properties);
-    names.emplace_back(properties.deviceName);
-  }
-  return names;
 }
 
 } // namespace opal

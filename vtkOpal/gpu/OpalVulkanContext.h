@@ -31,6 +31,24 @@ struct VulkanOptions
   std::uint64_t MemoryLimitBytes = 0;
 };
 
+class VulkanContext;
+
+// Bytes counted against VulkanContext's memory limit while this object lives.
+class MemoryReservation
+{
+public:
+  MemoryReservation() = default;
+  MemoryReservation(VulkanContext* context, std::uint64_t bytes) : Context(context), Bytes(bytes) {}
+  MemoryReservation(MemoryReservation&& other) noexcept { *this = std::move(other); }
+  MemoryReservation& operator=(MemoryReservation&& other) noexcept;
+  ~MemoryReservation() { this->release(); }
+
+private:
+  void release();
+  VulkanContext* Context = nullptr;
+  std::uint64_t Bytes = 0;
+};
+
 class VulkanContext
 {
 public:
@@ -48,10 +66,10 @@ public:
   // Memory type index with the given properties among the allowed type bits.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
 
-  // Book-keeping of the optional memory limit; reserve throws a VulkanError
-  // naming the limit when it would be exceeded.
-  void reserveMemory(std::uint64_t bytes);
-  void releaseMemory(std::uint64_t bytes);
+  // Book-keeping of the optional memory limit: a reservation of `bytes`,
+  // released when the returned object goes; throws a VulkanError naming the
+  // limit when it would be exceeded.
+  MemoryReservation reserveMemory(std::uint64_t bytes);
 
   // What the render may use: the memory limit if one is set, else the largest
   // heap with host-visible memory (where the buffers live).
@@ -64,10 +82,9 @@ public:
   std::vector<std::string> validationMessages() const;
   bool validationEnabled() const { return static_cast<bool>(this->Messenger); }
 
-  // The names of all physical devices, for messages and --list-devices.
-  static std::vector<std::string> listDevices();
-
 private:
+  friend class MemoryReservation;
+  void releaseMemory(std::uint64_t bytes);
   static VkBool32 VKAPI_PTR onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
     VkDebugUtilsMessageTypeFlagsEXT types, const VkDebugUtilsMessengerCallbackDataEXT* data,
     void* user);

@@ -1,0 +1,157 @@
+// The host-shader contract of the render (docs/design.md §5): binding
+// numbers, the parameter block, the wavelength-bin record, one push-constant
+// struct per pass and the light pass's modes. The GLSL passes and the C++ of
+// OpalGpu include this one file, so the two sides cannot drift apart;
+// TestOpalShaderContract checks that both lay every field out at the same
+// offset (glslang's reflection against offsetof).
+//
+// Layout rules kept by hand: every vec3 is followed by a 4-byte scalar (std140
+// and std430 align a vec3 to 16 bytes; alignas(16) does so in C++), ivec2 sits
+// at a multiple of 8, and each struct is a multiple of 16 bytes.
+// Lengths are in mm, wavelengths in nm, all positions in the model's frame.
+#ifndef OPAL_RENDER_CONTRACT_H
+#define OPAL_RENDER_CONTRACT_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace opal::gpu
+{
+using vec3 = glm::vec3;
+using ivec2 = glm::ivec2;
+using ivec3 = glm::ivec3;
+#define OPAL_CONSTANT constexpr
+#define OPAL_ALIGNED alignas(16)
+#else
+#define OPAL_CONSTANT const
+#define OPAL_ALIGNED
+#endif
+
+// Descriptor bindings of the one set every pass shares (each pass declares
+// the ones it uses).
+OPAL_CONSTANT int ParametersBinding = 0;       // uniform RenderParameterBlock
+OPAL_CONSTANT int WavelengthTableBinding = 1;  // WavelengthBinRecord per wavelength
+OPAL_CONSTANT int ScatteringBinding = 2;       // float per voxel: ScatteringCoefficient, 1/mm at 550 nm
+OPAL_CONSTANT int DomainIdBinding = 3;         // int per voxel: DomainId
+OPAL_CONSTANT int SurfaceDistanceBinding = 4;  // float per voxel: SurfaceDistance, mm, negative inside
+OPAL_CONSTANT int LightOpticalDepthBinding = 5; // float per voxel: optical depth to the light at 550 nm
+OPAL_CONSTANT int LightGeometryBinding = 6;    // float per voxel: Fresnel transmission x fall-off
+OPAL_CONSTANT int DomainTableBinding = 7;      // DomainRecord per domain
+OPAL_CONSTANT int PixelColourBinding = 8;      // PixelColour per pixel
+OPAL_CONSTANT int PixelBraggBinding = 9;       // PixelBragg per pixel
+OPAL_CONSTANT int PixelSpectrumBinding = 10;   // wavelengthCount floats per pixel
+OPAL_CONSTANT int PixelRadianceBinding = 11;   // 3 floats per pixel: linear sRGB
+OPAL_CONSTANT int PixelRGB8Binding = 12;       // uint per pixel: 8-bit sRGB, R in the low byte
+OPAL_CONSTANT int BindingCount = 13;
+
+// Every setting of a frame. A uniform block: read-only and never aliased by
+// the storage buffers, so compilers keep it in registers.
+struct OPAL_ALIGNED RenderParameterBlock
+{
+  OPAL_ALIGNED ivec3 gridDimensions;  // voxels in x, y, z
+  int wavelengthCount;                // entries of the wavelength table
+  OPAL_ALIGNED vec3 gridOrigin;       // centre of voxel (0, 0, 0)
+  float smallestSpacing;              // the smallest of the three spacings
+  OPAL_ALIGNED vec3 gridSpacing;
+  float marchStep;                    // longest scattering sub-step of the view march
+  OPAL_ALIGNED vec3 eye;
+  float tanHalfViewAngle;             // tan of half the vertical view angle
+  OPAL_ALIGNED vec3 forward;          // unit view direction
+  int writeSpectrum;                  // 1: fill the Spectrum image
+  OPAL_ALIGNED vec3 right;            // unit image x
+  int imageWidth;                     // pixels of the whole image
+  OPAL_ALIGNED vec3 up;               // unit image y
+  int imageHeight;
+  OPAL_ALIGNED vec3 light;            // the light's centre
+  float lightRadius;
+  OPAL_ALIGNED vec3 background;       // linear sRGB of the background
+  float exposure;                     // scale of the radiance before the tone map
+  ivec2 rectOrigin;                   // the rendered sub-rectangle of the image: first pixel
+  ivec2 rectSize;                     // and its width and height
+  float refractiveIndex;              // mu of the opal
+  float braggBandwidth;               // relative full width of the Bragg band B
+  float diffractionGain;              // G (paper §5)
+  float mosaicSpread;                 // radians; 0: off
+  float apexDistanceSquared;          // light-apex distance^2: irradiance 1 at the apex
+  float lightRadiance;                // the light disc's radiance for irradiance 1 at the apex
+  int lightFalloffAtEntry;            // 1: the paper's eq. 6, 1/r^2 stops at L_in
+  int specularSamples;                // sub-rays per pixel axis for the highlight
+  int domainCount;
+  int braggOrders;                    // orders k = 1..braggOrders
+};
+
+// One wavelength bin (core/OpalSpectralSampling.h): its centre and width,
+// the Rayleigh scale (550/lambda)^4, the normalised D65 power and the
+// bin-averaged CIE 1931 colour-matching functions.
+struct OPAL_ALIGNED WavelengthBinRecord
+{
+  float lambda;
+  float width;
+  float rayleighScale;
+  float illuminant;
+  OPAL_ALIGNED vec3 colourMatching;   // x-bar, y-bar, z-bar
+};
+
+// One diffraction domain: the (111) lattice-plane normal (y >= 0) and the
+// plane spacing d (nm, eq. 3).
+struct OPAL_ALIGNED DomainRecord
+{
+  OPAL_ALIGNED vec3 latticeNormal;
+  float planeSpacing;
+};
+
+// The view march's result per pixel: CIE XYZ and the distance from the eye to
+// the surface (0 where the ray misses).
+struct OPAL_ALIGNED PixelColour
+{
+  OPAL_ALIGNED vec3 xyz;
+  float depth;
+};
+
+// The view march's Bragg result per pixel.
+struct PixelBragg
+{
+  float dominantWavelength;           // nm of the brightest diffraction, 0 if none
+  float dominantLuminance;            // its luminance Y
+  int hit;                            // 1 where the ray meets the opal
+};
+
+// The light pass's modes.
+OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the light
+OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
+
+// Push constants of the light pass: the voxels [first, first + count) in
+// LightPassMarchTowardsLight, the layer y = layer in LightPassSweepFromAbove.
+struct LightPassWork
+{
+  int mode;
+  int first;
+  int count;
+  int layer;
+};
+
+// Push constants of the view march: the tile of the rendered rectangle this
+// dispatch covers.
+struct MarchTile
+{
+  ivec2 origin;
+};
+
+// Push constants of the colour pass: the first pixel of this dispatch.
+struct ColourRange
+{
+  int first;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
+    sizeof(DomainRecord) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
+  "std140/std430 sizes of the contract's structs");
+} // namespace opal::gpu
+#endif
+#undef OPAL_CONSTANT
+#undef OPAL_ALIGNED
+
+#endif

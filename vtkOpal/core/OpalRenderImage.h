@@ -1,0 +1,38 @@
+// What a render produces: the rendered rectangle of the image, rows top to
+// bottom, with every output array (docs/design.md §6). Plain data.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace opal
+{
+
+// Seconds spent in each stage of the frame (0 for a stage that did not run).
+struct RenderTimings
+{
+  double Setup = 0;    // frame set-up, buffers, pipelines
+  double Upload = 0;   // the volume into device buffers
+  double LightPass = 0;
+  double March = 0;    // the exposure thumbnail and the image
+  double Colour = 0;
+  double Readback = 0;
+};
+
+struct RenderImage
+{
+  std::array<int, 2> ImageSize{};
+  std::array<int, 4> Region{};                 // x0, y0, width, height
+  std::vector<std::uint8_t> RGB;               // 3 per pixel, sRGB
+  std::vector<float> Radiance;                 // 3 per pixel, linear sRGB
+  std::vector<float> XYZ;                      // 3 per pixel
+  std::vector<float> DominantBraggWavelength;  // nm, 0 where no domain diffracts
+  std::vector<float> Depth;                    // mm from the eye to the surface, 0 where missed
+  std::vector<float> Spectrum;                 // Wavelengths.size() per pixel, if asked for
+  std::vector<double> Wavelengths;             // nm
+  double Exposure = 1;
+  RenderTimings Timings;
+};
+
+} // namespace opal

@@ -1,0 +1,45 @@
+// The volume the render reads: three of the model's voxel fields (docs/design.md
+// §2), x fastest, and the domain table the diffraction needs. Plain data over
+// arrays the caller owns.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace opal
+{
+
+class DomainLayout;
+
+// One diffraction domain as the render sees it.
+struct RenderDomain
+{
+  std::array<float, 3> LatticeNormal{ 0.0f, 1.0f, 0.0f }; // FCC (111) plane normal, y >= 0
+  float PlaneSpacing = 0.0f;                              // d in nm (eq. 3)
+};
+
+struct RenderVolume
+{
+  std::array<int, 3> Dimensions{};
+  std::array<double, 3> Origin{};  // centre of voxel (0, 0, 0), mm
+  std::array<double, 3> Spacing{}; // mm
+  const float* ScatteringCoefficient = nullptr; // 1/mm at 550 nm
+  const std::int32_t* DomainId = nullptr;       // -1 or an index into Domains
+  const float* SurfaceDistance = nullptr;       // mm, negative inside
+  std::vector<RenderDomain> Domains;
+
+  std::size_t voxelCount() const;
+};
+
+// Domain i of the layout as RenderDomain i: its normal and (111) spacing.
+std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
+
+// Empty if the render can read the volume, else one sentence naming what is
+// wrong: dimensions and spacing positive, the three fields present, every
+// DomainId -1 or within the domain table.
+std::string validate(const RenderVolume& volume);
+
+} // namespace opal

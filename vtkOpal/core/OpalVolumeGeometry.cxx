@@ -1,0 +1,85 @@
+#include "OpalVolumeGeometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace opal
+{
+
+VolumeGeometry::VolumeGeometry(const RenderVolume& volume)
+  : Dimensions(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])
+  , Origin(volume.Origin[0], volume.Origin[1], volume.Origin[2])
+  , Spacing(volume.Spacing[0], volume.Spacing[1], volume.Spacing[2])
+  , SurfaceDistance(volume.SurfaceDistance, volume.SurfaceDistance + volume.voxelCount())
+{
+}
+
+double VolumeGeometry::distanceAt(int i, int j, int k) const
+{
+  const std::size_t nx = static_cast<std::size_t>(this->Dimensions.x);
+  const std::size_t ny = static_cast<std::size_t>(this->Dimensions.y);
+  return this->SurfaceDistance[static_cast<std::size_t>(i) +
+    nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k))];
+}
+
+double VolumeGeometry::nearestSurfaceDistance(const glm::dvec3& p) const
+{
+  int c[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    c[a] = static_cast<int>(std::floor((p[a] - this->Origin[a]) / this->Spacing[a] + 0.5));
+    if (c[a] < 0 || c[a] >= this->Dimensions[a])
+    {
+      return INFINITY;
+    }
+  }
+  return this->distanceAt(c[0], c[1], c[2]);
+}
+
+glm::dvec3 VolumeGeometry::apex() const
+{
+  const int i = this->Dimensions.x / 2, k = this->Dimensions.z / 2, ny = this->Dimensions.y;
+  const double x = this->Origin.x + i * this->Spacing.x;
+  const double z = this->Origin.z + k * this->Spacing.z;
+  for (int j = ny - 1; j >= 0; --j)
+  {
+    const double here = this->distanceAt(i, j, k);
+    if (here <= 0)
+    {
+      const double y0 = this->Origin.y + j * this->Spacing.y;
+      const double above = j + 1 < ny ? this->distanceAt(i, j + 1, k) : here;
+      // The zero between this voxel centre and the one above, else continued linearly.
+      return above > here ? glm::dvec3(x, y0 + this->Spacing.y * (-here) / (above - here), z)
+                          : glm::dvec3(x, y0 - here, z);
+    }
+  }
+  return { x, this->Origin.y + (ny - 0.5) * this->Spacing.y, z };
+}
+
+bool VolumeGeometry::lightAboveGrid(const glm::dvec3& light) const
+{
+  const glm::dvec3 low = this->Origin - 0.5 * this->Spacing;
+  const glm::dvec3 high = low + glm::dvec3(this->Dimensions) * this->Spacing;
+  if (light.y < high.y + this->Spacing.y)
+  {
+    return false;
+  }
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const glm::dvec3 p((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y, (corner & 4) ? high.z : low.z);
+    const glm::dvec3 d = light - p;
+    if (std::fabs(d.x) / d.y * this->Spacing.y > 2 * this->Spacing.x ||
+      std::fabs(d.z) / d.y * this->Spacing.y > 2 * this->Spacing.z)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+double VolumeGeometry::smallestSpacing() const
+{
+  return std::min({ this->Spacing.x, this->Spacing.y, this->Spacing.z });
+}
+
+} // namespace opal

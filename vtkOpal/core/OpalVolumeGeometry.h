@@ -1,0 +1,42 @@
+// Geometric questions the render asks of a volume on the host (docs/design.md
+// §3): is a point inside the opal, where is its apex, can the light field be
+// swept layer by layer.
+#pragma once
+
+#include "OpalRenderVolume.h"
+
+#include <glm/glm.hpp>
+
+namespace opal
+{
+
+// The grid's shape and a host copy of its SurfaceDistance field.
+class VolumeGeometry
+{
+public:
+  VolumeGeometry() = default;
+  explicit VolumeGeometry(const RenderVolume& volume);
+
+  // Nearest-voxel SurfaceDistance at a model-frame point; +inf outside the grid.
+  double nearestSurfaceDistance(const glm::dvec3& p) const;
+
+  // The opal's apex: the top of the surface over the grid's centre column
+  // (SurfaceDistance crossing zero), or the top of the grid.
+  glm::dvec3 apex() const;
+
+  // Whether the light sits above the grid steeply enough for the layer sweep:
+  // every path to it rises through each layer moving at most two voxels sideways.
+  bool lightAboveGrid(const glm::dvec3& light) const;
+
+  double smallestSpacing() const;
+
+private:
+  double distanceAt(int i, int j, int k) const;
+
+  glm::ivec3 Dimensions{ 0 };
+  glm::dvec3 Origin{ 0.0 };
+  glm::dvec3 Spacing{ 1.0 };
+  std::vector<float> SurfaceDistance;
+};
+
+} // namespace opal

@@ -1,0 +1,595 @@
+#include "OpalRenderSession.h"
+
+#include "OpalComputePipeline.h"
+#include "OpalEmbeddedShaders.h"
+#include "OpalMemory.h"
+#include "OpalOptics.h"
+#include "OpalRenderCamera.h"
+#include "OpalSpectralSampling.h"
+#include "OpalVulkanBuffer.h"
+#include "OpalVulkanError.h"
+#include "opal_render_contract.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+namespace opal
+{
+
+namespace
+{
+constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
+constexpr int MarchTileSize = 64;                  // pixels per tile side: one submit each
+constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
+constexpr int LightLayersPerSubmit = 16;           // layers per light-pass submit (sweep)
+static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
+  sizeof(gpu::ColourRange) <= PushConstantBytes);
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+gpu::vec3 toVec3(const glm::dvec3& v)
+{
+  return gpu::vec3(v);
+}
+
+gpu::vec3 toVec3(const std::array<double, 3>& a)
+{
+  return gpu::vec3(static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]));
+}
+
+// sRGB-encoded [0, 1] to linear (IEC 61966-2-1).
+float srgbToLinear(double encoded)
+{
+  return static_cast<float>(encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4));
+}
+} // namespace
+
+// The volume on the device: its fields, its domain table and its light field.
+struct RenderSession::DeviceVolume
+{
+  RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
+  VolumeGeometry Geometry;
+  std::unique_ptr<VulkanBuffer> Scattering, DomainId, SurfaceDistance, DomainTable;
+  std::unique_ptr<VulkanBuffer> LightOpticalDepth, LightGeometry;
+};
+
+// The per-frame buffers, kept while they are large enough.
+struct RenderSession::FrameBuffers
+{
+  std::unique_ptr<VulkanBuffer> Parameters, WavelengthTable;
+  std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelSpectrum, PixelRadiance, PixelRGB8;
+  std::size_t PixelCapacity = 0;
+  std::size_t SpectrumFloats = 0;
+};
+
+// Everything a frame derives from its parameters before touching the device.
+struct RenderSession::FrameSetup
+{
+  RenderParameters Parameters;
+  RenderCamera Camera;
+  std::array<int, 4> Region{};
+  std::array<int, 2> Thumbnail{};
+  std::size_t Pixels = 0;
+  std::size_t PixelCapacity = 0; // the image rectangle or the exposure thumbnail, whichever is larger
+  std::vector<WavelengthBin> Bins;
+  gpu::RenderParameterBlock Block{};
+};
+
+// The caller's progress over the stages of a frame: light pass 20%, march
+// 75%, colour 5%. False once the caller asked to abort.
+class RenderSession::Progress
+{
+public:
+  explicit Progress(const RenderProgress& callback) : Callback(callback) {}
+  bool report(double fraction) { return !this->Callback || this->Callback(fraction); }
+
+private:
+  const RenderProgress& Callback;
+};
+
+bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
+{
+  return this->Light == other.Light && this->RefractiveIndex == other.RefractiveIndex &&
+    this->FalloffAtEntry == other.FalloffAtEntry;
+}
+
+RenderSession::RenderSession(const VulkanOptions& options)
+  : Context(std::make_unique<VulkanContext>(options))
+  , Buffers(std::make_unique<FrameBuffers>())
+{
+  std::vector<VkDescriptorType> types(gpu::BindingCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  types[gpu::ParametersBinding] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
+  const embedded::Spirv light = embedded::lightOpticalDepthShader();
+  const embedded::Spirv colour = embedded::spectrumToColourShader();
+  this->LightPass =
+    std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, light.Words, light.WordCount);
+  this->ColourPass =
+    std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
+  this->Buffers->Parameters =
+    std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
+}
+
+RenderSession::~RenderSession() = default;
+
+void RenderSession::setVolume(const RenderVolume& volume)
+{
+  const std::string error = validate(volume);
+  if (!error.empty())
+  {
+    throw std::invalid_argument(error);
+  }
+  const auto start = Clock::now();
+  this->Volume.reset();
+  this->LightField.reset();
+  const std::size_t voxels = volume.voxelCount();
+  // Fields and light field: 5 floats per voxel, refused up front if too large.
+  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * 5 * 4;
+  if (bytes > this->Context->memoryBudget())
+  {
+    throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than the " +
+        "device memory limit of " + formatBytes(this->Context->memoryBudget()) + "; use fewer voxels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+  auto uploaded = std::make_unique<DeviceVolume>();
+  VulkanContext& context = *this->Context;
+  auto field = [&](const void* values, const char* what) {
+    auto buffer = std::make_unique<VulkanBuffer>(context, voxels * 4, what);
+    buffer->upload(values, voxels * 4);
+    return buffer;
+  };
+  uploaded->Scattering = field(volume.ScatteringCoefficient, "ScatteringCoefficient volume");
+  uploaded->DomainId = field(volume.DomainId, "DomainId volume");
+  uploaded->SurfaceDistance = field(volume.SurfaceDistance, "SurfaceDistance volume");
+  uploaded->LightOpticalDepth = std::make_unique<VulkanBuffer>(context, voxels * 4, "light optical depth volume");
+  uploaded->LightGeometry = std::make_unique<VulkanBuffer>(context, voxels * 4, "light geometry volume");
+  uploaded->DomainTable =
+    std::make_unique<VulkanBuffer>(context, volume.Domains.size() * sizeof(gpu::DomainRecord), "domain table");
+  auto* records = uploaded->DomainTable->as<gpu::DomainRecord>();
+  for (const RenderDomain& domain : volume.Domains)
+  {
+    *records++ = { gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
+      domain.PlaneSpacing };
+  }
+  uploaded->Geometry = VolumeGeometry(volume);
+  uploaded->Shape = volume;
+  uploaded->Shape.ScatteringCoefficient = nullptr;
+  uploaded->Shape.DomainId = nullptr;
+  uploaded->Shape.SurfaceDistance = nullptr;
+  this->Volume = std::move(uploaded);
+  this->bindBuffers();
+  this->PendingUploadSeconds = secondsSince(start);
+}
+
+RenderFrame RenderSession::render(const RenderParameters& parameters, const RenderProgress& callback)
+{
+  if (!this->Volume)
+  {
+    throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
+  }
+  RenderFrame frame;
+  RenderTimings& timings = frame.Image.Timings;
+  const auto setupStart = Clock::now();
+  const FrameSetup setup = this->setUpFrame(parameters);
+  this->checkMemoryBudget(setup);
+  this->prepareFrameBuffers(setup);
+  timings.Setup = secondsSince(setupStart);
+  frame.Ran.Upload = this->PendingUploadSeconds >= 0;
+  timings.Upload = std::max(0.0, std::exchange(this->PendingUploadSeconds, -1.0));
+  Progress progress(callback);
+
+  const auto lightStart = Clock::now();
+  // The light field holds a light in the model's frame: a new camera alone keeps it.
+  frame.Ran.LightPass = !(this->LightField && *this->LightField == lightFieldKey(setup));
+  if (frame.Ran.LightPass && !this->runLightPass(setup, progress))
+  {
+    return frame;
+  }
+  timings.LightPass = secondsSince(lightStart);
+
+  const auto marchStart = Clock::now();
+  double exposure = setup.Parameters.Exposure;
+  frame.Ran.Exposure = exposure <= 0;
+  if (frame.Ran.Exposure && !this->measureExposure(setup, progress, exposure))
+  {
+    return frame;
+  }
+  frame.Ran.March = true;
+  if (!this->marchRegion(setup, setup.Parameters.ImageSize, setup.Region, setup.Parameters.WriteSpectrum,
+        progress, 0.25, 0.95))
+  {
+    return frame;
+  }
+  timings.March = secondsSince(marchStart);
+
+  const auto colourStart = Clock::now();
+  this->runColourPass(setup, exposure);
+  frame.Ran.Colour = true;
+  timings.Colour = secondsSince(colourStart);
+
+  const auto readStart = Clock::now();
+  const RenderTimings kept = timings;
+  frame.Image = this->readBack(setup);
+  frame.Image.Exposure = exposure;
+  frame.Image.Timings = kept;
+  frame.Image.Timings.Readback = secondsSince(readStart);
+  frame.Ran.Readback = true;
+  frame.Status = FrameStatus::Completed;
+  progress.report(1.0);
+  return frame;
+}
+
+// Frame set-up: validation, the camera and light in the model's frame, the
+// rectangles, the wavelength bins and the parameter block.
+RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& p) const
+{
+  const std::string error = validate(p);
+  if (!error.empty())
+  {
+    throw std::invalid_argument(error);
+  }
+  FrameSetup setup;
+  setup.Parameters = p;
+  setup.Camera = cameraInModelFrame(p);
+  const VolumeGeometry& geometry = this->Volume->Geometry;
+  if (geometry.nearestSurfaceDistance(setup.Camera.Light) <= 0)
+  {
+    throw std::invalid_argument("LightPosition is inside the opal; place the light outside it.");
+  }
+  if (geometry.nearestSurfaceDistance(setup.Camera.Eye) <= 0)
+  {
+    throw std::invalid_argument("EyePosition is inside the opal; place the eye outside it.");
+  }
+  setup.Region = renderedRegion(p);
+  setup.Thumbnail = exposureThumbnailSize(p);
+  setup.Pixels = static_cast<std::size_t>(setup.Region[2]) * static_cast<std::size_t>(setup.Region[3]);
+  setup.PixelCapacity = std::max(setup.Pixels,
+    static_cast<std::size_t>(setup.Thumbnail[0]) * static_cast<std::size_t>(setup.Thumbnail[1]));
+  setup.Bins = sampleWavelengths(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
+
+  gpu::RenderParameterBlock& block = setup.Block;
+  const RenderVolume& shape = this->Volume->Shape;
+  block.gridDimensions = gpu::ivec3(shape.Dimensions[0], shape.Dimensions[1], shape.Dimensions[2]);
+  block.wavelengthCount = static_cast<int>(setup.Bins.size());
+  block.gridOrigin = toVec3(shape.Origin);
+  block.smallestSpacing = static_cast<float>(geometry.smallestSpacing());
+  block.gridSpacing = toVec3(shape.Spacing);
+  block.marchStep = static_cast<float>(p.StepSize > 0 ? p.StepSize : geometry.smallestSpacing());
+  block.eye = toVec3(setup.Camera.Eye);
+  block.tanHalfViewAngle = static_cast<float>(std::tan(glm::radians(p.ViewAngle) / 2));
+  block.forward = toVec3(setup.Camera.Forward);
+  block.right = toVec3(setup.Camera.Right);
+  block.up = toVec3(setup.Camera.Up);
+  block.light = toVec3(setup.Camera.Light);
+  block.lightRadius = static_cast<float>(p.LightRadius);
+  block.background = gpu::vec3(srgbToLinear(p.Background[0]), srgbToLinear(p.Background[1]), srgbToLinear(p.Background[2]));
+  block.refractiveIndex = static_cast<float>(p.RefractiveIndex);
+  block.braggBandwidth = static_cast<float>(p.BraggBandwidth);
+  block.diffractionGain = static_cast<float>(p.DiffractionGain);
+  block.mosaicSpread = static_cast<float>(glm::radians(p.MosaicSpread));
+  // Irradiance 1 at the apex: intensity = apex distance^2; the light's
+  // radiance spreads that intensity over its disc, pi r^2.
+  const glm::dvec3 toApex = setup.Camera.Light - geometry.apex();
+  const double apexDistanceSquared = glm::dot(toApex, toApex);
+  block.apexDistanceSquared = static_cast<float>(apexDistanceSquared);
+  block.lightRadiance = static_cast<float>(apexDistanceSquared / (Pi * p.LightRadius * p.LightRadius));
+  block.lightFalloffAtEntry = p.LightFalloffAtEntry ? 1 : 0;
+  block.specularSamples = p.SpecularSamples;
+  block.domainCount = static_cast<int>(shape.Domains.size());
+  block.braggOrders = p.BraggOrders;
+  return setup;
+}
+
+// Memory budget: refuse up front what cannot fit, with the estimate: on the
+// device, the volume (already there) and the images; on the host, the arrays.
+void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
+{
+  const std::uint64_t wavelengths = setup.Bins.size();
+  const std::uint64_t pixels = setup.Pixels;
+  const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
+  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * 5 * 4;
+  const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
+      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg)) + pixels * (3 * 4 + 4) + spectrumBytes;
+  const std::uint64_t deviceBytes = volumeBytes + imageBytes;
+  if (deviceBytes > this->Context->memoryBudget())
+  {
+    throw VulkanError("the render needs about " + formatBytes(deviceBytes) + " of device memory (volume " +
+        formatBytes(volumeBytes) + "), more than the device memory limit of " +
+        formatBytes(this->Context->memoryBudget()) + "; use fewer voxels or pixels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+  const std::uint64_t hostBytes = pixels * (3 + 12 + 12 + 4 + 4) + spectrumBytes;
+  if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())
+  {
+    throw std::invalid_argument("ImageSize " + std::to_string(setup.Parameters.ImageSize[0]) + " x " +
+      std::to_string(setup.Parameters.ImageSize[1]) + " needs about " + formatBytes(hostBytes + deviceBytes) +
+      ", more than this machine's " + formatBytes(physicalMemoryBytes()) + " of memory.");
+  }
+}
+
+// Buffers: the pixel buffers grow to the frame's needs (kept otherwise), the
+// wavelength table follows the sampling, the parameter block is written.
+void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
+{
+  FrameBuffers& b = *this->Buffers;
+  VulkanContext& context = *this->Context;
+  const std::size_t spectrumFloats =
+    setup.Parameters.WriteSpectrum ? setup.Pixels * setup.Bins.size() : std::size_t{ 0 };
+  bool rebind = false;
+  if (setup.PixelCapacity > b.PixelCapacity)
+  {
+    const std::size_t n = setup.PixelCapacity;
+    b.PixelColour.reset();
+    b.PixelBragg.reset();
+    b.PixelRadiance.reset();
+    b.PixelRGB8.reset();
+    b.PixelColour = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelColour), "XYZ image");
+    b.PixelBragg = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelBragg), "Bragg image");
+    b.PixelRadiance = std::make_unique<VulkanBuffer>(context, n * 3 * sizeof(float), "Radiance image");
+    b.PixelRGB8 = std::make_unique<VulkanBuffer>(context, n * sizeof(std::uint32_t), "RGB image");
+    b.PixelCapacity = n;
+    rebind = true;
+  }
+  if (!b.PixelSpectrum || spectrumFloats > b.SpectrumFloats)
+  {
+    b.PixelSpectrum.reset();
+    b.PixelSpectrum = std::make_unique<VulkanBuffer>(context, spectrumFloats * sizeof(float), "Spectrum image");
+    b.SpectrumFloats = spectrumFloats;
+    rebind = true;
+  }
+  const std::array<double, 3> sampling{ setup.Parameters.WavelengthRange[0], setup.Parameters.WavelengthRange[1],
+    setup.Parameters.WavelengthStep };
+  if (this->WavelengthSampling != sampling)
+  {
+    this->uploadWavelengthTable(setup.Bins);
+    this->WavelengthSampling = sampling;
+    rebind = true;
+  }
+  if (rebind)
+  {
+    this->bindBuffers();
+  }
+  b.Parameters->upload(&setup.Block, sizeof(setup.Block));
+}
+
+RenderSession::LightFieldKey RenderSession::lightFieldKey(const FrameSetup& setup)
+{
+  const glm::dvec3& light = setup.Camera.Light;
+  return { { light.x, light.y, light.z }, setup.Parameters.RefractiveIndex, setup.Parameters.LightFalloffAtEntry };
+}
+
+void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins)
+{
+  FrameBuffers& b = *this->Buffers;
+  b.WavelengthTable.reset();
+  b.WavelengthTable =
+    std::make_unique<VulkanBuffer>(*this->Context, bins.size() * sizeof(gpu::WavelengthBinRecord), "wavelength table");
+  auto* record = b.WavelengthTable->as<gpu::WavelengthBinRecord>();
+  for (const WavelengthBin& bin : bins)
+  {
+    *record++ = { static_cast<float>(bin.Lambda), static_cast<float>(bin.Width),
+      static_cast<float>(bin.RayleighScale), static_cast<float>(bin.D65),
+      gpu::vec3(static_cast<float>(bin.XBar), static_cast<float>(bin.YBar), static_cast<float>(bin.ZBar)) };
+  }
+}
+
+// Points every binding of the contract at its buffer, by name.
+void RenderSession::bindBuffers()
+{
+  const FrameBuffers& b = *this->Buffers;
+  if (!this->Volume || !b.WavelengthTable || !b.PixelColour || !b.PixelSpectrum)
+  {
+    return; // bound once the volume and the first frame's buffers exist
+  }
+  const DeviceVolume& v = *this->Volume;
+  std::vector<const VulkanBuffer*> buffers(gpu::BindingCount, nullptr);
+  buffers[gpu::ParametersBinding] = b.Parameters.get();
+  buffers[gpu::WavelengthTableBinding] = b.WavelengthTable.get();
+  buffers[gpu::ScatteringBinding] = v.Scattering.get();
+  buffers[gpu::DomainIdBinding] = v.DomainId.get();
+  buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
+  buffers[gpu::LightOpticalDepthBinding] = v.LightOpticalDepth.get();
+  buffers[gpu::LightGeometryBinding] = v.LightGeometry.get();
+  buffers[gpu::DomainTableBinding] = v.DomainTable.get();
+  buffers[gpu::PixelColourBinding] = b.PixelColour.get();
+  buffers[gpu::PixelBraggBinding] = b.PixelBragg.get();
+  buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
+  buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
+  buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();
+  this->Bindings->bind(buffers);
+}
+
+// Light pass: the optical depth to the light and its geometry factor for
+// every voxel (docs/design.md §3.3). The field counts as held only once the
+// pass completes, so an aborted pass leaves nothing stale behind.
+bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
+{
+  const bool completed = this->Volume->Geometry.lightAboveGrid(setup.Camera.Light)
+    ? this->sweepLightLayers(progress)
+    : this->marchLightPerVoxel(progress);
+  if (completed)
+  {
+    this->LightField = lightFieldKey(setup);
+  }
+  return completed;
+}
+
+// Layer by layer from the top: each layer reads the one above.
+bool RenderSession::sweepLightLayers(Progress& progress)
+{
+  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
+  const int layers = dims[1];
+  const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + 255) / 256);
+  for (int top = layers - 1; top >= 0; top -= LightLayersPerSubmit)
+  {
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      for (int layer = top; layer > top - LightLayersPerSubmit && layer >= 0; --layer)
+      {
+        const gpu::LightPassWork work{ gpu::LightPassSweepFromAbove, 0, 0, layer };
+        this->LightPass->dispatch(commands, &work, groups);
+      }
+    });
+    const int done = layers - std::max(0, top - LightLayersPerSubmit + 1);
+    if (!progress.report(0.2 * done / layers))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Every voxel marches to the light (lights low or to the side).
+bool RenderSession::marchLightPerVoxel(Progress& progress)
+{
+  const std::size_t voxels = this->Volume->Shape.voxelCount();
+  for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
+  {
+    const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
+    const gpu::LightPassWork work{ gpu::LightPassMarchTowardsLight, static_cast<std::int32_t>(first), count, 0 };
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      this->LightPass->dispatch(commands, &work, static_cast<std::uint32_t>((count + 255) / 256));
+    });
+    if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+ComputePipeline& RenderSession::marchPipeline(int wavelengths)
+{
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[wavelengths];
+  if (!march)
+  {
+    const embedded::Spirv code = embedded::viewMarchShader();
+    march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
+      std::vector<std::int32_t>{ wavelengths });
+  }
+  return *march;
+}
+
+// March a rectangle of an image of the given size, in tiles (one submit
+// each, so no frame trips a device timeout), reporting progress in [from, to].
+bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2>& size,
+  const std::array<int, 4>& rect, bool spectrum, Progress& progress, double from, double to)
+{
+  gpu::RenderParameterBlock block = setup.Block;
+  block.imageWidth = size[0];
+  block.imageHeight = size[1];
+  block.rectOrigin = gpu::ivec2(rect[0], rect[1]);
+  block.rectSize = gpu::ivec2(rect[2], rect[3]);
+  block.writeSpectrum = spectrum ? 1 : 0;
+  this->Buffers->Parameters->upload(&block, sizeof(block));
+  ComputePipeline& march = this->marchPipeline(block.wavelengthCount);
+  const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
+  const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
+  for (int ty = 0; ty < tilesY; ++ty)
+  {
+    for (int tx = 0; tx < tilesX; ++tx)
+    {
+      const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
+      this->Context->submitAndWait([&](VkCommandBuffer commands) {
+        march.dispatch(commands, &tile, MarchTileSize / 8, MarchTileSize / 8);
+      });
+      if (!progress.report(from + (to - from) * static_cast<double>(ty * tilesX + tx + 1) / (tilesX * tilesY)))
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// Automatic exposure: the body's median luminance to a mid grey (0.18),
+// measured on a thumbnail of the whole image, so that any region or piece
+// of the image gets the same exposure and pieces agree with the whole.
+bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress, double& exposure)
+{
+  const std::array<int, 2>& size = setup.Thumbnail;
+  if (!this->marchRegion(setup, size, { 0, 0, size[0], size[1] }, false, progress, 0.2, 0.25))
+  {
+    return false;
+  }
+  const auto* colour = this->Buffers->PixelColour->as<gpu::PixelColour>();
+  const auto* bragg = this->Buffers->PixelBragg->as<gpu::PixelBragg>();
+  std::vector<float> luminance;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]); ++i)
+  {
+    if (bragg[i].hit != 0 && colour[i].xyz.y > 0)
+    {
+      luminance.push_back(colour[i].xyz.y);
+    }
+  }
+  exposure = 1.0;
+  if (!luminance.empty())
+  {
+    std::nth_element(luminance.begin(), luminance.begin() + luminance.size() / 2, luminance.end());
+    exposure = 0.18 / luminance[luminance.size() / 2];
+  }
+  return true;
+}
+
+// Colour: XYZ to linear and 8-bit sRGB with the exposure, in chunks within
+// the dispatch limit.
+void RenderSession::runColourPass(const FrameSetup& setup, double exposure)
+{
+  gpu::RenderParameterBlock* block = this->Buffers->Parameters->as<gpu::RenderParameterBlock>();
+  block->exposure = static_cast<float>(exposure);
+  constexpr std::size_t ColourChunk = 65535 * 64;
+  for (std::size_t first = 0; first < setup.Pixels; first += ColourChunk)
+  {
+    const gpu::ColourRange range{ static_cast<std::int32_t>(first) };
+    const std::size_t count = std::min(ColourChunk, setup.Pixels - first);
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      this->ColourPass->dispatch(commands, &range, static_cast<std::uint32_t>((count + 63) / 64));
+    });
+  }
+}
+
+// Read-back: the pixel buffers into the image's arrays.
+RenderImage RenderSession::readBack(const FrameSetup& setup) const
+{
+  const std::size_t pixels = setup.Pixels;
+  const FrameBuffers& b = *this->Buffers;
+  RenderImage image;
+  image.ImageSize = setup.Parameters.ImageSize;
+  image.Region = setup.Region;
+  for (const WavelengthBin& bin : setup.Bins)
+  {
+    image.Wavelengths.push_back(bin.Lambda);
+  }
+  const auto* rgb8 = b.PixelRGB8->as<std::uint32_t>();
+  const auto* colour = b.PixelColour->as<gpu::PixelColour>();
+  const auto* bragg = b.PixelBragg->as<gpu::PixelBragg>();
+  const auto* radiance = b.PixelRadiance->as<float>();
+  image.Radiance.assign(radiance, radiance + 3 * pixels);
+  image.RGB.resize(pixels * 3);
+  image.XYZ.resize(pixels * 3);
+  image.DominantBraggWavelength.resize(pixels);
+  image.Depth.resize(pixels);
+  for (std::size_t i = 0; i < pixels; ++i)
+  {
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      image.RGB[3 * i + c] = static_cast<std::uint8_t>((rgb8[i] >> (8 * c)) & 0xffu);
+      image.XYZ[3 * i + c] = colour[i].xyz[static_cast<glm::length_t>(c)];
+    }
+    image.Depth[i] = colour[i].depth;
+    image.DominantBraggWavelength[i] = bragg[i].dominantWavelength;
+  }
+  if (setup.Parameters.WriteSpectrum)
+  {
+    const auto* spectrum = b.PixelSpectrum->as<float>();
+    image.Spectrum.assign(spectrum, spectrum + pixels * setup.Bins.size());
+  }
+  return image;
+}
+
+} // namespace opal

@@ -1,0 +1,121 @@
+// The spectral render on Vulkan compute as a session (docs/design.md §5): it
+// keeps the volume on the device (uploaded once per setVolume), the light
+// field (recomputed only when the light in the model's frame, the refractive
+// index, the fall-off rule or the volume changes), the pipelines, the
+// wavelength table and the pixel buffers between frames, and renders a frame
+// for a camera and an image rectangle in named stages: frame set-up, memory
+// budget, buffers, light pass, exposure, march, colour, read-back.
+// Plain C++ over OpalCore and Vulkan: the VTK filter and the programs wrap it.
+#pragma once
+
+#include "OpalRenderImage.h"
+#include "OpalRenderParameters.h"
+#include "OpalRenderVolume.h"
+#include "OpalVolumeGeometry.h"
+#include "OpalVulkanContext.h"
+
+#include <array>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+
+namespace opal
+{
+
+class ComputePipeline;
+class StorageBufferBindings;
+class VulkanBuffer;
+struct WavelengthBin;
+
+// Which stages a frame ran; the others reused what the session kept.
+struct FrameStages
+{
+  bool Upload = false;    // the volume went to the device (by setVolume since the last frame)
+  bool LightPass = false; // the light field was recomputed
+  bool Exposure = false;  // the automatic exposure's thumbnail was marched
+  bool March = false;
+  bool Colour = false;
+  bool Readback = false;
+};
+
+enum class FrameStatus
+{
+  Completed,
+  Aborted, // the progress callback returned false; Image is empty
+};
+
+struct RenderFrame
+{
+  FrameStatus Status = FrameStatus::Aborted;
+  RenderImage Image;
+  FrameStages Ran;
+};
+
+// Called with the fraction done; returning false aborts the frame.
+using RenderProgress = std::function<bool(double)>;
+
+class RenderSession
+{
+public:
+  // Creates the Vulkan context and the pipelines (throws NoVulkanDeviceError / VulkanError).
+  explicit RenderSession(const VulkanOptions& options = {});
+  ~RenderSession();
+  RenderSession(const RenderSession&) = delete;
+  RenderSession& operator=(const RenderSession&) = delete;
+
+  // Uploads the volume's fields and domain table to the device; the caller's
+  // arrays are not needed afterwards. Throws std::invalid_argument for an
+  // unusable volume (naming what is wrong) and VulkanError if it does not fit.
+  void setVolume(const RenderVolume& volume);
+  bool hasVolume() const { return static_cast<bool>(this->Volume); }
+
+  // Renders a frame of the volume. Throws std::invalid_argument for bad
+  // parameters (naming the parameter) or without a volume, VulkanError for
+  // device failures.
+  RenderFrame render(const RenderParameters& parameters, const RenderProgress& progress = nullptr);
+
+  VulkanContext& context() { return *this->Context; }
+
+private:
+  struct FrameSetup;
+  struct DeviceVolume;
+  struct FrameBuffers;
+  struct LightFieldKey
+  {
+    std::array<double, 3> Light; // in the model's frame
+    double RefractiveIndex;
+    bool FalloffAtEntry;
+    bool operator==(const LightFieldKey& other) const;
+  };
+  class Progress;
+
+  static LightFieldKey lightFieldKey(const FrameSetup& setup);
+  FrameSetup setUpFrame(const RenderParameters& parameters) const;
+  void checkMemoryBudget(const FrameSetup& setup) const;
+  void prepareFrameBuffers(const FrameSetup& setup);
+  void uploadWavelengthTable(const std::vector<WavelengthBin>& bins);
+  void bindBuffers();
+  bool runLightPass(const FrameSetup& setup, Progress& progress);
+  bool sweepLightLayers(Progress& progress);
+  bool marchLightPerVoxel(Progress& progress);
+  bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
+    bool spectrum, Progress& progress, double from, double to);
+  bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
+  void runColourPass(const FrameSetup& setup, double exposure);
+  RenderImage readBack(const FrameSetup& setup) const;
+  ComputePipeline& marchPipeline(int wavelengths);
+
+  std::unique_ptr<VulkanContext> Context;
+  std::unique_ptr<StorageBufferBindings> Bindings;
+  std::unique_ptr<ComputePipeline> LightPass;
+  std::unique_ptr<ComputePipeline> ColourPass;
+  std::map<int, std::unique_ptr<ComputePipeline>> MarchPasses; // by wavelength count
+  std::unique_ptr<DeviceVolume> Volume;
+  std::unique_ptr<FrameBuffers> Buffers;
+  std::optional<LightFieldKey> LightField;                     // what the light buffers hold
+  std::optional<std::array<double, 3>> WavelengthSampling;    // range and step of the table
+  double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
+};
+
+} // namespace opal

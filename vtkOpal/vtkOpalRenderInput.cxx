@@ -1,0 +1,128 @@
+#include "vtkOpalRenderInput.h"
+
+#include "OpalOptics.h"
+#include "vtkOpalSource.h"
+
+#include "vtkAOSDataArrayTemplate.h"
+#include "vtkArrayDispatch.h"
+#include "vtkDataArrayRange.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkPointData.h"
+
+#include <algorithm>
+
+namespace
+{
+// A one-component point array as contiguous values of type T: its own memory
+// when it already is an AOS array of T, else a converted copy in `storage`.
+template <typename T>
+const T* contiguousValues(vtkDataArray* array, std::vector<T>& storage)
+{
+  if (auto* typed = vtkAOSDataArrayTemplate<T>::FastDownCast(array))
+  {
+    return typed->GetPointer(0);
+  }
+  storage.resize(static_cast<std::size_t>(array->GetNumberOfTuples()));
+  auto convert = [&storage](auto* source) {
+    const auto values = vtk::DataArrayValueRange<1>(source);
+    std::transform(values.begin(), values.end(), storage.begin(), [](auto v) { return static_cast<T>(v); });
+  };
+  if (!vtkArrayDispatch::Dispatch::Execute(array, convert))
+  {
+    convert(array);
+  }
+  return storage.data();
+}
+
+// The named point array with one value per point, or nullptr and a reason.
+vtkDataArray* scalarArray(vtkImageData* input, const char* name, std::string& error)
+{
+  vtkDataArray* array = input->GetPointData()->GetArray(name);
+  if (!array)
+  {
+    error = std::string("The input lacks the point array ") + name + "; connect an Opal Volume.";
+  }
+  else if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    error = std::string("The point array ") + name + " needs one component per point.";
+    array = nullptr;
+  }
+  return array;
+}
+
+// The domain table from the field arrays DomainNormal and DomainParticleDiameter.
+std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>& domains)
+{
+  vtkFieldData* fields = input->GetFieldData();
+  vtkDataArray* normals = fields->GetArray("DomainNormal");
+  vtkDataArray* diameters = fields->GetArray("DomainParticleDiameter");
+  if (!normals || !diameters || normals->GetNumberOfComponents() != 3 ||
+    normals->GetNumberOfTuples() != diameters->GetNumberOfTuples())
+  {
+    return "The input lacks the domain table (field arrays DomainNormal and DomainParticleDiameter); "
+           "connect an Opal Volume.";
+  }
+  domains.resize(static_cast<std::size_t>(normals->GetNumberOfTuples()));
+  for (vtkIdType d = 0; d < normals->GetNumberOfTuples(); ++d)
+  {
+    opal::RenderDomain& domain = domains[static_cast<std::size_t>(d)];
+    for (int a = 0; a < 3; ++a)
+    {
+      domain.LatticeNormal[static_cast<std::size_t>(a)] = static_cast<float>(normals->GetComponent(d, a));
+    }
+    domain.PlaneSpacing = static_cast<float>(opal::fccPlaneSpacing(diameters->GetComponent(d, 0)));
+  }
+  return {};
+}
+} // namespace
+
+namespace vtkOpalRenderInput
+{
+std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage)
+{
+  std::string error;
+  vtkDataArray* scattering = scalarArray(input, "ScatteringCoefficient", error);
+  vtkDataArray* domainIds = scattering ? scalarArray(input, "DomainId", error) : nullptr;
+  vtkDataArray* distance = domainIds ? scalarArray(input, "SurfaceDistance", error) : nullptr;
+  if (!distance)
+  {
+    return error;
+  }
+  int dims[3], extent[6];
+  double origin[3], spacing[3];
+  input->GetDimensions(dims);
+  input->GetExtent(extent);
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    volume.Dimensions[a] = dims[a];
+    volume.Origin[a] = origin[a] + extent[2 * a] * spacing[a];
+    volume.Spacing[a] = spacing[a];
+  }
+  volume.ScatteringCoefficient = contiguousValues(scattering, storage.Scattering);
+  volume.DomainId = contiguousValues(domainIds, storage.DomainId);
+  volume.SurfaceDistance = contiguousValues(distance, storage.SurfaceDistance);
+  return readDomainTable(input, volume.Domains);
+}
+
+VolumeSettings ReadSettings(vtkInformation* info)
+{
+  VolumeSettings settings;
+  if (info && info->Has(vtkOpalSource::PRESET_IMAGE_SIZE()))
+  {
+    info->Get(vtkOpalSource::PRESET_IMAGE_SIZE(), settings.ImageSize.data());
+  }
+  if (info && info->Has(vtkOpalSource::PRESET_ROTATION()))
+  {
+    info->Get(vtkOpalSource::PRESET_ROTATION(), settings.PresetRotation.data());
+  }
+  if (info && info->Has(vtkOpalSource::REFRACTIVE_INDEX()))
+  {
+    settings.RefractiveIndex = info->Get(vtkOpalSource::REFRACTIVE_INDEX());
+  }
+  return settings;
+}
+} // namespace vtkOpalRenderInput

@@ -1,0 +1,42 @@
+// Reads what the render needs from an Opal volume (docs/design.md §2, §6):
+// the three voxel fields without a virtual call per value (the arrays' own
+// memory where they are float/int AOS arrays, else one converted copy), the
+// domain table from the field data the source writes, and the render
+// settings the source records in its output information.
+#pragma once
+
+#include "OpalModelParameters.h"
+#include "OpalRenderParameters.h"
+#include "OpalRenderVolume.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkImageData;
+class vtkInformation;
+
+namespace vtkOpalRenderInput
+{
+// Holds converted copies where an input array is not of the render's type.
+struct Storage
+{
+  std::vector<float> Scattering, SurfaceDistance;
+  std::vector<std::int32_t> DomainId;
+};
+
+// Fills `volume` from the input image; returns an empty string or the reason
+// it cannot (naming the array).
+std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage);
+
+// The settings an upstream vtkOpalSource records in its output information;
+// absent keys leave the render's and the model's defaults.
+struct VolumeSettings
+{
+  std::array<int, 2> ImageSize = opal::RenderParameters().ImageSize;
+  std::array<double, 3> PresetRotation = opal::RenderParameters().PresetRotation;
+  double RefractiveIndex = opal::ModelParameters().RefractiveIndex;
+};
+VolumeSettings ReadSettings(vtkInformation* inputInformation);
+} // namespace vtkOpalRenderInput
