@@ -1,21 +1,22 @@
-// What the command-line programs share beyond their flags: VTK messages on
-// stderr, a progress bar on a terminal, writing .vti files.
+// What the command-line programs share beyond their flags, without VTK: the
+// one-line failure message and a progress bar on a terminal.
 #pragma once
 
 #include <string>
 
-class vtkAlgorithm;
-class vtkImageData;
-
-// Routes VTK's errors and warnings to stderr as one plain line each,
-// prefixed with the program's name; the executive's request dumps are dropped.
-void installStderrOutputWindow(const std::string& program);
-
 // CLI11's failure message as one line: "program: what went wrong (see --help)".
 std::string oneLineFailure(const std::string& program, const std::string& what);
 
-// Shows `algorithm`'s progress as a bar on stderr, labelled, if stderr is a terminal.
-void showProgress(vtkAlgorithm* algorithm, const std::string& label);
+// A labelled progress bar on stderr when stderr is a terminal (silent
+// otherwise); each finished bar ends its line once.
+class ProgressBar
+{
+public:
+  explicit ProgressBar(std::string label);
+  void show(double fraction);
 
-// Writes image data as a .vti (inline binary, zlib); empty string on success, else the reason.
-std::string writeImageDataFile(const std::string& path, vtkImageData* image);
+private:
+  std::string Label;
+  bool Visible;
+  bool Finished = false;
+};

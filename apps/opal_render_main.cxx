@@ -1,20 +1,16 @@
 // opal-render: builds the opal volume and renders it spectrally on Vulkan
-// compute, writing PNG (sRGB) and/or OpenEXR (linear) images.
+// compute, writing PNG (sRGB) and/or OpenEXR (linear) images. The VTK
+// pipeline is not loaded: OpalCore builds the volume and a RenderSession
+// renders it; the image and .vti writers are modules loaded when used.
 #include "OpalCliSupport.h"
-#include "OpalImageFiles.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
-#include "OpalRenderParameters.h"
+#include "OpalOutputModules.h"
 #include "OpalRenderOptions.h"
-#include "vtkOpalSource.h"
-#include "vtkOpalSpectralRender.h"
-
-#include "vtkDataArray.h"
-#include "vtkExecutive.h"
-#include "vtkFieldData.h"
-#include "vtkImageData.h"
-#include "vtkNew.h"
-#include "vtkStringArray.h"
+#include "OpalRenderParameters.h"
+#include "OpalRenderSession.h"
+#include "OpalVolumeBuild.h"
+#include "OpalVulkanError.h"
 
 #include <CLI/CLI.hpp>
 
@@ -22,68 +18,67 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <vector>
 
-int main(int argc, char** argv)
+namespace
 {
-  CLI::App app{ "Builds the volumetric opal model of Nakajima & Kawai and renders it spectrally "
-                "(Rayleigh scattering, Bragg diffraction) on Vulkan compute." };
-  OpalModelOptions model;
-  model.addTo(app);
-  OpalRenderOptions render;
-  render.addTo(app);
-  std::vector<std::string> outputs;
-  std::string saveVolume, saveImage;
-  bool spectralChannels = false;
-  app.add_option("-o,--output", outputs,
+struct Outputs
+{
+  std::vector<std::string> Images;
+  std::string Volume, ImageData;
+  bool SpectralChannels = false;
+};
+
+void addOutputOptions(CLI::App& app, Outputs& outputs)
+{
+  app.add_option("-o,--output", outputs.Images,
        "Image file(s); the format follows the extension: .png sRGB 8-bit, .exr linear float")
     ->group("Output");
-  app.add_flag("--exr-spectral-channels", spectralChannels, "Also write one EXR channel per wavelength")
+  app.add_flag("--exr-spectral-channels", outputs.SpectralChannels, "Also write one EXR channel per wavelength")
     ->group("Output");
-  app.add_option("--save-volume", saveVolume, "Also write the volume as .vti")->group("Output");
-  app.add_option("--save-image", saveImage, "Also write the image with all its arrays as .vti")->group("Output");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-render", e.what()); });
-  CLI11_PARSE(app, argc, argv);
-  if (outputs.empty() && saveImage.empty())
-  {
-    std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;
-    return 2;
-  }
-  // A full disk or a file-size limit then fails the write (and is reported)
-  // instead of killing the process half way through a file.
-  std::signal(SIGXFSZ, SIG_IGN);
-  installStderrOutputWindow("opal-render");
-  const auto start = std::chrono::steady_clock::now();
+  app.add_option("--save-volume", outputs.Volume, "Also write the volume as .vti")->group("Output");
+  app.add_option("--save-image", outputs.ImageData, "Also write the image with all its arrays as .vti")
+    ->group("Output");
+}
 
-  vtkNew<vtkOpalSource> source;
-  source->SetModelParameters(model.parameters());
-  source->SetPreset(model.presetIndex());
-  vtkNew<vtkOpalSpectralRender> renderer;
-  renderer->SetRenderParameters(render.parameters(model.presetName(), model.refractiveIndex()));
-  renderer->SetDeviceIndex(render.deviceIndex());
-  renderer->SetDeviceMemoryLimit(render.deviceMemoryLimit());
-  renderer->SetWriteSpectrum(spectralChannels || !saveImage.empty());
-  // Bad parameters cost one line and exit status 2, before any work.
-  for (const std::string& error : { opal::validate(source->GetModelParameters()),
-         opal::validate(renderer->GetRenderParameters()) })
+// Builds the volume and renders the frame; throws on failure.
+opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::RenderParameters& parameters,
+  const OpalRenderOptions& options, std::string& deviceName)
+{
+  ProgressBar volumeBar("volume");
+  const std::optional<opal::BuiltVolume> volume = opal::buildVolume(model, [&volumeBar](double fraction) {
+    volumeBar.show(fraction);
+    return true;
+  });
+  if (!volume)
   {
-    if (!error.empty())
-    {
-      std::cerr << "opal-render: " << error << std::endl;
-      return 2;
-    }
+    throw std::runtime_error("the volume could not be built");
   }
-  renderer->SetInputConnection(source->GetOutputPort(0));
-  showProgress(source, "volume");
-  showProgress(renderer, "render");
-  if (!renderer->GetExecutive()->Update())
+  if (volume->Layout.placedCount() < volume->Layout.requestedCount())
   {
-    std::cerr << "opal-render: rendering failed." << std::endl;
-    return 1;
+    std::cerr << "opal-render: DomainCount: only " << volume->Layout.placedCount() << " of "
+              << volume->Layout.requestedCount() << " domains could be placed within MaxPlacementAttempts."
+              << std::endl;
   }
-  vtkImageData* image = renderer->GetOutput();
+  opal::VulkanOptions vulkan;
+  vulkan.DeviceIndex = options.deviceIndex();
+  vulkan.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, options.deviceMemoryLimit())) << 20;
+  opal::RenderSession session(vulkan);
+  session.setVolume(volume->renderVolume());
+  ProgressBar renderBar("render");
+  opal::RenderFrame frame = session.render(parameters, [&renderBar](double fraction) {
+    renderBar.show(fraction);
+    return true;
+  });
+  deviceName = session.context().deviceName();
+  return std::move(frame.Image);
+}
 
-  std::vector<std::string> written;
+// Writes every output; false (with one line on stderr) at the first failure.
+bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const std::string& deviceName,
+  const OpalModelOptions& model, std::vector<std::string>& written)
+{
   auto record = [&](const std::string& path, const std::string& error) {
     if (!error.empty())
     {
@@ -93,38 +88,96 @@ int main(int argc, char** argv)
     written.push_back(path);
     return true;
   };
-  for (const std::string& path : outputs)
+  for (const std::string& path : outputs.Images)
   {
-    if (!record(path, writeRenderedImage(path, image, spectralChannels)))
+    if (!record(path, opal::imageOutputModule().WriteImage(image, path, outputs.SpectralChannels)))
     {
-      return 1;
+      return false;
     }
   }
-  if (!saveImage.empty() && !record(saveImage, writeImageDataFile(saveImage, image)))
+  if (!outputs.ImageData.empty() &&
+    !record(outputs.ImageData, opal::vtiOutputModule().WriteImage(image, deviceName, outputs.ImageData)))
   {
-    return 1;
+    return false;
   }
-  if (!saveVolume.empty() && !record(saveVolume, writeImageDataFile(saveVolume, source->GetOutput())))
-  {
-    return 1;
-  }
+  return outputs.Volume.empty() ||
+    record(outputs.Volume, opal::vtiOutputModule().WriteVolume(model.parameters(), model.presetIndex(), outputs.Volume));
+}
 
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  vtkFieldData* fd = image->GetFieldData();
-  vtkDataArray* timings = fd->GetArray("RenderTimings");
-  int dims[3];
-  image->GetDimensions(dims);
-  std::printf("Opal render (preset %s): %d x %d pixels, %lld wavelengths on %s\n", model.presetName().c_str(),
-    dims[0], dims[1], static_cast<long long>(fd->GetArray("Wavelengths")->GetNumberOfTuples()),
-    vtkStringArray::SafeDownCast(fd->GetAbstractArray("VulkanDevice"))->GetValue(0).c_str());
+void printSummary(const std::string& preset, const opal::RenderImage& image, const std::string& deviceName,
+  double seconds, const std::vector<std::string>& written)
+{
+  const opal::RenderTimings& t = image.Timings;
+  std::printf("Opal render (preset %s): %d x %d pixels, %zu wavelengths on %s\n", preset.c_str(), image.Region[2],
+    image.Region[3], image.Wavelengths.size(), deviceName.c_str());
   std::printf("  render: setup %.3f s, upload %.3f s, light pass %.3f s, march %.3f s, colour %.3f s, "
               "readback %.3f s\n",
-    timings->GetComponent(0, 0), timings->GetComponent(0, 1), timings->GetComponent(0, 2),
-    timings->GetComponent(0, 3), timings->GetComponent(0, 4), timings->GetComponent(0, 5));
-  std::printf("  exposure %.4g, total %.3f s\n", fd->GetArray("Exposure")->GetComponent(0, 0), seconds);
+    t.Setup, t.Upload, t.LightPass, t.March, t.Colour, t.Readback);
+  std::printf("  exposure %.4g, total %.3f s\n", image.Exposure, seconds);
   for (const std::string& path : written)
   {
     std::printf("  written: %s\n", path.c_str());
   }
-  return 0;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  CLI::App app{ "Builds the volumetric opal model of Nakajima & Kawai and renders it spectrally "
+                "(Rayleigh scattering, Bragg diffraction) on Vulkan compute." };
+  OpalModelOptions model;
+  model.addTo(app);
+  OpalRenderOptions render;
+  render.addTo(app);
+  Outputs outputs;
+  addOutputOptions(app, outputs);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-render", e.what()); });
+  CLI11_PARSE(app, argc, argv);
+  if (outputs.Images.empty() && outputs.ImageData.empty())
+  {
+    std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;
+    return 2;
+  }
+  opal::RenderParameters parameters = render.parameters(model.presetName(), model.refractiveIndex());
+  parameters.WriteSpectrum = outputs.SpectralChannels || !outputs.ImageData.empty();
+  // Bad parameters cost one line and exit status 2, before any work.
+  for (const std::string& error : { opal::validate(model.parameters()), opal::validate(parameters) })
+  {
+    if (!error.empty())
+    {
+      std::cerr << "opal-render: " << error << std::endl;
+      return 2;
+    }
+  }
+  // A full disk or a file-size limit then fails the write (and is reported)
+  // instead of killing the process half way through a file.
+  std::signal(SIGXFSZ, SIG_IGN);
+  const auto start = std::chrono::steady_clock::now();
+  try
+  {
+    std::string deviceName;
+    const opal::RenderImage image = renderFrame(model.parameters(), parameters, render, deviceName);
+    std::vector<std::string> written;
+    if (!writeOutputs(outputs, image, deviceName, model, written))
+    {
+      return 1;
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    printSummary(model.presetName(), image, deviceName, seconds, written);
+    return 0;
+  }
+  catch (const opal::NoVulkanDeviceError& e)
+  {
+    std::cerr << "opal-render: No Vulkan device: " << e.what() << std::endl;
+  }
+  catch (const std::invalid_argument& e)
+  {
+    std::cerr << "opal-render: " << e.what() << std::endl;
+    return 2;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "opal-render: " << e.what() << std::endl;
+  }
+  return 1;
 }

@@ -1,6 +1,6 @@
 // opal-volume: builds the opal volume and writes it as a .vti file, with a
 // one-screen summary of what was built.
-#include "OpalCliSupport.h"
+#include "OpalVtkSupport.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
 #include "vtkOpalSource.h"
@@ -42,7 +42,8 @@ int main(int argc, char** argv)
     std::cerr << "opal-volume: " << error << std::endl;
     return 2;
   }
-  showProgress(source, "volume");
+  ProgressBar bar("volume");
+  showProgress(source, bar);
   const auto start = std::chrono::steady_clock::now();
   if (!source->GetExecutive()->Update())
   {

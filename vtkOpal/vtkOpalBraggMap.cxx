@@ -1,7 +1,7 @@
 #include "vtkOpalBraggMap.h"
 
 #include "OpalBraggMap.h"
-#include "vtkOpalParallel.h"
+#include "OpalParallel.h"
 
 #include "vtkCell.h"
 #include "vtkCellData.h"
@@ -110,7 +110,7 @@ int vtkOpalBraggMap::RequestData(
       return 0;
     }
     const vtkIdType end = std::min(count, begin + chunk);
-    vtkOpalParallel::For(static_cast<int>(begin), static_cast<int>(end), [&](int first, int last) {
+    opal::parallelFor(static_cast<int>(begin), static_cast<int>(end), [&](int first, int last) {
       vtkNew<vtkIdList> cellPoints;
       for (vtkIdType i = first; i < last; ++i)
       {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "OpalRenderImage.h"
+#include "vtkOpalModule.h" // for export macro
 
 #include <string>
 
@@ -15,8 +16,8 @@ namespace vtkOpalRenderOutput
 {
 // The image's extent: columns x0 .. x0 + width - 1, and VTK rows counted from
 // the bottom of an image ImageSize[1] high.
-void ExtentOf(const opal::RenderImage& image, int extent[6]);
+VTKOPAL_EXPORT void ExtentOf(const opal::RenderImage& image, int extent[6]);
 
 // Replaces `output`'s structure and arrays with the image's.
-void Fill(const opal::RenderImage& image, const std::string& deviceName, vtkImageData* output);
+VTKOPAL_EXPORT void Fill(const opal::RenderImage& image, const std::string& deviceName, vtkImageData* output);
 } // namespace vtkOpalRenderOutput

@@ -4,6 +4,7 @@
 #include "OpalMemory.h"
 #include "OpalModelParameters.h"
 #include "OpalOptics.h"
+#include "OpalParallel.h"
 #include "OpalPresets.h"
 #include "OpalRenderParameters.h"
 #include "OpalVolumeFiller.h"
@@ -25,7 +26,6 @@
 #include "vtkOpalArrayCopy.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
-#include "vtkOpalParallel.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -277,7 +277,7 @@ int vtkOpalSource::RequestData(
       return 0;
     }
     const int kEnd = std::min(extent[5] + 1, k + chunk);
-    vtkOpalParallel::For(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
+    opal::parallelFor(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
     this->UpdateProgress(
       LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
   }

@@ -22,7 +22,9 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
     {
       entry.LatticeNormal[a] = static_cast<float>(domain.Normal[a]);
     }
-    entry.PlaneSpacing = static_cast<float>(fccPlaneSpacing(domain.ParticleDiameter));
+    // From the diameter as the volume's float arrays hold it, so a render of
+    // a saved or VTK-built volume gets the same table.
+    entry.PlaneSpacing = static_cast<float>(fccPlaneSpacing(static_cast<float>(domain.ParticleDiameter)));
   }
   return table;
 }

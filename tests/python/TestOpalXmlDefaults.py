@@ -1,0 +1,200 @@
+"""pvpython: the default of every property of the plugin's proxies, as the
+ParaView XML (paraview_plugin/*.xml) states it, equals the default of the C++
+member it sets, so ParaView, pvpython and C++ users start from one setting.
+
+For each proxy of each XML file, and each of its vector properties:
+  1. the XML file's default_values equal the definition ParaView loaded from
+     the plugin (a stale build fails here) and the value the property holds
+     right after creation, and that value lies in the property's domains;
+  2. they equal the member's value in a freshly constructed C++ object that
+     ParaView has never set anything on (NewInstance of the proxy's object);
+  3. the proxy's own object, which ParaView has pushed the defaults into, prints
+     the same values, so the setter named by command="SetX" sets the member
+     that PrintSelf prints as X.
+The classes are not wrapped in Python (no GetX from Python), so the C++ values
+are read from PrintSelf ("  X: v0 v1 ..." lines), which prints every property;
+doubles print with 6 significant digits, hence the relative tolerance.
+
+Optional argument: the directory of the XML files (default: the source tree's
+paraview_plugin next to this script)."""
+import glob
+import math
+import os
+import re
+import sys
+import xml.etree.ElementTree as ET
+
+from paraview import servermanager as sm
+from paraview.simple import LoadPlugin
+
+import opal_test_config as config
+
+XML_DIRECTORY = (sys.argv[1] if len(sys.argv) > 1 else
+                 os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "paraview_plugin"))
+# Properties that carry no default of a C++ member, and why.
+SKIPPED_KINDS = {
+    "InputProperty": "a pipeline connection (SetInputConnection), not a value with a default",
+    "ProxyProperty": "refers to another proxy, not a value with a default",
+}
+RELATIVE_TOLERANCE = 1e-5  # PrintSelf prints doubles with 6 significant digits
+
+LoadPlugin(config.PLUGIN, remote=False, ns=globals())  # adds OpalVolume() etc. here
+failures = []
+skipped = []
+
+
+def check(condition, what):
+    if not condition:
+        failures.append(what)
+        print("FAILED:", what)
+    return condition
+
+
+def parse_values(kind, text):
+    """Numbers (or strings) of an XML default_values or a PrintSelf line."""
+    words = text.split()
+    if kind == "StringVectorProperty":
+        return words
+    words = [{"On": "1", "Off": "0", "true": "1", "false": "0"}.get(w, w) for w in words]
+    return [int(w) if kind in ("IntVectorProperty", "IdTypeVectorProperty") else float(w) for w in words]
+
+
+def same(a, b):
+    if len(a) != len(b):
+        return False
+    return all(x == y or (isinstance(x, float) and math.isclose(x, y, rel_tol=RELATIVE_TOLERANCE))
+               for x, y in zip(a, b))
+
+
+def printed_members(vtk_object):
+    """Name -> text of the top-level "  Name: value" lines of the object's Print (last one wins)."""
+    members = {}
+    for line in str(vtk_object).splitlines():
+        match = re.match(r"^  (\w+):(.*)$", line)
+        if match:
+            members[match.group(1)] = match.group(2)
+    return members
+
+
+def proxy_properties(proxy):
+    """Names of all properties of the proxy as ParaView defined it."""
+    names, iterator = set(), proxy.SMProxy.NewPropertyIterator()
+    iterator.Begin()
+    while not iterator.IsAtEnd():
+        names.add(iterator.GetKey())
+        iterator.Next()
+    return names
+
+
+def in_domains(element, values):
+    """Whether the values lie in the property's range, enumeration and boolean domains, read as
+    ParaView reads them (min/max per element). ParaView 5.11's own IsInDomains() cannot tell:
+    its range check rejects every value below the range's max."""
+    for domain in element:
+        if domain.tag in ("IntRangeDomain", "DoubleRangeDomain"):
+            kind = domain.tag.replace("RangeDomain", "VectorProperty")
+            low, high = parse_values(kind, domain.get("min", "")), parse_values(kind, domain.get("max", ""))
+            if any((i < len(low) and v < low[i]) or (i < len(high) and v > high[i])
+                   for i, v in enumerate(values)):
+                return False
+        elif domain.tag == "EnumerationDomain":
+            if not set(values) <= {int(entry.get("value")) for entry in domain.iter("Entry")}:
+                return False
+        elif domain.tag == "BooleanDomain" and not set(values) <= {0, 1}:
+            return False
+    return True
+
+
+def loaded_defaults(group, name):
+    """Property name -> default_values of the proxy's definition as ParaView loaded it from the plugin."""
+    definition = sm.ProxyManager().SMProxyManager.GetProxyDefinition(group, name)
+    defaults = {}
+    for i in range(definition.GetNumberOfNestedElements() if definition else 0):
+        child = definition.GetNestedElement(i)
+        if child.GetAttribute("name"):
+            defaults[child.GetAttribute("name")] = child.GetAttribute("default_values")
+    return defaults
+
+
+def current_values(kind, prop):
+    """The values the property holds."""
+    values = [prop.GetElement(i) for i in range(prop.GetNumberOfElements())]
+    return values if kind == "StringVectorProperty" else parse_values(kind, " ".join(map(str, values)))
+
+
+def check_property(where, element, proxy, loaded, fresh, pushed):
+    kind, name = element.tag, element.get("name")
+    if element.get("information_only") == "1":
+        skipped.append((f"{where}.{name}", "information-only: ParaView reads it from the object"))
+        return
+    command = element.get("command") or ""
+    if not check(command.startswith("Set"), f"{where}.{name}: command {command!r} names a setter SetX"):
+        return
+    member = command[3:]
+    if not check(element.get("default_values") is not None, f"{where}.{name} has default_values"):
+        return
+    xml = parse_values(kind, element.get("default_values"))
+    count = int(element.get("number_of_elements", len(xml)))
+    check(len(xml) == count, f"{where}.{name}: {count} default values, got {xml}")
+    built = loaded.get(name)
+    check(built is not None and same(xml, parse_values(kind, built)), f"{where}.{name}: the built "
+          f"plugin's definition defaults to {built!r}, the XML file to {xml} (rebuild the plugin?)")
+    prop = proxy.GetProperty(name).SMProperty
+    current = current_values(kind, prop)
+    check(same(xml, current) and prop.IsValueDefault(),
+          f"{where}.{name}: ParaView set {current} on creation, the XML says {xml}")
+    check(in_domains(element, xml), f"{where}.{name}: the default {xml} lies in its domains")
+    for label, members in (("a fresh C++ object", fresh), ("the object ParaView set up", pushed)):
+        if check(member in members, f"{where}.{name}: {label} prints {member} (PrintSelf)"):
+            value = parse_values(kind, members[member])
+            check(same(xml, value), f"{where}.{name}: XML default {xml}, {label} has {member} = {value}")
+
+
+def check_proxy(path, group, element, inputs):
+    where = f"{os.path.basename(path)}:{element.get('name')}"
+    create = globals().get(re.sub(r"\W", "", element.get("label", element.get("name"))))
+    if not check(create is not None, f"{where}: paraview.simple offers the proxy"):
+        return None
+    has_input = element.find("InputProperty") is not None
+    proxy = create(Input=inputs[0]) if has_input and inputs else create()
+    pushed = proxy.GetClientSideObject()
+    check(pushed.GetClassName() == element.get("class"), f"{where}: the object is a {element.get('class')}")
+    fresh = pushed.NewInstance()  # constructed by C++ alone: ParaView never set anything on it
+    printed_fresh, printed_pushed = printed_members(fresh), printed_members(pushed)
+    loaded = loaded_defaults(group, element.get("name"))
+    xml_names = {child.get("name") for child in element if child.tag.endswith("Property")}
+    check(proxy_properties(proxy) == xml_names, f"{where}: the built plugin's properties "
+          f"{sorted(proxy_properties(proxy))} equal the XML file's {sorted(xml_names)}")
+    covered = 0
+    for child in element:
+        if child.tag in SKIPPED_KINDS:
+            skipped.append((f"{where}.{child.get('name')}", SKIPPED_KINDS[child.tag]))
+        elif child.tag.endswith("VectorProperty"):
+            check_property(where, child, proxy, loaded, printed_fresh, printed_pushed)
+            covered += 1
+        elif child.tag.endswith("Property"):
+            check(False, f"{where}.{child.get('name')}: a {child.tag} the test does not know")
+    print(f"{where}: {covered} properties compared")
+    return proxy
+
+
+def main():
+    files = sorted(glob.glob(os.path.join(XML_DIRECTORY, "*.xml")))
+    check(len(files) >= 3, f"the plugin's XML files are found in {XML_DIRECTORY}")
+    proxies = [(path, group.get("name"), element) for path in files
+               for group in ET.parse(path).getroot().iter("ProxyGroup") for element in group
+               if element.get("class")]
+    # Sources first: the filters take the first source as their input.
+    proxies.sort(key=lambda item: item[2].find("InputProperty") is not None)
+    inputs = []
+    for path, group, element in proxies:
+        proxy = check_proxy(path, group, element, inputs)
+        if proxy is not None and element.find("InputProperty") is None:
+            inputs.append(proxy)
+    for name, reason in skipped:
+        print(f"skipped {name}: {reason}")
+
+
+main()
+print("TestOpalXmlDefaults:", "FAILED" if failures else "passed")
+sys.exit(1 if failures else 0)

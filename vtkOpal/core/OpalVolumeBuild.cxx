@@ -1,0 +1,78 @@
+#include "OpalVolumeBuild.h"
+
+#include "OpalParallel.h"
+
+#include <algorithm>
+
+namespace opal
+{
+
+namespace
+{
+// Share of the work spent placing domains; filling the voxels takes the rest.
+constexpr double LayoutShare = 0.1;
+
+VolumeFields fieldsOf(BuiltVolume& volume)
+{
+  return { volume.VoxelType.data(), volume.ParticleDiameter.data(), volume.Normal.data(), volume.DomainId.data(),
+    volume.BraggLambdaMax.data(), volume.BraggLambdaMin.data(), volume.ScatteringCoefficient.data(),
+    volume.SurfaceDistance.data() };
+}
+
+void allocate(BuiltVolume& volume)
+{
+  const auto voxels = static_cast<std::size_t>(volume.VoxelGrid.voxelCount());
+  volume.VoxelType.resize(voxels);
+  volume.ParticleDiameter.resize(voxels);
+  volume.Normal.resize(3 * voxels);
+  volume.DomainId.resize(voxels);
+  volume.BraggLambdaMax.resize(voxels);
+  volume.BraggLambdaMin.resize(voxels);
+  volume.ScatteringCoefficient.resize(voxels);
+  volume.SurfaceDistance.resize(voxels);
+}
+} // namespace
+
+RenderVolume BuiltVolume::renderVolume() const
+{
+  RenderVolume volume;
+  volume.Dimensions = this->VoxelGrid.Dimensions;
+  volume.Origin = this->VoxelGrid.Origin;
+  volume.Spacing = this->VoxelGrid.Spacing;
+  volume.ScatteringCoefficient = this->ScatteringCoefficient.data();
+  volume.DomainId = this->DomainId.data();
+  volume.SurfaceDistance = this->SurfaceDistance.data();
+  volume.Domains = renderDomains(this->Layout);
+  return volume;
+}
+
+std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const std::function<bool(double)>& progress)
+{
+  auto report = [&progress](double fraction) { return !progress || progress(fraction); };
+  BuiltVolume volume;
+  volume.VoxelGrid = Grid::fromParameters(parameters);
+  volume.Layout = DomainLayout::build(parameters, [&report](double f) { return report(LayoutShare * f); });
+  if (volume.Layout.aborted())
+  {
+    return std::nullopt;
+  }
+  allocate(volume);
+  const VolumeFiller filler(parameters, volume.Layout);
+  const std::array<int, 3>& dims = volume.VoxelGrid.Dimensions;
+  const std::array<int, 6> extent{ 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  const VolumeFields fields = fieldsOf(volume);
+  // Slab by slab, reporting progress and honouring abort between slabs.
+  const int chunk = std::max(1, dims[2] / 20);
+  for (int k = 0; k < dims[2]; k += chunk)
+  {
+    const int kEnd = std::min(dims[2], k + chunk);
+    parallelFor(k, kEnd, [&](int begin, int end) { filler.fill(extent, begin, end, fields); });
+    if (!report(LayoutShare + (1 - LayoutShare) * kEnd / static_cast<double>(dims[2])))
+    {
+      return std::nullopt;
+    }
+  }
+  return volume;
+}
+
+} // namespace opal

@@ -1,0 +1,38 @@
+// The whole volume built in memory (docs/design.md §2), for the programs and
+// the benches: the domain layout, then every voxel's fields, in parallel.
+// The VTK source fills its own arrays over an update extent with the same
+// DomainLayout and VolumeFiller, so both give the same values.
+#pragma once
+
+#include "OpalDomainLayout.h"
+#include "OpalGrid.h"
+#include "OpalModelParameters.h"
+#include "OpalRenderVolume.h"
+#include "OpalVolumeFiller.h"
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+namespace opal
+{
+
+struct BuiltVolume
+{
+  Grid VoxelGrid;
+  DomainLayout Layout;
+  std::vector<std::uint8_t> VoxelType;
+  std::vector<float> ParticleDiameter, Normal, BraggLambdaMax, BraggLambdaMin, ScatteringCoefficient, SurfaceDistance;
+  std::vector<std::int32_t> DomainId;
+
+  // The render's view of it (pointers into this object's arrays).
+  RenderVolume renderVolume() const;
+};
+
+// Builds the volume of valid parameters; progress(fraction) may return false
+// to abort, and then the result is empty.
+std::optional<BuiltVolume> buildVolume(
+  const ModelParameters& parameters, const std::function<bool(double)>& progress = nullptr);
+
+} // namespace opal
