@@ -1,0 +1,98 @@
+// The render session keeps what a frame can reuse (docs/design.md §5): a
+// second frame with only the camera changed runs neither the upload nor the
+// light pass and gives exactly the image of a fresh session rendering that
+// camera; a new light, rotation or refractive index reruns the light pass; an
+// aborted light pass leaves no stale field behind; abort is an explicit status.
+#include "OpalRenderScenes.h"
+#include "OpalTestHarness.h"
+#include "OpalVolumeBuild.h"
+
+#include <string>
+
+namespace
+{
+opal::RenderParameters smallView()
+{
+  opal::RenderParameters p;
+  p.ImageSize = { 48, 36 };
+  return p;
+}
+
+// The same image, value for value.
+bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
+{
+  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance &&
+    a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
+}
+
+std::string stages(const opal::FrameStages& ran)
+{
+  std::string s;
+  for (auto [name, on] : { std::pair<const char*, bool>{ "upload", ran.Upload }, { "light", ran.LightPass },
+         { "exposure", ran.Exposure }, { "march", ran.March }, { "colour", ran.Colour }, { "readback", ran.Readback } })
+  {
+    s += on ? std::string(" ") + name : "";
+  }
+  return "ran:" + s;
+}
+} // namespace
+
+int main()
+{
+  auto renderer = opaltest::makeRenderer();
+  if (!renderer)
+  {
+    return opaltest::SkipReturnCode;
+  }
+  opal::ModelParameters model;
+  model.Dimensions = { 40, 20, 50 };
+  model.DomainCount = 30;
+  const auto volume = opal::buildVolume(model);
+  opal::RenderSession& session = renderer->Session;
+  session.setVolume(volume->renderVolume());
+
+  const opal::RenderParameters first = smallView();
+  const opal::RenderFrame a = session.render(first);
+  OPAL_CHECK(a.Status == opal::FrameStatus::Completed && a.Ran.Upload && a.Ran.LightPass && a.Ran.Readback,
+    "the first frame uploads, runs the light pass and completes (" + stages(a.Ran) + ")");
+
+  // A new camera only: the eye moves and looks at the same point.
+  opal::RenderParameters moved = first;
+  moved.EyePosition = { 8.0, 58.0, 6.0 };
+  const opal::RenderFrame b = session.render(moved);
+  OPAL_CHECK(b.Status == opal::FrameStatus::Completed && !b.Ran.Upload && !b.Ran.LightPass && b.Ran.March,
+    "a camera-only frame reuses the volume and the light field (" + stages(b.Ran) + ")");
+  OPAL_CHECK(!identical(a.Image, b.Image), "the new camera gives a new image");
+  {
+    opaltest::SceneRenderer fresh(opal::VulkanOptions{});
+    const opal::RenderImage c = fresh.render(volume->renderVolume(), moved);
+    OPAL_CHECK(identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
+  }
+
+  // What the light field depends on reruns it.
+  auto lightPassRuns = [&session, &moved](const std::string& what, auto change) {
+    opal::RenderParameters p = moved;
+    change(p);
+    const opal::RenderFrame frame = session.render(p);
+    OPAL_CHECK(frame.Ran.LightPass && !frame.Ran.Upload, what + " reruns the light pass (" + stages(frame.Ran) + ")");
+    session.render(moved); // back to the reference light
+  };
+  lightPassRuns("a new light position", [](opal::RenderParameters& p) { p.LightPosition = { 5.0, 60.0, 0.0 }; });
+  lightPassRuns("a model rotation", [](opal::RenderParameters& p) { p.ModelRotation = { 5.0, 0.0, 0.0 }; });
+  lightPassRuns("a new refractive index", [](opal::RenderParameters& p) { p.RefractiveIndex = 1.4; });
+  lightPassRuns("the paper's fall-off rule", [](opal::RenderParameters& p) { p.LightFalloffAtEntry = true; });
+
+  // Abort during the light pass: an explicit status, and the next frame reruns the pass.
+  opal::RenderParameters lit = moved;
+  lit.LightPosition = { -5.0, 60.0, 0.0 };
+  const opal::RenderFrame aborted = session.render(lit, [](double) { return false; });
+  OPAL_CHECK(aborted.Status == opal::FrameStatus::Aborted && aborted.Image.RGB.empty(),
+    "an abort is reported as FrameStatus::Aborted with no image");
+  const opal::RenderFrame after = session.render(lit);
+  OPAL_CHECK(after.Status == opal::FrameStatus::Completed && after.Ran.LightPass,
+    "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
+
+  const auto messages = renderer->context().validationMessages();
+  OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+  return opaltest::finish("TestOpalRenderSession");
+}

@@ -1,0 +1,178 @@
+// The host-shader contract (shaders/opal_render_contract.h, docs/design.md
+// §3.8) lays out every field at the same offset on both sides: glslang's
+// reflection of each compiled pass against the C++ offsetof and sizeof of the
+// same header. A field that one side would place differently, or a field the
+// table below does not check, fails.
+// Usage: TestOpalShaderContract GLSLANG_VALIDATOR SHADER_DIR
+#include "OpalTestHarness.h"
+#include "opal_render_contract.h"
+
+#include <cstddef>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace
+{
+using namespace opal::gpu;
+
+// GLSL member name as the reflection spells it -> C++ offset.
+const std::map<std::string, std::size_t>& expectedOffsets()
+{
+#define OPAL_FIELD(prefix, type, field) { std::string(prefix) + #field, offsetof(type, field) }
+  static const std::map<std::string, std::size_t> table = {
+    OPAL_FIELD("P.", RenderParameterBlock, gridDimensions),
+    OPAL_FIELD("P.", RenderParameterBlock, wavelengthCount),
+    OPAL_FIELD("P.", RenderParameterBlock, gridOrigin),
+    OPAL_FIELD("P.", RenderParameterBlock, smallestSpacing),
+    OPAL_FIELD("P.", RenderParameterBlock, gridSpacing),
+    OPAL_FIELD("P.", RenderParameterBlock, marchStep),
+    OPAL_FIELD("P.", RenderParameterBlock, eye),
+    OPAL_FIELD("P.", RenderParameterBlock, tanHalfViewAngle),
+    OPAL_FIELD("P.", RenderParameterBlock, forward),
+    OPAL_FIELD("P.", RenderParameterBlock, writeSpectrum),
+    OPAL_FIELD("P.", RenderParameterBlock, right),
+    OPAL_FIELD("P.", RenderParameterBlock, imageWidth),
+    OPAL_FIELD("P.", RenderParameterBlock, up),
+    OPAL_FIELD("P.", RenderParameterBlock, imageHeight),
+    OPAL_FIELD("P.", RenderParameterBlock, light),
+    OPAL_FIELD("P.", RenderParameterBlock, lightRadius),
+    OPAL_FIELD("P.", RenderParameterBlock, background),
+    OPAL_FIELD("P.", RenderParameterBlock, exposure),
+    OPAL_FIELD("P.", RenderParameterBlock, rectOrigin),
+    OPAL_FIELD("P.", RenderParameterBlock, rectSize),
+    OPAL_FIELD("P.", RenderParameterBlock, refractiveIndex),
+    OPAL_FIELD("P.", RenderParameterBlock, braggBandwidth),
+    OPAL_FIELD("P.", RenderParameterBlock, diffractionGain),
+    OPAL_FIELD("P.", RenderParameterBlock, mosaicSpread),
+    OPAL_FIELD("P.", RenderParameterBlock, apexDistanceSquared),
+    OPAL_FIELD("P.", RenderParameterBlock, lightRadiance),
+    OPAL_FIELD("P.", RenderParameterBlock, lightFalloffAtEntry),
+    OPAL_FIELD("P.", RenderParameterBlock, specularSamples),
+    OPAL_FIELD("P.", RenderParameterBlock, domainCount),
+    OPAL_FIELD("P.", RenderParameterBlock, braggOrders),
+    OPAL_FIELD("bins[0].", WavelengthBinRecord, lambda),
+    OPAL_FIELD("bins[0].", WavelengthBinRecord, width),
+    OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
+    OPAL_FIELD("bins[0].", WavelengthBinRecord, illuminant),
+    OPAL_FIELD("bins[0].", WavelengthBinRecord, colourMatching),
+    OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
+    OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
+    OPAL_FIELD("pixelColour[0].", PixelColour, xyz),
+    OPAL_FIELD("pixelColour[0].", PixelColour, depth),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantWavelength),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantLuminance),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, hit),
+    OPAL_FIELD("work.", LightPassWork, mode),
+    OPAL_FIELD("work.", LightPassWork, first),
+    OPAL_FIELD("work.", LightPassWork, count),
+    OPAL_FIELD("work.", LightPassWork, layer),
+    OPAL_FIELD("tile.", MarchTile, origin),
+    OPAL_FIELD("range.", ColourRange, first),
+  };
+#undef OPAL_FIELD
+  return table;
+}
+
+// Prefixes of the contract's structs in the shaders' reflection.
+const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "domains[0].", "pixelColour[0].",
+  "pixelBragg[0].", "work.", "tile.", "range." };
+
+// Array strides the reflection reports for the contract's records.
+const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
+  { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "pixelBragg[0].", sizeof(PixelBragg) } };
+
+std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)
+{
+  const std::string command = validator + " -V -q --reflect-all-block-variables --target-env vulkan1.1 -I" +
+    shaderDir + " -o /dev/null " + shaderDir + "/" + shader + " 2>&1";
+  std::string output;
+  if (FILE* pipe = ::popen(command.c_str(), "r"))
+  {
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe))
+    {
+      output += buffer;
+    }
+    OPAL_CHECK(::pclose(pipe) == 0, shader + " compiles: " + output);
+  }
+  return output;
+}
+
+std::string prefixOf(const std::string& name)
+{
+  for (const std::string& prefix : contractPrefixes)
+  {
+    if (name.compare(0, prefix.size(), prefix) == 0)
+    {
+      return prefix;
+    }
+  }
+  return {};
+}
+
+// Checks each reflected contract member of one shader; returns the names seen.
+std::set<std::string> checkShader(const std::string& shader, const std::string& reflection)
+{
+  std::set<std::string> seen;
+  const std::regex line(R"(^([A-Za-z_\[\]0-9.]+): offset (\d+),[^\n]*?(topLevelArrayStride (\d+))?$)");
+  std::istringstream lines(reflection);
+  std::string text;
+  std::smatch m;
+  while (std::getline(lines, text))
+  {
+    if (!std::regex_match(text, m, line) || prefixOf(m[1]).empty())
+    {
+      continue; // not a member of the contract's structs
+    }
+    const std::string name = m[1];
+    const auto expected = expectedOffsets().find(name);
+    OPAL_CHECK(expected != expectedOffsets().end(), shader + ": " + name + " is checked by this test's table");
+    if (expected != expectedOffsets().end())
+    {
+      OPAL_CHECK(std::stoul(m[2]) == expected->second, shader + ": " + name + " at GLSL offset " + m[2].str() +
+          ", C++ offset " + std::to_string(expected->second));
+    }
+    const auto stride = expectedStrides.find(prefixOf(name));
+    if (m[4].matched && stride != expectedStrides.end())
+    {
+      OPAL_CHECK(std::stoul(m[4]) == stride->second, shader + ": " + name + " array stride " + m[4].str() +
+          " = sizeof " + std::to_string(stride->second));
+    }
+    seen.insert(name);
+  }
+  // The parameter block's size, where the shader declares it.
+  const std::regex block(R"(ParameterBlock: offset -1, type [0-9a-f]+, size (\d+),)");
+  if (std::regex_search(reflection, m, block))
+  {
+    OPAL_CHECK(std::stoul(m[1]) == sizeof(RenderParameterBlock),
+      shader + ": the parameter block's size " + m[1].str() + " = sizeof " + std::to_string(sizeof(RenderParameterBlock)));
+  }
+  return seen;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  if (argc < 3)
+  {
+    std::cerr << "usage: TestOpalShaderContract GLSLANG_VALIDATOR SHADER_DIR" << std::endl;
+    return 2;
+  }
+  std::set<std::string> seen;
+  for (const char* shader : { "light_optical_depth.comp", "view_march.comp", "spectrum_to_colour.comp" })
+  {
+    const std::set<std::string> names = checkShader(shader, reflect(argv[1], argv[2], shader));
+    seen.insert(names.begin(), names.end());
+  }
+  for (const auto& [name, offset] : expectedOffsets())
+  {
+    OPAL_CHECK(seen.count(name) == 1, name + " is declared by some pass and so compared");
+  }
+  return opaltest::finish("TestOpalShaderContract");
+}
