@@ -135,19 +135,20 @@ def check_property(where, element, proxy, loaded, fresh, pushed):
         return
     xml = parse_values(kind, element.get("default_values"))
     count = int(element.get("number_of_elements", len(xml)))
-    check(len(xml) == count, f"{where}.{name}: {count} default values, got {xml}")
+    check(len(xml) == count, f"{where}.{name}: default_values has {count} values ({xml})")
     built = loaded.get(name)
     check(built is not None and same(xml, parse_values(kind, built)), f"{where}.{name}: the built "
-          f"plugin's definition defaults to {built!r}, the XML file to {xml} (rebuild the plugin?)")
+          f"plugin's default {built!r} is the XML file's {xml} (rebuild the plugin?)")
     prop = proxy.GetProperty(name).SMProperty
     current = current_values(kind, prop)
     check(same(xml, current) and prop.IsValueDefault(),
-          f"{where}.{name}: ParaView set {current} on creation, the XML says {xml}")
+          f"{where}.{name}: ParaView sets the XML default {xml} on creation (got {current})")
     check(in_domains(element, xml), f"{where}.{name}: the default {xml} lies in its domains")
     for label, members in (("a fresh C++ object", fresh), ("the object ParaView set up", pushed)):
         if check(member in members, f"{where}.{name}: {label} prints {member} (PrintSelf)"):
             value = parse_values(kind, members[member])
-            check(same(xml, value), f"{where}.{name}: XML default {xml}, {label} has {member} = {value}")
+            check(same(xml, value), f"{where}.{name}: {label} has the XML default, "
+                  f"{member} = {xml} (got {value})")
 
 
 def check_proxy(path, group, element, inputs):
@@ -173,7 +174,7 @@ def check_proxy(path, group, element, inputs):
             check_property(where, child, proxy, loaded, printed_fresh, printed_pushed)
             covered += 1
         elif child.tag.endswith("Property"):
-            check(False, f"{where}.{child.get('name')}: a {child.tag} the test does not know")
+            check(False, f"{where}.{child.get('name')}: the test knows how to check a {child.tag}")
     print(f"{where}: {covered} properties compared")
     return proxy
 
