@@ -107,6 +107,158 @@ float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
   return sum / float(n * n);
 }
 
+// What the march gathers per pixel besides the radiance: the brightest
+// diffraction's wavelength and luminance.
+float dominantLambda;
+float dominantY;
+
+// Bragg diffraction at a domain crossing (eq. 4, 9): lambda_B from the
+// glancing angle of the light on the lattice planes; the box band B averaged
+// per bin; gain G and 1/pi turn the reflected irradiance into radiance.
+void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, float tauView)
+{
+  vec3 towardLight = normalize(P.light - at);
+  float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
+  float tauLight = lightOpticalDepthAt(at);
+  float geometry = lightGeometryAt(at);
+  float weight = P.diffractionGain * geometry *
+    mosaicWeight(lattice.latticeNormal, towardLight, towardEye, P.mosaicSpread) / OPAL_PI;
+  for (int k = 1; k <= P.braggOrders; ++k)
+  {
+    float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
+    float contributionY = 0.0;
+    for (int l = 0; l < WAVELENGTHS; ++l)
+    {
+      float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
+      if (band > 0.0)
+      {
+        float value = weight * band * exp(-(tauLight + tauView) * bins[l].rayleighScale);
+        radiance[l] += value;
+        contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+      }
+    }
+    if (contributionY > dominantY)
+    {
+      dominantY = contributionY;
+      dominantLambda = lambdaB;
+    }
+  }
+}
+
+// Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]
+// in a voxel of coefficient mus, isotropic phase 1/(4 pi), in sub-steps of at
+// most marchStep with the view transmittance at each midpoint. Returns the
+// view optical depth after the segment.
+float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float mus, float tauView)
+{
+  int pieces = max(1, int(ceil(segment / P.marchStep)));
+  float ds = segment / float(pieces);
+  for (int q = 0; q < pieces; ++q)
+  {
+    vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
+    float tauTotal = lightOpticalDepthAt(at) + tauView + 0.5 * mus * ds;
+    float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
+    for (int l = 0; l < WAVELENGTHS; ++l)
+    {
+      float s = bins[l].rayleighScale;
+      radiance[l] += weight * s * exp(-tauTotal * s);
+    }
+    tauView += mus * ds;
+  }
+  return tauView;
+}
+
+// A 3-D DDA over the voxel cells (Amanatides & Woo): the current cell and the
+// ray distances to its next boundary along each axis.
+struct VoxelWalk
+{
+  ivec3 cell;
+  ivec3 stepDir;
+  vec3 tMax;
+  vec3 tDelta;
+};
+
+VoxelWalk startWalk(vec3 origin, vec3 direction)
+{
+  VoxelWalk walk;
+  vec3 cellLow = P.gridOrigin - 0.5 * P.gridSpacing;
+  walk.cell = voxelOf(origin);
+  walk.stepDir = ivec3(sign(direction));
+  vec3 inverse = 1.0 / max(abs(direction), vec3(1e-20));
+  vec3 nextBoundary = cellLow + (vec3(walk.cell) + max(vec3(walk.stepDir), vec3(0.0))) * P.gridSpacing;
+  walk.tMax = (nextBoundary - origin) * inverse * sign(direction);
+  walk.tMax = mix(walk.tMax, vec3(1e30), equal(walk.stepDir, ivec3(0)));
+  walk.tDelta = P.gridSpacing * inverse;
+  return walk;
+}
+
+// Steps to the next voxel along the axis whose boundary comes first.
+void stepWalk(inout VoxelWalk walk)
+{
+  if (walk.tMax.x <= walk.tMax.y && walk.tMax.x <= walk.tMax.z) { walk.cell.x += walk.stepDir.x; walk.tMax.x += walk.tDelta.x; }
+  else if (walk.tMax.y <= walk.tMax.z) { walk.cell.y += walk.stepDir.y; walk.tMax.y += walk.tDelta.y; }
+  else { walk.cell.z += walk.stepDir.z; walk.tMax.z += walk.tDelta.z; }
+}
+
+// The refracted ray from `origin` voxel by voxel to where it leaves the opal
+// at tExit, gathering scattering and each domain once per crossing.
+void marchInside(vec3 origin, vec3 inward, float tExit)
+{
+  vec3 towardEye = -inward;
+  VoxelWalk walk = startWalk(origin, inward);
+  float tauView = 0.0;       // optical depth at 550 nm from P_in along the view path
+  int lastDomain = -1;       // the domain being crossed, counted once
+  float t = 0.0;
+  for (int guard = 0; guard < 65536 && t < tExit; ++guard)
+  {
+    float tNext = min(min(walk.tMax.x, walk.tMax.y), min(walk.tMax.z, tExit));
+    float segment = tNext - t;
+    if (segment > 0.0 && insideGrid(walk.cell))
+    {
+      int v = voxelIndex(walk.cell);
+      int domain = domainIdField[v];
+      float mus = scatteringField[v];
+      if (domain >= 0 && domain != lastDomain)
+      {
+        diffractAtCrossing(origin + (t + 0.5 * segment) * inward, domains[domain], towardEye, tauView);
+      }
+      else if (domain < 0 && mus > 0.0)
+      {
+        tauView = scatterAlongSegment(origin, inward, t, segment, mus, tauView);
+      }
+      lastDomain = domain;
+    }
+    t = tNext;
+    if (t >= tExit) break;
+    stepWalk(walk);
+  }
+}
+
+// Spectral radiance: the light's normalised D65 scales every term; the view
+// ray carries 1 - F out of the opal; the highlight adds the mirrored light.
+void writePixel(int pixelIndex, float transmitted, float highlight, float tHit)
+{
+  vec3 xyz = vec3(0.0);
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    float value = (transmitted * radiance[l] + highlight) * bins[l].illuminant;
+    xyz += value * bins[l].colourMatching * bins[l].width;
+    if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
+  }
+  pixelColour[pixelIndex] = PixelColour(xyz, tHit);
+  pixelBragg[pixelIndex] = PixelBragg(dominantLambda, dominantY * transmitted, 1);
+}
+
+void writeMiss(int pixelIndex)
+{
+  pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
+  pixelBragg[pixelIndex] = PixelBragg(0.0, 0.0, 0);
+  if (P.writeSpectrum != 0)
+  {
+    for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
+  }
+}
+
 void main()
 {
   ivec2 local = ivec2(gl_GlobalInvocationID.xy) + tile.origin; // within the rectangle
@@ -119,22 +271,16 @@ void main()
   vec3 eye = P.eye;
   vec3 direction = primaryDirection(pixel);
   float mu = P.refractiveIndex;
-  bool writeSpectrum = P.writeSpectrum != 0;
-
   vec2 box = gridBoxHits(eye, direction);
   float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y) : -1.0;
   if (tHit < 0.0)
   {
-    pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
-    pixelBragg[pixelIndex] = PixelBragg(0.0, 0.0, 0);
-    if (writeSpectrum)
-    {
-      for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
-    }
+    writeMiss(pixelIndex);
     return;
   }
-
   for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
+  dominantLambda = 0.0;
+  dominantY = 0.0;
 
   // P_in: Fresnel reflection of the light and refraction of the view ray (paper §6.1).
   vec3 entry = eye + tHit * direction;
@@ -143,117 +289,7 @@ void main()
   float transmitted = 1.0 - fresnelReflectance(cosI, mu);
   float highlight = specularHighlight(pixel, eye, tHit, mu) * P.lightRadiance;
   vec3 inward = refract(direction, normal, 1.0 / mu);
-  vec3 towardEye = -inward;
-
-  // March the refracted ray voxel by voxel to where it leaves the opal.
   vec3 origin = entry - 1e-4 * P.smallestSpacing * normal;
-  float tExit = traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y);
-  vec3 cellLow = P.gridOrigin - 0.5 * P.gridSpacing;
-  ivec3 cell = voxelOf(origin);
-  ivec3 stepDir = ivec3(sign(inward));
-  vec3 inverse = 1.0 / max(abs(inward), vec3(1e-20));
-  vec3 nextBoundary = cellLow + (vec3(cell) + max(vec3(stepDir), vec3(0.0))) * P.gridSpacing;
-  vec3 tMax = (nextBoundary - origin) * inverse * sign(inward) ;
-  tMax = mix(tMax, vec3(1e30), equal(stepDir, ivec3(0)));
-  vec3 tDelta = P.gridSpacing * inverse;
-
-  float stepLimit = P.marchStep;
-  float gain = P.diffractionGain;
-  float bandwidth = P.braggBandwidth;
-  float spread = P.mosaicSpread;
-  int orders = P.braggOrders;
-  float tauView = 0.0;       // optical depth at 550 nm from P_in along the view path
-  int lastDomain = -1;       // the domain being crossed, counted once
-  float dominantLambda = 0.0;
-  float dominantY = 0.0;
-  float t = 0.0;
-  for (int guard = 0; guard < 65536 && t < tExit; ++guard)
-  {
-    float tNext = min(min(tMax.x, tMax.y), min(tMax.z, tExit));
-    float segment = tNext - t;
-    if (segment > 0.0 && insideGrid(cell))
-    {
-      int v = voxelIndex(cell);
-      int domain = domainIdField[v];
-      float mus = scatteringField[v];
-      if (domain >= 0)
-      {
-        if (domain != lastDomain)
-        {
-          // Bragg diffraction at the crossing (eq. 4, 9): lambda_B from the
-          // glancing angle of the light on the lattice planes; the box band B
-          // averaged per bin; gain G and 1/pi turn the reflected irradiance into radiance.
-          vec3 at = origin + (t + 0.5 * segment) * inward;
-          DomainRecord lattice = domains[domain];
-          vec3 towardLight = normalize(P.light - at);
-          float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
-          float tauLight = lightOpticalDepthAt(at);
-          float geometry = lightGeometryAt(at);
-          float weight = gain * geometry * mosaicWeight(lattice.latticeNormal, towardLight, towardEye, spread) / OPAL_PI;
-          for (int k = 1; k <= orders; ++k)
-          {
-            float lambdaB = braggSnellWavelength(lattice.planeSpacing, mu, sinGlancing, k);
-            float contributionY = 0.0;
-            for (int l = 0; l < WAVELENGTHS; ++l)
-            {
-              float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, bandwidth);
-              if (band > 0.0)
-              {
-                float value = weight * band * exp(-(tauLight + tauView) * bins[l].rayleighScale);
-                radiance[l] += value;
-                contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
-              }
-            }
-            if (contributionY > dominantY)
-            {
-              dominantY = contributionY;
-              dominantLambda = lambdaB;
-            }
-          }
-          lastDomain = domain;
-        }
-      }
-      else
-      {
-        lastDomain = -1;
-        if (mus > 0.0)
-        {
-          // Rayleigh single scattering (eq. 8), isotropic phase 1/(4 pi), with
-          // the view transmittance at each sub-step's midpoint.
-          int pieces = max(1, int(ceil(segment / stepLimit)));
-          float ds = segment / float(pieces);
-          for (int q = 0; q < pieces; ++q)
-          {
-            vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
-            float tauTotal = lightOpticalDepthAt(at) + tauView + 0.5 * mus * ds;
-            float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
-            for (int l = 0; l < WAVELENGTHS; ++l)
-            {
-              float s = bins[l].rayleighScale;
-              radiance[l] += weight * s * exp(-tauTotal * s);
-            }
-            tauView += mus * ds;
-          }
-        }
-      }
-    }
-    t = tNext;
-    if (t >= tExit) break;
-    // Step to the next voxel along the axis whose boundary comes first.
-    if (tMax.x <= tMax.y && tMax.x <= tMax.z) { cell.x += stepDir.x; tMax.x += tDelta.x; }
-    else if (tMax.y <= tMax.z) { cell.y += stepDir.y; tMax.y += tDelta.y; }
-    else { cell.z += stepDir.z; tMax.z += tDelta.z; }
-  }
-
-  // Spectral radiance: the light's normalised D65 scales every term; the view
-  // ray carries 1 - F out of the opal; the highlight adds the mirrored light.
-  vec3 xyz = vec3(0.0);
-  for (int l = 0; l < WAVELENGTHS; ++l)
-  {
-    float value = (transmitted * radiance[l] + highlight) * bins[l].illuminant;
-    xyz += value * bins[l].colourMatching * bins[l].width;
-    if (writeSpectrum) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
-  }
-  pixelColour[pixelIndex] = PixelColour(xyz, tHit);
-  pixelBragg[pixelIndex] = PixelBragg(dominantLambda, dominantY * transmitted, 1);
+  marchInside(origin, inward, traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y));
+  writePixel(pixelIndex, transmitted, highlight, tHit);
 }

@@ -18,6 +18,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <sstream>
 
 vtkStandardNewMacro(vtkOpalBraggMap);
 
@@ -27,7 +28,7 @@ vtkOpalBraggMap::vtkOpalBraggMap()
   std::copy(defaults.LightPosition.begin(), defaults.LightPosition.end(), this->LightPosition);
   std::copy(defaults.EyePosition.begin(), defaults.EyePosition.end(), this->EyePosition);
   this->RefractiveIndex = defaults.RefractiveIndex;
-  this->BraggOrder = defaults.Order;
+  this->BraggOrder = defaults.BraggOrder;
   this->MosaicSpread = defaults.MosaicSpread;
 }
 
@@ -37,13 +38,98 @@ int vtkOpalBraggMap::FillInputPortInformation(int, vtkInformation* info)
   return 1;
 }
 
+namespace
+{
+// Empty if the input carries the domain arrays (on its points for the volume,
+// on its cells for the domain polygons) and the light lies outside the opal.
+std::string checkInput(vtkDataSet* input, vtkDataSetAttributes* attributes, bool onPoints, const double light[3])
+{
+  for (const char* name : { "DomainId", "Normal", "ParticleDiameter" })
+  {
+    if (!attributes->GetArray(name))
+    {
+      return std::string("The input lacks the ") + (onPoints ? "point" : "cell") + " array " + name +
+        "; connect an Opal Volume or its domain polygons.";
+    }
+  }
+  if (vtkImageData* image = vtkImageData::SafeDownCast(input))
+  {
+    vtkDataArray* distance = image->GetPointData()->GetArray("SurfaceDistance");
+    const vtkIdType nearest = image->FindPoint(const_cast<double*>(light));
+    if (distance && nearest >= 0 && distance->GetComponent(nearest, 0) <= 0)
+    {
+      std::ostringstream message;
+      message << "LightPosition (" << light[0] << ", " << light[1] << ", " << light[2]
+              << ") is inside the opal; place the light outside it.";
+      return message.str();
+    }
+  }
+  return {};
+}
+
+// Where element i sits: the voxel's point, or the domain polygon's centroid.
+std::array<double, 3> positionOf(vtkDataSet* input, bool onPoints, vtkIdType i, vtkIdList* cellPoints)
+{
+  std::array<double, 3> position{ 0, 0, 0 };
+  if (onPoints)
+  {
+    input->GetPoint(i, position.data());
+    return position;
+  }
+  input->GetCellPoints(i, cellPoints);
+  for (vtkIdType k = 0; k < cellPoints->GetNumberOfIds(); ++k)
+  {
+    double x[3];
+    input->GetPoint(cellPoints->GetId(k), x);
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      position[a] += x[a] / static_cast<double>(cellPoints->GetNumberOfIds());
+    }
+  }
+  return position;
+}
+
+// The output arrays BraggWavelength, BraggVisible and BraggColor.
+struct BraggArrays
+{
+  explicit BraggArrays(vtkIdType count)
+  {
+    this->Wavelength->SetName("BraggWavelength");
+    this->Wavelength->SetNumberOfTuples(count);
+    this->Visible->SetName("BraggVisible");
+    this->Visible->SetNumberOfTuples(count);
+    this->Colour->SetName("BraggColor");
+    this->Colour->SetNumberOfComponents(3);
+    this->Colour->SetNumberOfTuples(count);
+  }
+  void set(vtkIdType i, const opal::BraggMapValue& value)
+  {
+    this->Wavelength->SetValue(i, static_cast<float>(value.Wavelength));
+    this->Visible->SetValue(i, static_cast<float>(value.Visible));
+    this->Colour->SetTypedTuple(i, value.Colour.data());
+  }
+  vtkNew<vtkFloatArray> Wavelength, Visible;
+  vtkNew<vtkUnsignedCharArray> Colour;
+};
+} // namespace
+
+opal::BraggMapSettings vtkOpalBraggMap::GetSettings() const
+{
+  opal::BraggMapSettings settings;
+  std::copy(this->LightPosition, this->LightPosition + 3, settings.LightPosition.begin());
+  std::copy(this->EyePosition, this->EyePosition + 3, settings.EyePosition.begin());
+  settings.RefractiveIndex = this->RefractiveIndex;
+  settings.BraggOrder = this->BraggOrder;
+  settings.MosaicSpread = this->MosaicSpread;
+  return settings;
+}
+
 int vtkOpalBraggMap::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
   output->ShallowCopy(input);
-
   if (!(this->RefractiveIndex > 1) || this->BraggOrder < 1 || !(this->MosaicSpread >= 0))
   {
     vtkErrorMacro("RefractiveIndex must exceed 1, BraggOrder be at least 1 and MosaicSpread not negative.");
@@ -53,56 +139,25 @@ int vtkOpalBraggMap::RequestData(
   const bool onPoints = input->GetPointData()->GetArray("DomainId") != nullptr;
   vtkDataSetAttributes* attributes =
     onPoints ? static_cast<vtkDataSetAttributes*>(input->GetPointData()) : input->GetCellData();
-  for (const char* name : { "DomainId", "Normal", "ParticleDiameter" })
+  const std::string error = checkInput(input, attributes, onPoints, this->LightPosition);
+  if (!error.empty())
   {
-    if (!attributes->GetArray(name))
-    {
-      vtkErrorMacro("The input lacks the " << (onPoints ? "point" : "cell") << " array " << name
-                                           << "; connect an Opal Volume or its domain polygons.");
-      return 0;
-    }
+    vtkErrorMacro(<< error);
+    return 0;
   }
-  if (vtkImageData* image = vtkImageData::SafeDownCast(input))
-  {
-    vtkDataArray* distance = image->GetPointData()->GetArray("SurfaceDistance");
-    const vtkIdType nearest = image->FindPoint(this->LightPosition);
-    if (distance && nearest >= 0 && distance->GetComponent(nearest, 0) <= 0)
-    {
-      vtkErrorMacro("LightPosition (" << this->LightPosition[0] << ", " << this->LightPosition[1] << ", "
-                                      << this->LightPosition[2] << ") is inside the opal; place the light outside it.");
-      return 0;
-    }
-  }
-
-  opal::BraggMapSettings settings;
-  std::copy(this->LightPosition, this->LightPosition + 3, settings.LightPosition.begin());
-  std::copy(this->EyePosition, this->EyePosition + 3, settings.EyePosition.begin());
-  settings.RefractiveIndex = this->RefractiveIndex;
-  settings.Order = this->BraggOrder;
-  settings.MosaicSpread = this->MosaicSpread;
-
+  const opal::BraggMapSettings settings = this->GetSettings();
   vtkDataArray* ids = attributes->GetArray("DomainId");
   vtkDataArray* normals = attributes->GetArray("Normal");
   vtkDataArray* diameters = attributes->GetArray("ParticleDiameter");
   const vtkIdType count = ids->GetNumberOfTuples();
-  vtkNew<vtkFloatArray> wavelength, visible;
-  vtkNew<vtkUnsignedCharArray> colour;
-  wavelength->SetName("BraggWavelength");
-  wavelength->SetNumberOfTuples(count);
-  visible->SetName("BraggVisible");
-  visible->SetNumberOfTuples(count);
-  colour->SetName("BraggColor");
-  colour->SetNumberOfComponents(3);
-  colour->SetNumberOfTuples(count);
+  BraggArrays arrays(count);
   // Cell centres need a thread-safe GetCell: build the links once.
   if (!onPoints && count > 0)
   {
     vtkNew<vtkIdList> warmUp;
     input->GetCellPoints(0, warmUp);
   }
-
-  const int chunks = 20;
-  const vtkIdType chunk = std::max<vtkIdType>(1, (count + chunks - 1) / chunks);
+  const vtkIdType chunk = std::max<vtkIdType>(1, (count + 19) / 20); // 20 progress steps
   for (vtkIdType begin = 0; begin < count; begin += chunk)
   {
     if (this->GetAbortExecute())
@@ -114,42 +169,18 @@ int vtkOpalBraggMap::RequestData(
       vtkNew<vtkIdList> cellPoints;
       for (vtkIdType i = first; i < last; ++i)
       {
-        opal::BraggMapValue value;
-        if (ids->GetComponent(i, 0) >= 0)
-        {
-          std::array<double, 3> position{ 0, 0, 0 }, normal;
-          if (onPoints)
-          {
-            input->GetPoint(i, position.data());
-          }
-          else
-          {
-            input->GetCellPoints(i, cellPoints);
-            for (vtkIdType k = 0; k < cellPoints->GetNumberOfIds(); ++k)
-            {
-              double x[3];
-              input->GetPoint(cellPoints->GetId(k), x);
-              for (int a = 0; a < 3; ++a)
-              {
-                position[static_cast<std::size_t>(a)] += x[a] / cellPoints->GetNumberOfIds();
-              }
-            }
-          }
-          normals->GetTuple(i, normal.data());
-          value = opal::braggMapAt(position, normal, diameters->GetComponent(i, 0), settings);
-        }
-        wavelength->SetValue(i, static_cast<float>(value.Wavelength));
-        visible->SetValue(i, static_cast<float>(value.Visible));
-        colour->SetTypedTuple(i, value.Colour.data());
+        std::array<double, 3> normal;
+        normals->GetTuple(i, normal.data());
+        arrays.set(i, ids->GetComponent(i, 0) < 0 ? opal::BraggMapValue()
+            : opal::braggMapAt(positionOf(input, onPoints, i, cellPoints), normal, diameters->GetComponent(i, 0), settings));
       }
     });
     this->UpdateProgress(static_cast<double>(end) / count);
   }
-  vtkDataSetAttributes* outAttributes = onPoints ? static_cast<vtkDataSetAttributes*>(output->GetPointData())
-                                                 : output->GetCellData();
-  outAttributes->AddArray(wavelength);
-  outAttributes->AddArray(visible);
-  outAttributes->AddArray(colour);
+  vtkDataSetAttributes* out = onPoints ? static_cast<vtkDataSetAttributes*>(output->GetPointData()) : output->GetCellData();
+  out->AddArray(arrays.Wavelength);
+  out->AddArray(arrays.Visible);
+  out->AddArray(arrays.Colour);
   return 1;
 }
 

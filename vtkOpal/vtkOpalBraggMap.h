@@ -16,6 +16,11 @@
 #include "vtkOpalModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
 
+namespace opal
+{
+struct BraggMapSettings;
+}
+
 class VTKOPAL_EXPORT vtkOpalBraggMap : public vtkPassInputTypeAlgorithm
 {
 public:
@@ -53,6 +58,8 @@ protected:
   double MosaicSpread;
 
 private:
+  opal::BraggMapSettings GetSettings() const;
+
   vtkOpalBraggMap(const vtkOpalBraggMap&) = delete;
   void operator=(const vtkOpalBraggMap&) = delete;
 };

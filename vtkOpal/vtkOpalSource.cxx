@@ -30,6 +30,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <optional>
 
 vtkStandardNewMacro(vtkOpalSource);
 vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_IMAGE_SIZE, IntegerVector, 2);
@@ -212,6 +213,72 @@ vtkNew<vtkPolyData> makeDomainPolygons(const opal::DomainLayout& layout, double 
 }
 } // namespace
 
+std::optional<opal::DomainLayout> vtkOpalSource::BuildLayout(const opal::ModelParameters& parameters)
+{
+  opal::DomainLayout layout = opal::DomainLayout::build(parameters, [this](double fraction) {
+    this->UpdateProgress(LayoutProgressShare * fraction);
+    return !this->GetAbortExecute();
+  });
+  if (layout.aborted())
+  {
+    return std::nullopt;
+  }
+  if (layout.placedCount() < layout.requestedCount())
+  {
+    vtkWarningMacro("DomainCount: only " << layout.placedCount() << " of " << layout.requestedCount()
+                                         << " domains could be placed within MaxPlacementAttempts ("
+                                         << parameters.MaxPlacementAttempts
+                                         << "); DomainsPlaced in the field data says how many.");
+  }
+  return layout;
+}
+
+bool vtkOpalSource::FillVolume(
+  vtkImageData* image, const opal::ModelParameters& parameters, const opal::DomainLayout& layout)
+{
+  const int* extent = image->GetExtent();
+  const vtkIdType count = image->GetNumberOfPoints();
+  auto voxelType = makePointArray<vtkUnsignedCharArray>("VoxelType", 1, count);
+  auto diameter = makePointArray<vtkFloatArray>("ParticleDiameter", 1, count);
+  auto normal = makePointArray<vtkFloatArray>("Normal", 3, count);
+  auto domainId = makePointArray<vtkIntArray>("DomainId", 1, count);
+  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, count);
+  auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
+  auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
+  auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
+  const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0), normal->GetPointer(0),
+    domainId->GetPointer(0), lambdaMax->GetPointer(0), lambdaMin->GetPointer(0), scattering->GetPointer(0),
+    distance->GetPointer(0) };
+
+  // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
+  const opal::VolumeFiller filler(parameters, layout);
+  const std::array<int, 6> fillExtent{ extent[0], extent[1], extent[2], extent[3], extent[4], extent[5] };
+  const int slabs = count > 0 ? extent[5] - extent[4] + 1 : 0;
+  const int chunk = std::max(1, slabs / 20);
+  for (int k = extent[4]; count > 0 && k <= extent[5]; k += chunk)
+  {
+    if (this->GetAbortExecute())
+    {
+      return false;
+    }
+    const int kEnd = std::min(extent[5] + 1, k + chunk);
+    opal::parallelFor(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
+    this->UpdateProgress(
+      LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
+  }
+  vtkPointData* pointData = image->GetPointData();
+  pointData->SetScalars(voxelType);
+  pointData->AddArray(diameter);
+  pointData->SetNormals(normal);
+  for (vtkDataArray* array : { static_cast<vtkDataArray*>(domainId), static_cast<vtkDataArray*>(lambdaMax),
+         static_cast<vtkDataArray*>(lambdaMin), static_cast<vtkDataArray*>(scattering),
+         static_cast<vtkDataArray*>(distance) })
+  {
+    pointData->AddArray(array);
+  }
+  return true;
+}
+
 int vtkOpalSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -223,23 +290,11 @@ int vtkOpalSource::RequestData(
   }
   const opal::ModelParameters parameters = this->GetModelParameters();
   const opal::Grid grid = opal::Grid::fromParameters(parameters);
-
   this->UpdateProgress(0.0);
-  const opal::DomainLayout layout =
-    opal::DomainLayout::build(parameters, [this](double fraction) {
-      this->UpdateProgress(LayoutProgressShare * fraction);
-      return !this->GetAbortExecute();
-    });
-  if (layout.aborted())
+  const std::optional<opal::DomainLayout> layout = this->BuildLayout(parameters);
+  if (!layout)
   {
     return 0;
-  }
-  if (layout.placedCount() < layout.requestedCount())
-  {
-    vtkWarningMacro("DomainCount: only " << layout.placedCount() << " of " << layout.requestedCount()
-                                         << " domains could be placed within MaxPlacementAttempts ("
-                                         << parameters.MaxPlacementAttempts
-                                         << "); DomainsPlaced in the field data says how many.");
   }
 
   vtkInformation* imageInfo = outputVector->GetInformationObject(0);
@@ -249,50 +304,13 @@ int vtkOpalSource::RequestData(
   image->SetExtent(extent);
   image->SetSpacing(grid.Spacing.data());
   image->SetOrigin(grid.Origin.data());
-  const vtkIdType count = image->GetNumberOfPoints();
-
-  auto voxelType = makePointArray<vtkUnsignedCharArray>("VoxelType", 1, count);
-  auto diameter = makePointArray<vtkFloatArray>("ParticleDiameter", 1, count);
-  auto normal = makePointArray<vtkFloatArray>("Normal", 3, count);
-  auto domainId = makePointArray<vtkIntArray>("DomainId", 1, count);
-  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, count);
-  auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
-  auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
-  auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
-  const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0),
-    normal->GetPointer(0), domainId->GetPointer(0), lambdaMax->GetPointer(0),
-    lambdaMin->GetPointer(0), scattering->GetPointer(0), distance->GetPointer(0) };
-
-  // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
-  const opal::VolumeFiller filler(parameters, layout);
-  const std::array<int, 6> fillExtent{ extent[0], extent[1], extent[2], extent[3], extent[4],
-    extent[5] };
-  const int slabs = count > 0 ? extent[5] - extent[4] + 1 : 0;
-  const int chunk = std::max(1, slabs / 20);
-  for (int k = extent[4]; count > 0 && k <= extent[5]; k += chunk)
+  if (!this->FillVolume(image, parameters, *layout))
   {
-    if (this->GetAbortExecute())
-    {
-      image->Initialize();
-      return 0;
-    }
-    const int kEnd = std::min(extent[5] + 1, k + chunk);
-    opal::parallelFor(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
-    this->UpdateProgress(
-      LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
+    image->Initialize();
+    return 0;
   }
-
-  vtkPointData* pointData = image->GetPointData();
-  pointData->SetScalars(voxelType);
-  pointData->AddArray(diameter);
-  pointData->SetNormals(normal);
-  pointData->AddArray(domainId);
-  pointData->AddArray(lambdaMax);
-  pointData->AddArray(lambdaMin);
-  pointData->AddArray(scattering);
-  pointData->AddArray(distance);
-  vtkOpalFieldData::AddModelParameters(image, parameters, this->Preset, layout.placedCount());
-  vtkOpalFieldData::AddDomainTable(image, layout);
+  vtkOpalFieldData::AddModelParameters(image, parameters, this->Preset, layout->placedCount());
+  vtkOpalFieldData::AddDomainTable(image, *layout);
 
   // The layout is small: the first piece carries all of it, the others none.
   vtkInformation* polyInfo = outputVector->GetInformationObject(1);
@@ -302,13 +320,13 @@ int vtkOpalSource::RequestData(
     : 0;
   if (piece == 0)
   {
-    polygons->ShallowCopy(makeDomainPolygons(layout, parameters.RefractiveIndex));
+    polygons->ShallowCopy(makeDomainPolygons(*layout, parameters.RefractiveIndex));
   }
   else
   {
     polygons->Initialize();
   }
-  vtkOpalFieldData::AddModelParameters(polygons, parameters, this->Preset, layout.placedCount());
+  vtkOpalFieldData::AddModelParameters(polygons, parameters, this->Preset, layout->placedCount());
   this->UpdateProgress(1.0);
   return 1;
 }

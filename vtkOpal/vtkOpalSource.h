@@ -27,15 +27,19 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkOpalModule.h" // for export macro
 
+#include <optional>
 #include <string>
 
 class vtkInformationDoubleKey;
 class vtkInformationDoubleVectorKey;
 class vtkInformationIntegerVectorKey;
 
+class vtkImageData;
+
 namespace opal
 {
 struct ModelParameters;
+class DomainLayout;
 }
 
 class VTKOPAL_EXPORT vtkOpalSource : public vtkImageAlgorithm
@@ -188,4 +192,8 @@ private:
 
   // Empty if the parameters are valid, else the message naming the parameter.
   std::string Validate() const;
+  // The domain layout (warning when not all domains fit); empty if aborted.
+  std::optional<opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
+  // Fills the image's extent with the voxel arrays; false if aborted.
+  bool FillVolume(vtkImageData* image, const opal::ModelParameters& parameters, const opal::DomainLayout& layout);
 };

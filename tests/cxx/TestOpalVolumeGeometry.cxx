@@ -2,6 +2,7 @@
 // the half-ellipsoid, normals are unit vectors where set, diameters lie in
 // their ranges, and the per-voxel optics equal the paper's eq. 1-5 computed
 // here independently. A spherical cabochon checks SurfaceDistance exactly.
+#include "OpalOptics.h"
 #include "OpalTestVolumes.h"
 
 #include "vtkDataArray.h"
@@ -16,7 +17,7 @@
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
+using opal::Pi;
 
 // Paper eq. 1 with eq. 2, l and lambda in mm, in 1/mm.
 double rayleighEq1(double diameterNm, double volumeFraction, double wavelengthNm)

@@ -1,6 +1,6 @@
 #include "OpalBraggMap.h"
 
-#include "OpalColorimetry.h"
+#include "OpalColourimetry.h"
 #include "OpalOptics.h"
 
 #include <glm/glm.hpp>
@@ -19,7 +19,7 @@ BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array
   // The glancing angle theta1 between the light and the lattice planes.
   const double glancing = std::asin(std::min(1.0, std::fabs(glm::dot(towardLight, n))));
   BraggMapValue value;
-  value.Wavelength = braggSnellWavelength(diameterNm, s.RefractiveIndex, glancing, s.Order);
+  value.Wavelength = braggSnellWavelength(diameterNm, s.RefractiveIndex, glancing, s.BraggOrder);
   const bool visible = value.Wavelength >= s.VisibleRange[0] && value.Wavelength <= s.VisibleRange[1];
   double weight = 1.0;
   if (s.MosaicSpread > 0)

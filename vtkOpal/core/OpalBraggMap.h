@@ -14,7 +14,7 @@ struct BraggMapSettings
   std::array<double, 3> LightPosition{ 0.0, 60.0, 0.0 }; // mm
   std::array<double, 3> EyePosition{ 0.0, 60.0, 0.0 };   // mm
   double RefractiveIndex = 1.45;
-  int Order = 1;                                       // Bragg order k
+  int BraggOrder = 1;                                     // Bragg order k
   double MosaicSpread = 0.0;                           // degrees; 0 = off
   std::array<double, 2> VisibleRange{ 380.0, 780.0 };  // nm
 };

@@ -1,6 +1,7 @@
 #include "OpalDomainLayout.h"
 
 #include "OpalHalfEllipsoid.h"
+#include "OpalOptics.h"
 #include "OpalRandom.h"
 
 #include <glm/glm.hpp>
@@ -16,7 +17,7 @@ namespace opal
 namespace
 {
 
-constexpr double DegToRad = 3.14159265358979323846 / 180.0;
+constexpr double DegToRad = Pi / 180.0;
 
 // Step 1-2 of paper §3.2: a regular N-gon of circumradius R in the local xz
 // plane, each vertex pulled towards the centre to a random point on its spoke;
@@ -35,7 +36,7 @@ std::vector<glm::dvec2> drawPolygon(const ModelParameters& p, RandomSequence& ra
     for (int i = 0; i < n; ++i)
     {
       const double spoke = radius * random.uniform(p.DomainVertexJitter[0], p.DomainVertexJitter[1]);
-      const double angle = 2.0 * 3.14159265358979323846 * i / n;
+      const double angle = 2.0 * Pi * i / n;
       polygon[static_cast<std::size_t>(i)] = { spoke * std::cos(angle), spoke * std::sin(angle) };
     }
     bool acceptable = true;
@@ -48,7 +49,7 @@ std::vector<glm::dvec2> drawPolygon(const ModelParameters& p, RandomSequence& ra
       const glm::dvec2 out = next - vertex;
       // The interior angle is pi minus the turn; a reflex vertex turns negatively.
       const double turn = std::atan2(in.x * out.y - in.y * out.x, glm::dot(in, out));
-      const double interior = 3.14159265358979323846 - turn;
+      const double interior = Pi - turn;
       acceptable = interior >= minAngle && interior <= maxAngle;
     }
     if (acceptable)
@@ -207,10 +208,8 @@ DomainLayout DomainLayout::build(
       Domain domain;
       domain.Id = static_cast<int>(layout.Domains.size());
       domain.Vertices = vertices;
-      domain.Centre = centre;
       domain.Normal = n;
       domain.ParticleDiameter = diameter;
-      domain.VoxelCount = static_cast<std::int64_t>(voxels.size());
       for (const auto& v : voxels)
       {
         const std::int64_t index = grid.linearIndex(v[0], v[1], v[2]);

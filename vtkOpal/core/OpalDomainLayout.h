@@ -20,10 +20,8 @@ struct Domain
 {
   int Id = -1;
   std::vector<std::array<double, 3>> Vertices; // world coordinates, mm
-  std::array<double, 3> Centre{};
   std::array<double, 3> Normal{}; // FCC (111) lattice-plane normal, y >= 0
   double ParticleDiameter = 0;    // nm
-  std::int64_t VoxelCount = 0;
 };
 
 // One diffraction voxel: its global linear index and its domain.

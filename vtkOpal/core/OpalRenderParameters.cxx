@@ -1,5 +1,7 @@
 #include "OpalRenderParameters.h"
 
+#include "OpalSpectralSampling.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -8,7 +10,7 @@ namespace opal
 
 int wavelengthCount(const RenderParameters& p)
 {
-  return static_cast<int>(std::floor((p.WavelengthRange[1] - p.WavelengthRange[0]) / p.WavelengthStep + 1e-3)) + 1;
+  return wavelengthBinCount(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
 }
 
 std::string validate(const RenderParameters& p)

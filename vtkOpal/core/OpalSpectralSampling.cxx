@@ -1,6 +1,7 @@
 #include "OpalSpectralSampling.h"
 
 #include "OpalEmbeddedTables.h"
+#include "OpalOptics.h"
 
 #include <algorithm>
 #include <array>
@@ -103,10 +104,16 @@ double cieD65(double lambda)
   return d65Table().at(0, lambda, true);
 }
 
+int wavelengthBinCount(double lo, double hi, double step)
+{
+  return static_cast<int>(std::floor((hi - lo) / step + 1e-3)) + 1;
+}
+
 std::vector<WavelengthBin> sampleWavelengths(double lo, double hi, double step)
 {
   std::vector<WavelengthBin> bins;
-  for (int i = 0; lo + i * step <= hi + 1e-3 * step; ++i)
+  const int count = wavelengthBinCount(lo, hi, step);
+  for (int i = 0; i < count; ++i)
   {
     const double lambda = lo + i * step;
     const double a = lambda - 0.5 * step;
@@ -114,7 +121,7 @@ std::vector<WavelengthBin> sampleWavelengths(double lo, double hi, double step)
     WavelengthBin bin;
     bin.Lambda = lambda;
     bin.Width = step;
-    bin.RayleighScale = std::pow(550.0 / lambda, 4.0);
+    bin.RayleighScale = std::pow(ReferenceWavelengthNm / lambda, 4.0);
     bin.D65 = binAverage([](double l) { return cieD65(l); }, a, b);
     bin.XBar = binAverage([](double l) { return cieColourMatching(0, l); }, a, b);
     bin.YBar = binAverage([](double l) { return cieColourMatching(1, l); }, a, b);

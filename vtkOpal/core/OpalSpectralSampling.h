@@ -21,6 +21,9 @@ struct WavelengthBin
 // Bins centred at lo, lo + step, ... up to hi (inclusive within step/1000).
 std::vector<WavelengthBin> sampleWavelengths(double lo, double hi, double step);
 
+// How many bins sampleWavelengths gives (without computing them).
+int wavelengthBinCount(double lo, double hi, double step);
+
 // The official tables, linearly interpolated (CMFs 360-830 nm at 1 nm, zero
 // outside; D65 300-780 nm at 5 nm, held constant beyond its ends).
 double cieColourMatching(int component, double lambda);

@@ -1,4 +1,4 @@
-#include "OpalColorimetry.h"
+#include "OpalColourimetry.h"
 
 #include "OpalSpectralSampling.h"
 

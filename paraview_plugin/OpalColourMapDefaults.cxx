@@ -2,7 +2,7 @@
 // wavelength) becomes ParaView's default for the arrays that hold
 // wavelengths, as site-level settings registered when the plugin loads, so a
 // user's own choice (saved at a higher priority) still wins.
-#include "OpalColorimetry.h"
+#include "OpalColourimetry.h"
 
 #include "vtkSMSettings.h"
 
