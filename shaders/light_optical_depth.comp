@@ -1,5 +1,5 @@
 #version 450
-// LightOpticalDepthPass (DESIGN.md §3, "the main speed-up"): for every voxel,
+// LightOpticalDepthPass (docs/design.md §3.3): for every voxel,
 // the optical depth at 550 nm along the straight line to the light, and the
 // light's geometric factor there: Fresnel transmission at the light's entry
 // point L_in times the inverse-square fall-off, normalised to 1 at the apex.
@@ -25,7 +25,7 @@ layout(push_constant) uniform LightPassPush { LightPassWork work; };
 
 // The light's geometric factor at p, given where its path enters the opal:
 // Fresnel transmission there times the inverse-square fall-off, 1 at the apex.
-// DESIGN.md §3: 1/r^2 to the sample; the paper's eq. 6 stops it at L_in (an option).
+// docs/design.md §4.1: 1/r^2 to the sample; the paper's eq. 6 stops it at L_in (an option).
 float entryGeometry(vec3 p, vec3 lightEntry, vec3 direction)
 {
   float transmission = 1.0 - fresnelReflectance(dot(surfaceNormal(lightEntry), direction), P.refractiveIndex);

@@ -1,4 +1,4 @@
-// The optics of the model (paper eq. 4-9, DESIGN.md §3), shared by the passes.
+// The optics of the model (paper eq. 4-9, docs/design.md §3.1), shared by the passes.
 
 const float OPAL_PI = 3.14159265358979;
 

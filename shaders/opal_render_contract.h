@@ -1,4 +1,4 @@
-// The host-shader contract of the render (docs/design.md §5): binding
+// The host-shader contract of the render (docs/design.md §3.8): binding
 // numbers, the parameter block, the wavelength-bin record, one push-constant
 // struct per pass and the light pass's modes. The GLSL passes and the C++ of
 // OpalGpu include this one file, so the two sides cannot drift apart;

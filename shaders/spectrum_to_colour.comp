@@ -1,5 +1,5 @@
 #version 450
-// SpectrumToColourPass (DESIGN.md §3, step 4): CIE XYZ (already integrated
+// SpectrumToColourPass (docs/design.md §3.5): CIE XYZ (already integrated
 // from the spectrum with the CIE 1931 2-degree tables) -> linear sRGB (D65)
 // -> exposure -> hue-preserving tone map -> sRGB transfer -> 8 bit.
 #extension GL_GOOGLE_include_directive : require

@@ -1,5 +1,5 @@
 #version 450
-// ViewMarchPass (paper §6, DESIGN.md §3): per pixel, the primary ray meets the
+// ViewMarchPass (paper §6, docs/design.md §3.4): per pixel, the primary ray meets the
 // smooth surface (the zero of SurfaceDistance); the light's mirror image is
 // the Fresnel highlight (supersampled over the pixel, so a light smaller than
 // a pixel still shows); the refracted ray (Snell 1 -> mu, carrying 1 - F)

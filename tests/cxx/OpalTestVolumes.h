@@ -15,7 +15,7 @@
 namespace opaltest
 {
 
-// The array names of DESIGN.md §2: the interface users and tests rely on.
+// The array names of docs/design.md §2.5: the interface users and tests rely on.
 inline const std::array<const char*, 8>& volumeArrayNames()
 {
   static const std::array<const char*, 8> names = { "VoxelType", "ParticleDiameter", "Normal",

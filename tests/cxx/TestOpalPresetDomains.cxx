@@ -1,4 +1,4 @@
-// Every paper preset (DESIGN.md §4) places all 250 domains at paper scale,
+// Every paper preset (docs/design.md §2.8) places all 250 domains at paper scale,
 // with the preset's sphere diameters, and the domain polygons match.
 #include "OpalTestVolumes.h"
 

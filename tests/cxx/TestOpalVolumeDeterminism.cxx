@@ -1,4 +1,4 @@
-// Determinism and piece invariance (DESIGN.md §2): the same seed gives
+// Determinism and piece invariance (docs/design.md §2.7): the same seed gives
 // identical arrays, another seed different ones, and any split of the extent
 // into pieces gives exactly the whole run's values.
 #include "OpalTestVolumes.h"

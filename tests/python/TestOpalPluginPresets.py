@@ -1,5 +1,5 @@
 """pvpython: the plugin loads, its Opal Volume proxy is documented and builds
-every paper preset with the arrays of DESIGN.md section 2 and all 250 domains."""
+every paper preset with the arrays of docs/design.md §2.5 and all 250 domains."""
 import sys
 
 from paraview import servermanager as sm

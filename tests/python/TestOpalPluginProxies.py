@@ -1,5 +1,5 @@
 """pvpython: the plugin's three proxies exist with every property documented;
-the Opal Bragg Map equals the closed form (paper eq. 3-5, DESIGN.md section 3)
+the Opal Bragg Map equals the closed form (paper eq. 3-5, docs/design.md §3.1)
 at sampled diffraction voxels and changes with the light position as the
 formula says; its colour map defaults to the visible spectrum."""
 import sys

@@ -218,7 +218,7 @@ double fresnel(double cosI, double mu)
   return 0.5 * (rs * rs + rp * rp);
 }
 
-// Light reaching p (eq. 6, 7 with DESIGN.md's 1/r^2 to the sample), at 550 nm
+// Light reaching p (eq. 6, 7 with docs/design.md §4.1's 1/r^2 to the sample), at 550 nm
 // optical depth tau and geometric factor g: march towards the light one voxel
 // length at a time, nearest-voxel coefficients at each step's midpoint, until
 // the path leaves the opal at L_in, where the Fresnel transmission applies.

@@ -3,7 +3,7 @@
 // wavelength separately it marches the view ray, and at every sample it
 // marches towards the light for T_L (eq. 6, 7); Rayleigh per eq. 1 and 8,
 // Bragg per eq. 4 and 9; Fresnel and Snell at the surface; CIE colour
-// matching. Where DESIGN.md §3 amends the paper it follows the amendment:
+// matching. Where docs/design.md §4 amends the paper it follows the amendment:
 // 1/r^2 to the sample, the view transmittance at each step's midpoint, the
 // 1/pi on diffraction, domains counted once per crossing, the box band
 // averaged over each wavelength bin.

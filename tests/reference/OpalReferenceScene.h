@@ -1,5 +1,5 @@
 // The reference renderer's scene from an Opal volume (vtkImageData with the
-// DESIGN.md §2 arrays), for the oracle test and the speed bench. The domain
+// docs/design.md §2.5 arrays), for the oracle test and the speed bench. The domain
 // table is rebuilt from the voxels: each domain's lattice normal and its FCC
 // (111) plane spacing d = sqrt(2/3) l (eq. 3).
 #pragma once

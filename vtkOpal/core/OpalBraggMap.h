@@ -1,6 +1,6 @@
 // The Bragg-Snell wavelength each domain diffracts for a given light (and,
 // with a mosaic spread, how strongly towards a given eye): paper eq. 3-5 and
-// DESIGN.md §3, evaluated per domain voxel or domain polygon.
+// docs/design.md §3.1, evaluated per domain voxel or domain polygon.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // The voxel grid of the model: voxel centres are the image's points and the
-// box [-X/2, X/2] x [0, Y] x [-Z/2, Z/2] mm is exactly covered (DESIGN.md §2).
+// box [-X/2, X/2] x [0, Y] x [-Z/2, Z/2] mm is exactly covered (docs/design.md §2.1).
 #pragma once
 
 #include "OpalModelParameters.h"

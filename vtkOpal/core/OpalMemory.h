@@ -14,7 +14,7 @@ std::uint64_t physicalMemoryBytes();
 // "2.4 GB", "310 MB": bytes for messages.
 std::string formatBytes(std::uint64_t bytes);
 
-// Bytes per voxel of the volume's point arrays (DESIGN.md §2 fields).
+// Bytes per voxel of the volume's point arrays (docs/design.md §2.5 fields).
 constexpr std::uint64_t VolumeBytesPerVoxel = 1 + 4 + 12 + 4 + 4 + 4 + 4 + 4;
 
 } // namespace opal

@@ -1,4 +1,4 @@
-// Every parameter of the volumetric opal model (paper §3-4, DESIGN.md §2),
+// Every parameter of the volumetric opal model (paper §3-4, docs/design.md §2),
 // with the paper's values where it gives them and documented choices where
 // it does not. Plain data, no VTK types.
 #pragma once

@@ -1,4 +1,4 @@
-// The paper's figures as presets (DESIGN.md §4): the parameters the paper
+// The paper's figures as presets (docs/design.md §2.8): the parameters the paper
 // varies between its figures. Everything else keeps the model's defaults.
 #pragma once
 

@@ -1,6 +1,6 @@
 // Counter-based random numbers: a value is a pure function of (seed, stream,
 // counter), so any process computing any piece of the volume draws exactly the
-// values the whole-volume run draws (DESIGN.md §2, "Determinism").
+// values the whole-volume run draws (docs/design.md §2.7).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Every parameter of the spectral render (paper §6-7, DESIGN.md §3), with the
+// Every parameter of the spectral render (paper §6-7, docs/design.md §3.2), with the
 // paper's set-up as defaults: one D65 point light and the eye at the same
 // point 60 mm above the base's centre, looking down. Plain data.
 #pragma once

@@ -1,4 +1,4 @@
-// Fills the model's per-voxel fields (DESIGN.md §2) over any sub-extent of
+// Fills the model's per-voxel fields (docs/design.md §2) over any sub-extent of
 // the grid. Every value derives from the global voxel index, the parameters
 // and the domain layout, so pieces agree exactly with the whole volume.
 #pragma once
