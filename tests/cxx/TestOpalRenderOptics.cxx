@@ -9,19 +9,65 @@
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <tuple>
 
 namespace
 {
 constexpr double Mu = 1.45;
+constexpr int Centre = 16; // the centre pixel of slabView's 33 x 33
+constexpr double LambdaMaxPlaneSpacing = 600.0 / (2.0 * Mu); // lambda_max = 600 nm
 
-void checkRender(opaltest::SceneRenderer& renderer, const opal::RenderImage& image, const std::string& what)
+using opaltest::SceneRenderer;
+using opaltest::SlabScene;
+
+void checkRender(SceneRenderer& renderer, const opal::RenderImage& image, const std::string& what)
 {
   OPAL_CHECK(opaltest::allFinite(image), what + ": no NaN or Inf in any output");
   const auto messages = renderer.context().validationMessages();
   OPAL_CHECK(messages.empty(), what + ": the validation layer is silent" +
       (messages.empty() ? std::string() : ", first message: " + messages.front()));
+}
+
+// Renders the scene and checks the render itself (finite, validation layer silent).
+opal::RenderImage renderChecked(
+  SceneRenderer& renderer, SlabScene& scene, const opal::RenderParameters& p, const std::string& what)
+{
+  opal::RenderImage image = renderer.render(scene.build(), p);
+  checkRender(renderer, image, what);
+  return image;
+}
+
+// A slab with one domain of the given (111) plane spacing, by default flat at its centre.
+SlabScene domainScene(double planeSpacing)
+{
+  SlabScene scene;
+  scene.WithDomain = true;
+  scene.PlaneSpacing = planeSpacing;
+  return scene;
+}
+
+// A slab with one square domain at its centre, its normal tilted by
+// `tiltDegrees` from +y towards +x.
+SlabScene tiltedDomainScene(double planeSpacing, double tiltDegrees, double halfSize)
+{
+  SlabScene scene = domainScene(planeSpacing);
+  const double tilt = tiltDegrees * opal::Pi / 180.0;
+  scene.DomainNormal = glm::dvec3(std::sin(tilt), std::cos(tilt), 0.0);
+  scene.DomainCentre = glm::dvec3(0.0, 1.0, 0.0);
+  scene.DomainHalfSize = halfSize;
+  return scene;
+}
+
+// The paper's set-up over the slab with the opal's refractive index Mu.
+opal::RenderParameters opalView()
+{
+  opal::RenderParameters p = opaltest::slabView();
+  p.RefractiveIndex = Mu;
+  return p;
 }
 
 // The camera of slabView: direction of the ray through pixel centre (x, y).
@@ -33,6 +79,215 @@ glm::dvec3 pixelDirection(const opal::RenderParameters& p, double x, double y)
   const glm::dvec3 right = glm::cross(forward, up);
   return glm::normalize(forward + nx * tanHalf * (double(p.ImageSize[0]) / p.ImageSize[1]) * right + ny * tanHalf * up);
 }
+
+// Fresnel at normal incidence, and the highlight's D65 spectrum as sRGB white.
+void checkHighlight(SceneRenderer& renderer)
+{
+  SlabScene scene;
+  opal::RenderParameters p = opaltest::slabView();
+  p.LightRadius = 2.0;
+  p.RefractiveIndex = Mu;
+  const opal::RenderImage image = renderChecked(renderer, scene, p, "highlight");
+  const std::size_t i = opaltest::pixelIndex(image, Centre, Centre);
+  const double lightRadiance = 28.0 * 28.0 / (opal::Pi * 2.0 * 2.0);
+  const double fresnel = image.XYZ[3 * i + 1] / lightRadiance;
+  const double expected = std::pow((Mu - 1) / (Mu + 1), 2);
+  OPAL_CHECK(std::fabs(fresnel - expected) < 0.01 * expected,
+    "Fresnel at normal incidence " + std::to_string(fresnel) + " = ((mu-1)/(mu+1))^2 = " + std::to_string(expected));
+  const float* rgb = &image.Radiance[3 * i];
+  const double mean = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
+  OPAL_CHECK(std::fabs(rgb[0] - mean) < 0.01 * mean && std::fabs(rgb[1] - mean) < 0.01 * mean &&
+      std::fabs(rgb[2] - mean) < 0.01 * mean,
+    "D65 maps to sRGB white within 1%: " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
+      std::to_string(rgb[2]));
+}
+
+// The light straight above the domain's centre: glancing angle 90 deg - tilt.
+void checkBraggSnellAt(SceneRenderer& renderer, double tilt)
+{
+  SlabScene scene = tiltedDomainScene(LambdaMaxPlaneSpacing, tilt, 0.8);
+  const opal::RenderImage image = renderChecked(renderer, scene, opalView(), "tilt " + std::to_string(tilt));
+  const double sinTilt = std::sin(tilt * opal::Pi / 180.0);
+  const double expected = 2.0 * LambdaMaxPlaneSpacing * std::sqrt(Mu * Mu - sinTilt * sinTilt);
+  const double got = image.DominantBraggWavelength[opaltest::pixelIndex(image, Centre, Centre)];
+  OPAL_CHECK(std::fabs(got - expected) < 0.002 * expected,
+    "Bragg-Snell wavelength at tilt " + std::to_string(tilt) + ": " + std::to_string(got) + " nm, closed form " +
+      std::to_string(expected));
+  if (tilt == 0.0)
+  {
+    OPAL_CHECK(std::fabs(got - 600.0) < 0.6, "normal incidence gives lambda_max = 2 mu d");
+  }
+  if (tilt == 89.5)
+  {
+    const double lambdaMin = 600.0 * std::sqrt(1.0 - 1.0 / (Mu * Mu));
+    OPAL_CHECK(std::fabs(got - lambdaMin) < 0.002 * lambdaMin, "grazing incidence gives lambda_min (eq. 5)");
+  }
+}
+
+void checkBraggSnell(SceneRenderer& renderer)
+{
+  for (double tilt : { 0.0, 20.0, 40.0, 60.0, 80.0, 89.5 })
+  {
+    checkBraggSnellAt(renderer, tilt);
+  }
+}
+
+// A flat domain: the spectrum of a pixel above it peaks at lambda_max.
+void checkFlatDomainSpectrum(SceneRenderer& renderer)
+{
+  SlabScene scene = domainScene(LambdaMaxPlaneSpacing);
+  opal::RenderParameters p = opalView();
+  p.WriteSpectrum = true;
+  const opal::RenderImage image = renderChecked(renderer, scene, p, "flat domain");
+  const std::size_t pixel = opaltest::pixelIndex(image, Centre + 5, Centre - 4);
+  const std::size_t n = image.Wavelengths.size();
+  std::size_t peak = 0;
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    if (image.Spectrum[pixel * n + l] > image.Spectrum[pixel * n + peak])
+    {
+      peak = l;
+    }
+  }
+  OPAL_CHECK(std::fabs(image.Wavelengths[peak] - 600.0) <= 10.0,
+    "spectrum above a flat domain peaks at lambda_max 600 nm, got " + std::to_string(image.Wavelengths[peak]));
+}
+
+// The transmittance slab: scattering `scattering` everywhere, the domain's light scaled by `gain`.
+opal::RenderImage renderSlab(
+  SceneRenderer& renderer, const opal::RenderParameters& p, double scattering, bool domain, double gain)
+{
+  SlabScene scene;
+  scene.Scattering = scattering;
+  scene.WithDomain = domain;
+  scene.DomainCentre = glm::dvec3(0.0, 0.95, 0.0); // the voxel layer of cells [0.9, 1.0)
+  scene.PlaneSpacing = LambdaMaxPlaneSpacing;
+  opal::RenderParameters q = p;
+  q.DiffractionGain = gain;
+  return renderChecked(renderer, scene, q, "slab");
+}
+
+// The light and view paths through the slab, from the top (y = 2) to the
+// domain voxel's top (y = 1), of the ray through pixel (px, py).
+double slabPathLength(const opal::RenderParameters& p, int px, int py)
+{
+  const glm::dvec3 view = pixelDirection(p, px + 0.5, py + 0.5);
+  const glm::dvec3 refracted = glm::refract(view, glm::dvec3(0, 1, 0), 1.0 / Mu);
+  const double depth = 1.0;
+  const double viewPath = depth / -refracted.y;
+  const glm::dvec3 atDomain = glm::dvec3(0, 30, 0) + (28.0 / -view.y) * view + viewPath * refracted;
+  const double lightPath = depth / glm::normalize(glm::dvec3(0, 30, 0) - atDomain).y;
+  return viewPath + lightPath;
+}
+
+// Transmittance of a homogeneous slab: the domain's light, less the body's
+// own scattering, is the clear-slab domain light times exp(-tau(lambda)).
+void checkSlabTransmittance(SceneRenderer& renderer)
+{
+  const double mus = 0.3;
+  opal::RenderParameters p = opalView();
+  p.WriteSpectrum = true;
+  const opal::RenderImage both = renderSlab(renderer, p, mus, true, 4.0);
+  const opal::RenderImage bodyOnly = renderSlab(renderer, p, mus, true, 0.0);
+  const opal::RenderImage clear = renderSlab(renderer, p, 0.0, true, 4.0);
+  const int px = Centre + 3, py = Centre;
+  const std::size_t pixel = opaltest::pixelIndex(both, px, py);
+  const double path = slabPathLength(p, px, py);
+  const std::size_t n = both.Wavelengths.size();
+  const float* clearSpectrum = &clear.Spectrum[pixel * n];
+  double worst = 0;
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    const double clearValue = clearSpectrum[l];
+    if (clearValue <= 0.5 * *std::max_element(clearSpectrum, clearSpectrum + n))
+    {
+      continue; // outside the band's flat top
+    }
+    const double ratio = (both.Spectrum[pixel * n + l] - bodyOnly.Spectrum[pixel * n + l]) / clearValue;
+    const double s = std::pow(550.0 / both.Wavelengths[l], 4.0);
+    const double expected = std::exp(-mus * s * path);
+    worst = std::max(worst, std::fabs(ratio - expected) / expected);
+  }
+  OPAL_CHECK(worst < 0.02, "slab transmittance equals exp(-tau) within 2%, worst " + std::to_string(worst));
+}
+
+// A domain diffracting one wavelength: its pixel takes that hue.
+void checkHue(SceneRenderer& renderer, double lambda, int channel, const char* name)
+{
+  SlabScene scene = domainScene(lambda / (2.0 * Mu));
+  opal::RenderParameters p = opalView();
+  p.BraggBandwidth = 0.01;
+  p.Exposure = 0.5;
+  const opal::RenderImage image = renderChecked(renderer, scene, p, name);
+  const std::size_t pixel = opaltest::pixelIndex(image, Centre + 5, Centre + 5);
+  const std::uint8_t* rgb = &image.RGB[3 * pixel];
+  const int strongest = static_cast<int>(std::max_element(rgb, rgb + 3) - rgb);
+  OPAL_CHECK(strongest == channel && rgb[channel] > 0,
+    std::to_string(static_cast<int>(lambda)) + " nm looks " + name + ": RGB " + std::to_string(rgb[0]) + " " +
+      std::to_string(rgb[1]) + " " + std::to_string(rgb[2]));
+}
+
+void checkMonochromaticHues(SceneRenderer& renderer)
+{
+  for (const auto& [lambda, channel, name] : { std::tuple<double, int, const char*>{ 450.0, 2, "blue" },
+         { 550.0, 1, "green" }, { 650.0, 0, "red" } })
+  {
+    checkHue(renderer, lambda, channel, name);
+  }
+}
+
+// Pixels whose straight ray crosses the domain's plane well inside its square
+// edges, how many of those miss the domain, and how many well outside hit it.
+struct DomainCoverage
+{
+  int Inside = 0, Holes = 0, Strays = 0;
+};
+
+DomainCoverage domainCoverage(const opal::RenderImage& image, const opal::RenderParameters& p, const SlabScene& scene)
+{
+  const glm::dvec3 n = glm::normalize(scene.DomainNormal);
+  const glm::dvec3 u = glm::normalize(glm::cross(n, glm::dvec3(0, 1, 0)));
+  const glm::dvec3 v = glm::cross(n, u);
+  const double margin = 0.1 * std::sqrt(3.0); // a voxel's diagonal
+  DomainCoverage coverage;
+  for (int y = 0; y < p.ImageSize[1]; ++y)
+  {
+    for (int x = 0; x < p.ImageSize[0]; ++x)
+    {
+      const glm::dvec3 d = pixelDirection(p, x + 0.5, y + 0.5);
+      const glm::dvec3 eye(0, 30, 0);
+      const double t = glm::dot(scene.DomainCentre - eye, n) / glm::dot(d, n);
+      const glm::dvec3 local = eye + t * d - scene.DomainCentre;
+      const double edge = std::max(std::fabs(glm::dot(local, u)), std::fabs(glm::dot(local, v)));
+      const bool registered = image.DominantBraggWavelength[opaltest::pixelIndex(image, x, y)] > 0;
+      if (edge < scene.DomainHalfSize - margin)
+      {
+        ++coverage.Inside;
+        coverage.Holes += registered ? 0 : 1;
+      }
+      else if (edge > scene.DomainHalfSize + margin)
+      {
+        coverage.Strays += registered ? 1 : 0;
+      }
+    }
+  }
+  return coverage;
+}
+
+// No tunnelling: with mu ~ 1 the rays run straight; every ray whose line
+// crosses the tilted polygon well inside its edges registers the domain,
+// and none well outside does.
+void checkNoTunnelling(SceneRenderer& renderer)
+{
+  SlabScene scene = tiltedDomainScene(330.0, 35.0, 1.0);
+  opal::RenderParameters p = opaltest::slabView(61);
+  p.RefractiveIndex = 1.0001;
+  const opal::RenderImage image = renderChecked(renderer, scene, p, "tunnelling");
+  const DomainCoverage coverage = domainCoverage(image, p, scene);
+  OPAL_CHECK(coverage.Inside > 100, "the tilted domain covers many pixels: " + std::to_string(coverage.Inside));
+  OPAL_CHECK(coverage.Holes == 0, std::to_string(coverage.Holes) + " rays tunnelled through the domain");
+  OPAL_CHECK(coverage.Strays == 0, std::to_string(coverage.Strays) + " rays registered the domain outside it");
+}
 } // namespace
 
 int main()
@@ -42,198 +297,11 @@ int main()
   {
     return opaltest::SkipReturnCode;
   }
-  const int centre = 16;
-
-  {
-    // Fresnel at normal incidence, and the highlight's D65 spectrum as sRGB white.
-    opaltest::SlabScene scene;
-    opal::RenderParameters p = opaltest::slabView();
-    p.LightRadius = 2.0;
-    p.RefractiveIndex = Mu;
-    const opal::RenderImage image = renderer->render(scene.build(), p);
-    checkRender(*renderer, image, "highlight");
-    const std::size_t i = opaltest::pixelIndex(image, centre, centre);
-    const double lightRadiance = 28.0 * 28.0 / (opal::Pi * 2.0 * 2.0);
-    const double fresnel = image.XYZ[3 * i + 1] / lightRadiance;
-    const double expected = std::pow((Mu - 1) / (Mu + 1), 2);
-    OPAL_CHECK(std::fabs(fresnel - expected) < 0.01 * expected,
-      "Fresnel at normal incidence " + std::to_string(fresnel) + " = ((mu-1)/(mu+1))^2 = " + std::to_string(expected));
-    const float* rgb = &image.Radiance[3 * i];
-    const double mean = (rgb[0] + rgb[1] + rgb[2]) / 3.0;
-    OPAL_CHECK(std::fabs(rgb[0] - mean) < 0.01 * mean && std::fabs(rgb[1] - mean) < 0.01 * mean &&
-        std::fabs(rgb[2] - mean) < 0.01 * mean,
-      "D65 maps to sRGB white within 1%: " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
-        std::to_string(rgb[2]));
-  }
-
-  const double planeSpacing = 600.0 / (2.0 * Mu); // lambda_max = 600 nm
-  for (double tilt : { 0.0, 20.0, 40.0, 60.0, 80.0, 89.5 })
-  {
-    // The light straight above the domain's centre: glancing angle 90 deg - tilt.
-    opaltest::SlabScene scene;
-    scene.WithDomain = true;
-    scene.PlaneSpacing = planeSpacing;
-    scene.DomainNormal = glm::dvec3(std::sin(tilt * opal::Pi / 180.0), std::cos(tilt * opal::Pi / 180.0), 0.0);
-    scene.DomainCentre = glm::dvec3(0.0, 1.0, 0.0);
-    scene.DomainHalfSize = 0.8;
-    opal::RenderParameters p = opaltest::slabView();
-    p.RefractiveIndex = Mu;
-    const opal::RenderImage image = renderer->render(scene.build(), p);
-    checkRender(*renderer, image, "tilt " + std::to_string(tilt));
-    const double sinTilt = std::sin(tilt * opal::Pi / 180.0);
-    const double expected = 2.0 * planeSpacing * std::sqrt(Mu * Mu - sinTilt * sinTilt);
-    const double got = image.DominantBraggWavelength[opaltest::pixelIndex(image, centre, centre)];
-    OPAL_CHECK(std::fabs(got - expected) < 0.002 * expected,
-      "Bragg-Snell wavelength at tilt " + std::to_string(tilt) + ": " + std::to_string(got) + " nm, closed form " +
-        std::to_string(expected));
-    if (tilt == 0.0)
-    {
-      OPAL_CHECK(std::fabs(got - 600.0) < 0.6, "normal incidence gives lambda_max = 2 mu d");
-    }
-    if (tilt == 89.5)
-    {
-      const double lambdaMin = 600.0 * std::sqrt(1.0 - 1.0 / (Mu * Mu));
-      OPAL_CHECK(std::fabs(got - lambdaMin) < 0.002 * lambdaMin, "grazing incidence gives lambda_min (eq. 5)");
-    }
-  }
-
-  {
-    // A flat domain: the spectrum of a pixel above it peaks at lambda_max.
-    opaltest::SlabScene scene;
-    scene.WithDomain = true;
-    scene.PlaneSpacing = planeSpacing;
-    opal::RenderParameters p = opaltest::slabView();
-    p.RefractiveIndex = Mu;
-    p.WriteSpectrum = true;
-    const opal::RenderImage image = renderer->render(scene.build(), p);
-    checkRender(*renderer, image, "flat domain");
-    const std::size_t pixel = opaltest::pixelIndex(image, centre + 5, centre - 4);
-    const std::size_t n = image.Wavelengths.size();
-    std::size_t peak = 0;
-    for (std::size_t l = 0; l < n; ++l)
-    {
-      if (image.Spectrum[pixel * n + l] > image.Spectrum[pixel * n + peak])
-      {
-        peak = l;
-      }
-    }
-    OPAL_CHECK(std::fabs(image.Wavelengths[peak] - 600.0) <= 10.0,
-      "spectrum above a flat domain peaks at lambda_max 600 nm, got " + std::to_string(image.Wavelengths[peak]));
-  }
-
-  {
-    // Transmittance of a homogeneous slab: the domain's light, less the body's
-    // own scattering, is the clear-slab domain light times exp(-tau(lambda)).
-    const double mus = 0.3;
-    opal::RenderParameters p = opaltest::slabView();
-    p.RefractiveIndex = Mu;
-    p.WriteSpectrum = true;
-    auto render = [&](double scattering, bool domain, double gain) {
-      opaltest::SlabScene scene;
-      scene.Scattering = scattering;
-      scene.WithDomain = domain;
-      scene.DomainCentre = glm::dvec3(0.0, 0.95, 0.0); // the voxel layer of cells [0.9, 1.0)
-      scene.PlaneSpacing = planeSpacing;
-      opal::RenderParameters q = p;
-      q.DiffractionGain = gain;
-      opal::RenderImage image = renderer->render(scene.build(), q);
-      checkRender(*renderer, image, "slab");
-      return image;
-    };
-    const opal::RenderImage both = render(mus, true, 4.0);
-    const opal::RenderImage bodyOnly = render(mus, true, 0.0);
-    const opal::RenderImage clear = render(0.0, true, 4.0);
-    const int px = centre + 3, py = centre;
-    const std::size_t pixel = opaltest::pixelIndex(both, px, py);
-    // Light and view paths from the top (y = 2) to the domain voxel's top (y = 1).
-    const glm::dvec3 view = pixelDirection(p, px + 0.5, py + 0.5);
-    const glm::dvec3 refracted = glm::refract(view, glm::dvec3(0, 1, 0), 1.0 / Mu);
-    const double depth = 1.0;
-    const double viewPath = depth / -refracted.y;
-    const glm::dvec3 atDomain = glm::dvec3(0, 30, 0) + (28.0 / -view.y) * view + viewPath * refracted;
-    const double lightPath = depth / glm::normalize(glm::dvec3(0, 30, 0) - atDomain).y;
-    const std::size_t n = both.Wavelengths.size();
-    double worst = 0;
-    for (std::size_t l = 0; l < n; ++l)
-    {
-      const double clearValue = clear.Spectrum[pixel * n + l];
-      if (clearValue <= 0.5 * *std::max_element(&clear.Spectrum[pixel * n], &clear.Spectrum[pixel * n] + n))
-      {
-        continue; // outside the band's flat top
-      }
-      const double ratio = (both.Spectrum[pixel * n + l] - bodyOnly.Spectrum[pixel * n + l]) / clearValue;
-      const double s = std::pow(550.0 / both.Wavelengths[l], 4.0);
-      const double expected = std::exp(-mus * s * (viewPath + lightPath));
-      worst = std::max(worst, std::fabs(ratio - expected) / expected);
-    }
-    OPAL_CHECK(worst < 0.02, "slab transmittance equals exp(-tau) within 2%, worst " + std::to_string(worst));
-  }
-
-  for (const auto& [lambda, channel, name] : { std::tuple<double, int, const char*>{ 450.0, 2, "blue" },
-         { 550.0, 1, "green" }, { 650.0, 0, "red" } })
-  {
-    // A domain diffracting one wavelength: its pixel takes that hue.
-    opaltest::SlabScene scene;
-    scene.WithDomain = true;
-    scene.PlaneSpacing = lambda / (2.0 * Mu);
-    opal::RenderParameters p = opaltest::slabView();
-    p.RefractiveIndex = Mu;
-    p.BraggBandwidth = 0.01;
-    p.Exposure = 0.5;
-    const opal::RenderImage image = renderer->render(scene.build(), p);
-    checkRender(*renderer, image, name);
-    const std::size_t pixel = opaltest::pixelIndex(image, centre + 5, centre + 5);
-    const std::uint8_t* rgb = &image.RGB[3 * pixel];
-    const int strongest = static_cast<int>(std::max_element(rgb, rgb + 3) - rgb);
-    OPAL_CHECK(strongest == channel && rgb[channel] > 0,
-      std::to_string(static_cast<int>(lambda)) + " nm looks " + name + ": RGB " + std::to_string(rgb[0]) + " " +
-        std::to_string(rgb[1]) + " " + std::to_string(rgb[2]));
-  }
-
-  {
-    // No tunnelling: with mu ~ 1 the rays run straight; every ray whose line
-    // crosses the tilted polygon well inside its edges registers the domain,
-    // and none well outside does.
-    opaltest::SlabScene scene;
-    scene.WithDomain = true;
-    const double tilt = 35.0 * opal::Pi / 180.0;
-    scene.DomainNormal = glm::dvec3(std::sin(tilt), std::cos(tilt), 0.0);
-    scene.DomainCentre = glm::dvec3(0.0, 1.0, 0.0);
-    scene.DomainHalfSize = 1.0;
-    scene.PlaneSpacing = 330.0;
-    opal::RenderParameters p = opaltest::slabView(61);
-    p.RefractiveIndex = 1.0001;
-    const opal::RenderImage image = renderer->render(scene.build(), p);
-    checkRender(*renderer, image, "tunnelling");
-    const glm::dvec3 n = glm::normalize(scene.DomainNormal);
-    const glm::dvec3 u = glm::normalize(glm::cross(n, glm::dvec3(0, 1, 0)));
-    const glm::dvec3 v = glm::cross(n, u);
-    const double margin = 0.1 * std::sqrt(3.0); // a voxel's diagonal
-    int inside = 0, holes = 0, strays = 0;
-    for (int y = 0; y < 61; ++y)
-    {
-      for (int x = 0; x < 61; ++x)
-      {
-        const glm::dvec3 d = pixelDirection(p, x + 0.5, y + 0.5);
-        const glm::dvec3 eye(0, 30, 0);
-        const double t = glm::dot(scene.DomainCentre - eye, n) / glm::dot(d, n);
-        const glm::dvec3 local = eye + t * d - scene.DomainCentre;
-        const double edge = std::max(std::fabs(glm::dot(local, u)), std::fabs(glm::dot(local, v)));
-        const bool registered = image.DominantBraggWavelength[opaltest::pixelIndex(image, x, y)] > 0;
-        if (edge < scene.DomainHalfSize - margin)
-        {
-          ++inside;
-          holes += registered ? 0 : 1;
-        }
-        else if (edge > scene.DomainHalfSize + margin)
-        {
-          strays += registered ? 1 : 0;
-        }
-      }
-    }
-    OPAL_CHECK(inside > 100, "the tilted domain covers many pixels: " + std::to_string(inside));
-    OPAL_CHECK(holes == 0, std::to_string(holes) + " rays tunnelled through the domain");
-    OPAL_CHECK(strays == 0, std::to_string(strays) + " rays registered the domain outside it");
-  }
+  checkHighlight(*renderer);
+  checkBraggSnell(*renderer);
+  checkFlatDomainSpectrum(*renderer);
+  checkSlabTransmittance(*renderer);
+  checkMonochromaticHues(*renderer);
+  checkNoTunnelling(*renderer);
   return opaltest::finish("TestOpalRenderOptics");
 }
