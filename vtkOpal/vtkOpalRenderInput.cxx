@@ -1,15 +1,20 @@
 #include "vtkOpalRenderInput.h"
 
 #include "OpalOptics.h"
+#include "OpalPresets.h"
 #include "vtkOpalSource.h"
 
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
+#include "vtkAlgorithm.h"
 #include "vtkDataArrayRange.h"
+#include "vtkExecutive.h"
+#include "vtkInformationExecutivePortKey.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkPointData.h"
+#include "vtkStringArray.h"
 
 #include <algorithm>
 
@@ -76,6 +81,45 @@ std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>
   }
   return {};
 }
+// The output information of the nearest vtkOpalSource upstream: the input's
+// own, or that of a producer a few pass-through filters up (ParaView puts a
+// post filter after every source). nullptr if there is none.
+vtkInformation* sourceInformation(vtkInformation* info)
+{
+  for (int depth = 0; info && depth < 8; ++depth)
+  {
+    if (info->Has(vtkOpalSource::PRESET_IMAGE_SIZE()))
+    {
+      return info;
+    }
+    vtkExecutive* producer = vtkExecutive::PRODUCER()->GetExecutive(info);
+    vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
+    const bool hasInput = algorithm && algorithm->GetNumberOfInputPorts() > 0 &&
+      algorithm->GetNumberOfInputConnections(0) > 0;
+    info = hasInput ? algorithm->GetInputInformation(0, 0) : nullptr;
+  }
+  return nullptr;
+}
+
+// What a saved volume's field data says of the settings. Not the image size:
+// RequestInformation announces the extent before any data exists.
+vtkOpalRenderInput::VolumeSettings settingsFromFieldData(vtkFieldData* fields)
+{
+  vtkOpalRenderInput::VolumeSettings settings;
+  if (vtkDataArray* index = fields->GetArray("RefractiveIndex"))
+  {
+    settings.RefractiveIndex = index->GetNumberOfTuples() > 0 ? index->GetComponent(0, 0) : settings.RefractiveIndex;
+  }
+  auto* preset = vtkStringArray::SafeDownCast(fields->GetAbstractArray("Preset"));
+  if (preset && preset->GetNumberOfValues() > 0)
+  {
+    if (const opal::PresetSettings* settingsOfPreset = opal::presetByIndex(opal::presetIndexByName(preset->GetValue(0))))
+    {
+      settings.PresetRotation = { settingsOfPreset->RotateXDegrees, 0.0, 0.0 };
+    }
+  }
+  return settings;
+}
 } // namespace
 
 namespace vtkOpalRenderInput
@@ -108,9 +152,10 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
   return readDomainTable(input, volume.Domains);
 }
 
-VolumeSettings ReadSettings(vtkInformation* info)
+VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume)
 {
-  VolumeSettings settings;
+  VolumeSettings settings = volume ? settingsFromFieldData(volume->GetFieldData()) : VolumeSettings();
+  vtkInformation* info = sourceInformation(inputInformation);
   if (info && info->Has(vtkOpalSource::PRESET_IMAGE_SIZE()))
   {
     info->Get(vtkOpalSource::PRESET_IMAGE_SIZE(), settings.ImageSize.data());

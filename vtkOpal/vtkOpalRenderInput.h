@@ -30,13 +30,16 @@ struct Storage
 // it cannot (naming the array).
 std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage);
 
-// The settings an upstream vtkOpalSource records in its output information;
-// absent keys leave the render's and the model's defaults.
+// The settings an upstream vtkOpalSource records in its output information.
+// Without those keys (a volume read from a file) the refractive index and the
+// preset's placement come from the volume's field data (RefractiveIndex,
+// Preset) when `volume` is given; the image size keeps the render's default
+// (it is needed before any data exists).
 struct VolumeSettings
 {
   std::array<int, 2> ImageSize = opal::RenderParameters().ImageSize;
   std::array<double, 3> PresetRotation = opal::RenderParameters().PresetRotation;
   double RefractiveIndex = opal::ModelParameters().RefractiveIndex;
 };
-VolumeSettings ReadSettings(vtkInformation* inputInformation);
+VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume = nullptr);
 } // namespace vtkOpalRenderInput

@@ -96,9 +96,10 @@ int vtkOpalSpectralRender::GetNumberOfValidationMessages() const
   return this->ValidationMessages;
 }
 
-opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(vtkInformation* inputInformation) const
+opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(
+  vtkInformation* inputInformation, vtkImageData* input) const
 {
-  const vtkOpalRenderInput::VolumeSettings volume = vtkOpalRenderInput::ReadSettings(inputInformation);
+  const vtkOpalRenderInput::VolumeSettings volume = vtkOpalRenderInput::ReadSettings(inputInformation, input);
   opal::RenderParameters p = this->GetRenderParameters();
   if (p.ImageSize[0] == 0 && p.ImageSize[1] == 0)
   {
@@ -225,7 +226,7 @@ int vtkOpalSpectralRender::RequestData(
     return 0;
   }
   // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0));
+  opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0), input);
   int extent[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
   if (extent[1] < extent[0] || extent[3] < extent[2])

@@ -43,6 +43,8 @@ struct RenderParameters;
 class RenderSession;
 }
 
+class vtkImageData;
+
 class VTKOPAL_EXPORT vtkOpalSpectralRender : public vtkImageAlgorithm
 {
 public:
@@ -136,8 +138,10 @@ public:
 
   /// The parameters a render of this input uses: the properties with the
   /// volume's settings where ImageSize and RefractiveIndex are 0 and the
-  /// preset's placement (from the input's pipeline information).
-  opal::RenderParameters GetResolvedRenderParameters(vtkInformation* inputInformation) const;
+  /// preset's placement (from the input's pipeline information; without it,
+  /// the refractive index and placement from the input volume's field data).
+  opal::RenderParameters GetResolvedRenderParameters(
+    vtkInformation* inputInformation, vtkImageData* input = nullptr) const;
 
   /// Validation-layer messages of the last render (OPAL_VULKAN_VALIDATION=1).
   int GetNumberOfValidationMessages() const;
