@@ -3,7 +3,6 @@ converted by the colour-science package (CIE 1931 2-degree observer, its own
 tables and integration), gives the renderer's XYZ and linear sRGB (Radiance)
 within 0.5%. Rendered at 1 nm steps, where the renderer's bin-averaged
 colour-matching functions and colour-science's point values coincide."""
-import sys
 import warnings
 
 import numpy
@@ -12,6 +11,7 @@ from paraview.simple import LoadPlugin
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import opal_test_config as config
+from opal_test_support import check, finish
 
 warnings.filterwarnings("ignore")  # colour-science's notes about optional packages
 import colour  # noqa: E402
@@ -30,13 +30,6 @@ lambdas = vtk_to_numpy(image.GetFieldData().GetArray("Wavelengths"))
 cmfs = colour.MSDS_CMFS["CIE 1931 2 Degree Standard Observer"]
 tables = numpy.array(cmfs[lambdas])  # x-bar, y-bar, z-bar at each wavelength
 step = lambdas[1] - lambdas[0]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 lit = numpy.nonzero(xyz[:, 1] > 0.02 * xyz[:, 1].max())[0]
@@ -52,5 +45,4 @@ for pixel in lit:
 print(f"worst XYZ difference {100 * worst_xyz:.3f}%, worst linear sRGB difference {100 * worst_rgb:.3f}%")
 check(worst_xyz < 0.005, "XYZ within 0.5% of colour-science")
 check(worst_rgb < 0.005, "linear sRGB (Radiance) within 0.5% of colour-science")
-print("TestOpalColourScience:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalColourScience")

@@ -2,14 +2,13 @@
 its screenshot is not blank: the render's quarter holds the opal's colours
 (saturated, bright pixels) and the chart's quarter holds a curve."""
 import os
-import sys
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import opal_test_config as config
-from opal_test_support import run
+from opal_test_support import check, finish, run
 
 here = os.path.dirname(os.path.abspath(__file__))
 example = os.path.join(here, "..", "..", "examples", "opal_inspect.py")
@@ -27,13 +26,6 @@ reader.Update()
 image = reader.GetOutput()
 width, height, _ = image.GetDimensions()
 pixels = vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)[::-1]
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 check((width, height) == (1600, 1000), f"screenshot is 1600 x 1000, got {width} x {height}")
@@ -44,5 +36,4 @@ bright = numpy.mean(render_quarter.mean(axis=2) > 80)
 check(coloured > 0.005, f"the render shows play of colour ({100 * coloured:.2f}% saturated pixels)")
 check(bright > 0.05, f"the render shows the milky body ({100 * bright:.1f}% bright pixels)")
 check(os.path.getsize(state) > 1000, "the state file was written")
-print("TestOpalInspectExample:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalInspectExample")

@@ -15,7 +15,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader
 
 import opal_test_config as config
-from opal_test_support import run
+from opal_test_support import check, finish, run
 
 ranks, kind = int(sys.argv[1]), sys.argv[2]
 arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else [])
@@ -39,13 +39,6 @@ def read(reader_class, path):
 serial_data = read(vtkXMLImageDataReader, serial).GetOutput()
 parallel_reader = read(vtkXMLPImageDataReader, parallel)
 parallel_data = parallel_reader.GetOutput()
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 check(parallel_reader.GetNumberOfPieces() == ranks,
@@ -71,5 +64,4 @@ for name in exact + close:
         check(numpy.allclose(a, b, rtol=1e-5, atol=1e-7),
               f"{name}: {ranks}-rank result within 1e-5 of one process "
               f"(largest difference {numpy.max(numpy.abs(a - b))})")
-print("TestOpalMPI:", "FAILED" if failures else "passed", f"({kind}, {ranks} ranks)")
-sys.exit(1 if failures else 0)
+finish("TestOpalMPI", f"({kind}, {ranks} ranks)")

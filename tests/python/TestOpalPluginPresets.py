@@ -1,11 +1,11 @@
 """pvpython: the plugin loads, its Opal Volume proxy is documented and builds
 every paper preset with the arrays of docs/design.md §2.5 and all 250 domains."""
-import sys
 
 from paraview import servermanager as sm
 from paraview.simple import LoadPlugin
 
 import opal_test_config as config
+from opal_test_support import check, finish
 
 # Defines the plugin's constructors (OpalVolume, ...) in this module's namespace.
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())
@@ -20,13 +20,6 @@ ARRAYS = {
     "ScatteringCoefficient": "vtkFloatArray",
     "SurfaceDistance": "vtkFloatArray",
 }
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 volume = OpalVolume()
@@ -51,5 +44,4 @@ for preset in ["fig10", "fig11", "fig12", "fig13", "fig15", "fig17"]:
     polygons = sm.Fetch(volume, idx=1)
     check(polygons.GetNumberOfCells() == 250, f"{preset}: 250 domain polygons")
 
-print("TestOpalPluginPresets:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalPluginPresets")

@@ -2,7 +2,6 @@
 the Opal Bragg Map equals the closed form (paper eq. 3-5, docs/design.md §3.1)
 at sampled diffraction voxels and changes with the light position as the
 formula says; its colour map defaults to the visible spectrum."""
-import sys
 
 import numpy
 from paraview import servermanager as sm
@@ -10,15 +9,9 @@ from paraview.simple import GetColorTransferFunction, LoadPlugin, OutputPort
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import opal_test_config as config
+from opal_test_support import check, finish
 
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 volume = OpalVolume(Dimensions=[80, 40, 100])  # noqa: F821 (from the plugin)
@@ -95,5 +88,4 @@ points = list(lut.RGBPoints)
 check(points[0] == 380.0 and points[-4] == 780.0 and len(points) > 40,
       "the Visible spectrum colour map is the default for DominantBraggWavelength")
 
-print("TestOpalPluginProxies:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalPluginProxies")

@@ -5,7 +5,6 @@ before ModelRotation; a volume saved and read back renders the same image
 (its field data carries the index and the preset); values set on the filter
 are used as set."""
 import os
-import sys
 
 import numpy
 from paraview import servermanager as sm
@@ -13,15 +12,9 @@ from paraview.simple import LoadPlugin, SaveData, XMLImageDataReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import opal_test_config as config
+from opal_test_support import check, finish
 
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())
-failures = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
 
 
 def radiance(render):
@@ -56,5 +49,4 @@ SaveData(path, proxy=fig13, DataMode="Binary")
 _, from_file = radiance(OpalSpectralRender(Input=XMLImageDataReader(FileName=[path]), **size))  # noqa: F821
 check(numpy.array_equal(by_default, from_file), "the saved fig13 volume renders the same image")
 
-print("TestOpalRenderVolumeSettings:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalRenderVolumeSettings")

@@ -28,6 +28,7 @@ from paraview import servermanager as sm
 from paraview.simple import LoadPlugin
 
 import opal_test_config as config
+from opal_test_support import check, finish
 
 XML_DIRECTORY = (sys.argv[1] if len(sys.argv) > 1 else
                  os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "paraview_plugin"))
@@ -39,15 +40,7 @@ SKIPPED_KINDS = {
 RELATIVE_TOLERANCE = 1e-5  # PrintSelf prints doubles with 6 significant digits
 
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())  # adds OpalVolume() etc. here
-failures = []
 skipped = []
-
-
-def check(condition, what):
-    if not condition:
-        failures.append(what)
-        print("FAILED:", what)
-    return condition
 
 
 def parse_values(kind, text):
@@ -197,5 +190,4 @@ def main():
 
 
 main()
-print("TestOpalXmlDefaults:", "FAILED" if failures else "passed")
-sys.exit(1 if failures else 0)
+finish("TestOpalXmlDefaults")

@@ -1,6 +1,7 @@
 """Helpers shared by the pvpython tests."""
 import os
 import subprocess
+import sys
 
 # Settings of ours that child MPI jobs must keep; everything else OMPI_/PMIX_
 # describes pvpython's own MPI singleton and would confuse a child mpiexec.
@@ -22,3 +23,22 @@ def run(command, timeout=240):
         raise RuntimeError(f"{' '.join(command)} exited {result.returncode}:\n"
                            f"{result.stdout[-4000:]}\n{result.stderr[-4000:]}")
     return result
+
+
+# The checks of one test script: each failed one is printed and counted;
+# finish() prints the verdict and exits non-zero if any failed.
+failures = []
+
+
+def check(condition, what):
+    """Records a failed check, printing what should hold; returns the condition."""
+    if not condition:
+        failures.append(what)
+        print("FAILED:", what)
+    return condition
+
+
+def finish(name, detail=""):
+    """Prints `name: passed|FAILED [detail]` and exits with the verdict."""
+    print(f"{name}:", "FAILED" if failures else "passed", *([detail] if detail else []))
+    sys.exit(1 if failures else 0)
