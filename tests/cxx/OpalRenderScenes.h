@@ -9,6 +9,8 @@
 #include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
 
+#include "vtkTesting.h"
+
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -23,8 +25,8 @@
 namespace opaltest
 {
 
-// ctest's SKIP_RETURN_CODE for the Vulkan tests.
-constexpr int SkipReturnCode = 77;
+// VTK's skip code (vtk_add_test_cxx tells ctest) for the Vulkan tests.
+constexpr int SkipReturnCode = VTK_SKIP_RETURN_CODE;
 
 // Whether this machine has a Vulkan device; says why not if it has none.
 inline bool vulkanDeviceAvailable()

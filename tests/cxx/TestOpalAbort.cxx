@@ -14,13 +14,13 @@
 
 #include <iostream>
 
-int main()
+int TestOpalAbort(int, char*[])
 {
   if (!opaltest::vulkanDeviceAvailable())
   {
     return opaltest::SkipReturnCode;
   }
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  opaltest::silenceExpectedErrors();
   vtkNew<vtkOpalSource> source;
   source->SetDimensions(80, 40, 100);
   vtkNew<vtkOpalSpectralRender> render;

@@ -16,11 +16,11 @@
 
 using BadCase = opaltest::BadCase<vtkOpalSource>;
 
-int main()
+int TestOpalBadInput(int, char*[])
 {
   using opaltest::MessageRecorder;
   // The executive reports failed requests on the output window; keep the log readable.
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  opaltest::silenceExpectedErrors();
 
   const std::vector<BadCase> cases = {
     { "zero dimension", [](vtkOpalSource* s) { s->SetDimensions(40, 0, 50); }, "Dimensions" },

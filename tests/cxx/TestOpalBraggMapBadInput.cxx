@@ -10,9 +10,9 @@
 #include "vtkOutputWindow.h"
 #include "vtkRTAnalyticSource.h"
 
-int main()
+int TestOpalBraggMapBadInput(int, char*[])
 {
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  opaltest::silenceExpectedErrors();
   {
     vtkNew<vtkRTAnalyticSource> wavelet;
     vtkNew<vtkOpalBraggMap> map;

@@ -15,7 +15,7 @@
 
 #include <string>
 
-int main()
+int TestOpalPresetDomains(int, char*[])
 {
   for (const opal::PresetSettings& preset : opal::presets())
   {

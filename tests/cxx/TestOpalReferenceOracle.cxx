@@ -13,8 +13,10 @@
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTesting.h"
 
 #include <algorithm>
 #include <array>
@@ -288,13 +290,16 @@ void checkGrainyField(const std::string& cie)
 }
 } // namespace
 
-int main(int argc, char** argv)
+int TestOpalReferenceOracle(int argc, char* argv[])
 {
   if (!opaltest::vulkanDeviceAvailable())
   {
     return opaltest::SkipReturnCode;
   }
-  const std::string cie = argc > 1 ? argv[1] : "";
+  // VTK's -D: the folder of the official CIE tables (vtkOpal/core/data).
+  vtkNew<vtkTesting> testing;
+  testing->AddArguments(argc, argv);
+  const std::string cie = testing->GetDataRoot() ? testing->GetDataRoot() : "";
   checkFullModel(cie);
   checkLowLight(cie);
   checkScatteringOnly(cie);

@@ -23,9 +23,9 @@
 
 using BadCase = opaltest::BadCase<vtkOpalSpectralRender>;
 
-int main(int argc, char** argv)
+int TestOpalRenderBadInput(int argc, char* argv[])
 {
-  vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+  opaltest::silenceExpectedErrors();
   auto source = opaltest::makeSmallSource();
   vtkNew<vtkOpalSpectralRender> render;
   render->SetInputConnection(source->GetOutputPort(0));

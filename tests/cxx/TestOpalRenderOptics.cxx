@@ -290,7 +290,7 @@ void checkNoTunnelling(SceneRenderer& renderer)
 }
 } // namespace
 
-int main()
+int TestOpalRenderOptics(int, char*[])
 {
   auto renderer = opaltest::makeRenderer();
   if (!renderer)

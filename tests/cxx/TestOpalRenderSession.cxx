@@ -37,7 +37,7 @@ std::string stages(const opal::FrameStages& ran)
 }
 } // namespace
 
-int main()
+int TestOpalRenderSession(int, char*[])
 {
   auto renderer = opaltest::makeRenderer();
   if (!renderer)

@@ -157,7 +157,7 @@ std::set<std::string> checkShader(const std::string& shader, const std::string& 
 }
 } // namespace
 
-int main(int argc, char** argv)
+int TestOpalShaderContract(int argc, char* argv[])
 {
   if (argc < 3)
   {

@@ -8,7 +8,7 @@
 
 #include <string>
 
-int main()
+int TestOpalVolumeDeterminism(int, char*[])
 {
   using namespace opaltest;
   auto first = makeSmallSource(7);

@@ -211,7 +211,7 @@ void checkSphereSurfaceDistance()
 }
 } // namespace
 
-int main()
+int TestOpalVolumeGeometry(int, char*[])
 {
   vtkNew<vtkOpalSource> source; // the defaults: paper scale, preset fig12
   OPAL_CHECK(source->GetExecutive()->Update() == 1, "the default volume builds");

@@ -4,6 +4,8 @@
 #include "OpalVulkanContext.h"
 #include "OpalVulkanError.h"
 
+#include <string>
+
 namespace opal
 {
 
@@ -124,18 +126,20 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const StorageBufferBind
   this->Pipeline = VulkanHandle<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
 }
 
-void ComputePipeline::dispatch(VkCommandBuffer commands, const void* pushConstants, std::uint32_t groupsX,
-  std::uint32_t groupsY, std::uint32_t groupsZ) const
+void ComputePipeline::dispatchBytes(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes,
+  std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const
 {
   VkDescriptorSet set = this->Bindings.set();
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Pipeline.get());
   vkCmdBindDescriptorSets(
     commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Bindings.pipelineLayout(), 0, 1, &set, 0, nullptr);
-  if (this->Bindings.pushConstantBytes() > 0 && pushConstants)
+  if (bytes > this->Bindings.pushConstantBytes())
   {
-    vkCmdPushConstants(commands, this->Bindings.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-      this->Bindings.pushConstantBytes(), pushConstants);
+    throw VulkanError("push constants of " + std::to_string(bytes) + " bytes exceed the layout's " +
+        std::to_string(this->Bindings.pushConstantBytes()),
+      VK_ERROR_UNKNOWN);
   }
+  vkCmdPushConstants(commands, this->Bindings.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, pushConstants);
   vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
   auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

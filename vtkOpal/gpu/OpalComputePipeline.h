@@ -47,12 +47,20 @@ public:
   ComputePipeline(VulkanContext& context, const StorageBufferBindings& bindings, const std::uint32_t* spirv,
     std::size_t spirvWords, const std::vector<std::int32_t>& specialisation = {});
 
-  // Records: bind pipeline and set, push constants, dispatch, then a barrier
-  // so the next dispatch or the host sees the writes.
-  void dispatch(VkCommandBuffer commands, const void* pushConstants, std::uint32_t groupsX,
-    std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const;
+  // Records: bind pipeline and set, push constants (one of the contract's
+  // push-constant structs, exactly its size), dispatch, then a barrier so the
+  // next dispatch or the host sees the writes.
+  template <typename PushConstants>
+  void dispatch(VkCommandBuffer commands, const PushConstants& pushConstants, std::uint32_t groupsX,
+    std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const
+  {
+    this->dispatchBytes(commands, &pushConstants, sizeof(PushConstants), groupsX, groupsY, groupsZ);
+  }
 
 private:
+  void dispatchBytes(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes,
+    std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const;
+
   const StorageBufferBindings& Bindings;
   VulkanHandle<VkPipeline> Pipeline;
 };

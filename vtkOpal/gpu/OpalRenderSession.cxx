@@ -432,7 +432,7 @@ bool RenderSession::sweepLightLayers(Progress& progress)
       for (int layer = top; layer > top - LightLayersPerSubmit && layer >= 0; --layer)
       {
         const gpu::LightPassWork work{ gpu::LightPassSweepFromAbove, 0, 0, layer };
-        this->LightPass->dispatch(commands, &work, groups);
+        this->LightPass->dispatch(commands, work, groups);
       }
     });
     const int done = layers - std::max(0, top - LightLayersPerSubmit + 1);
@@ -453,7 +453,7 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
     const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
     const gpu::LightPassWork work{ gpu::LightPassMarchTowardsLight, static_cast<std::int32_t>(first), count, 0 };
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->LightPass->dispatch(commands, &work, static_cast<std::uint32_t>((count + 255) / 256));
+      this->LightPass->dispatch(commands, work, static_cast<std::uint32_t>((count + 255) / 256));
     });
     if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
     {
@@ -496,7 +496,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
     {
       const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
       this->Context->submitAndWait([&](VkCommandBuffer commands) {
-        march.dispatch(commands, &tile, MarchTileSize / 8, MarchTileSize / 8);
+        march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
       });
       if (!progress.report(from + (to - from) * static_cast<double>(ty * tilesX + tx + 1) / (tilesX * tilesY)))
       {
@@ -548,7 +548,7 @@ void RenderSession::runColourPass(const FrameSetup& setup, double exposure)
     const gpu::ColourRange range{ static_cast<std::int32_t>(first) };
     const std::size_t count = std::min(ColourChunk, setup.Pixels - first);
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->ColourPass->dispatch(commands, &range, static_cast<std::uint32_t>((count + 63) / 64));
+      this->ColourPass->dispatch(commands, range, static_cast<std::uint32_t>((count + 63) / 64));
     });
   }
 }
