@@ -10,6 +10,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int WAVELENGTHS = 41;
+// The body's scattering spectrum (docs/design.md §3.4): accumulated on
+// SPECTRAL_NODES (>= 4) nodes uniform in s = (550/lambda)^4 and resampled once
+// per pixel, or with EXACT_SCATTERING evaluated at every wavelength.
+layout(constant_id = 1) const int SPECTRAL_NODES = 16;
+layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
@@ -28,6 +33,9 @@ layout(std430, set = 0, binding = PixelSpectrumBinding) writeonly buffer PixelSp
 layout(push_constant) uniform MarchPush { MarchTile tile; };
 
 float radiance[WAVELENGTHS];
+// The body's scattering on the nodes s_k = s_first + k s_step, divided by s:
+// sum of w exp(-tau s_k) over the sub-steps (unless EXACT_SCATTERING).
+float scatterNodes[SPECTRAL_NODES];
 
 float lightOpticalDepthAt(vec3 p)
 {
@@ -145,6 +153,37 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, float tau
   }
 }
 
+// The nodes span the wavelength table's s: from the longest wavelength's
+// (smallest s) to the shortest's.
+float nodeFirst()
+{
+  return bins[WAVELENGTHS - 1].rayleighScale;
+}
+
+float nodeStep()
+{
+  return (bins[0].rayleighScale - bins[WAVELENGTHS - 1].rayleighScale) / float(SPECTRAL_NODES - 1);
+}
+
+// The scattering at s from the nodes: cubic Lagrange interpolation of log G
+// through the four nearest nodes (G is a sum of decaying exponentials in s,
+// nearly linear in log), times s. 0 where nothing scattered.
+float scatterAt(float s)
+{
+  if (!(scatterNodes[0] > 0.0))
+  {
+    return 0.0;
+  }
+  float x = (s - nodeFirst()) / nodeStep();
+  int i = clamp(int(floor(x)) - 1, 0, SPECTRAL_NODES - 4);
+  float u = x - float(i);
+  float g0 = log(scatterNodes[i]), g1 = log(scatterNodes[i + 1]);
+  float g2 = log(scatterNodes[i + 2]), g3 = log(scatterNodes[i + 3]);
+  float logG = g0 * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g1 * u * (u - 2.0) * (u - 3.0) / 2.0 +
+    g2 * u * (u - 1.0) * (u - 3.0) / -2.0 + g3 * u * (u - 1.0) * (u - 2.0) / 6.0;
+  return s * exp(logG);
+}
+
 // Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]
 // in a voxel of coefficient mus, isotropic phase 1/(4 pi), in sub-steps of at
 // most marchStep with the view transmittance at each midpoint. Returns the
@@ -158,10 +197,24 @@ float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, floa
     vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
     float tauTotal = lightOpticalDepthAt(at) + tauView + 0.5 * mus * ds;
     float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
-    for (int l = 0; l < WAVELENGTHS; ++l)
+    if (!EXACT_SCATTERING)
     {
-      float s = bins[l].rayleighScale;
-      radiance[l] += weight * s * exp(-tauTotal * s);
+      // exp(-tau (s0 + k ds)) = exp(-tau s0) exp(-tau ds)^k: two exps, then products.
+      float term = weight * exp(-tauTotal * nodeFirst());
+      float ratio = exp(-tauTotal * nodeStep());
+      for (int k = 0; k < SPECTRAL_NODES; ++k)
+      {
+        scatterNodes[k] += term;
+        term *= ratio;
+      }
+    }
+    else
+    {
+      for (int l = 0; l < WAVELENGTHS; ++l)
+      {
+        float s = bins[l].rayleighScale;
+        radiance[l] += weight * s * exp(-tauTotal * s);
+      }
     }
     tauView += mus * ds;
   }
@@ -200,37 +253,72 @@ void stepWalk(inout VoxelWalk walk)
   else { walk.cell.z += walk.stepDir.z; walk.tMax.z += walk.tDelta.z; }
 }
 
+// Domain crossings recorded during the walk and diffracted after it: the
+// walk's loop then holds no diffraction (41 bins) that every SIMD lane would
+// pay at every voxel; a ray crossing more domains walks on in further rounds.
+const int MAX_CROSSINGS = 8;
+vec3 crossingPoint[MAX_CROSSINGS];
+int crossingDomain[MAX_CROSSINGS];
+float crossingDepth[MAX_CROSSINGS]; // view optical depth at the crossing
+
+// Where the walk stands between rounds.
+struct WalkState
+{
+  VoxelWalk walk;
+  float t;
+  float tauView;   // optical depth at 550 nm from P_in along the view path
+  int lastDomain;  // the domain being crossed, counted once
+  bool done;       // the ray has left the opal
+};
+
+// Walks the refracted ray on from `state`, gathering scattering and
+// recording domain crossings, until it leaves the opal at tExit or the record
+// is full; returns the number of crossings recorded.
+int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
+{
+  int count = 0;
+  for (int guard = 0; guard < 65536 && state.t < tExit && count < MAX_CROSSINGS; ++guard)
+  {
+    float tNext = min(min(state.walk.tMax.x, state.walk.tMax.y), min(state.walk.tMax.z, tExit));
+    float segment = tNext - state.t;
+    if (segment > 0.0 && insideGrid(state.walk.cell))
+    {
+      int v = voxelIndex(state.walk.cell);
+      int domain = domainIdField[v];
+      float mus = scatteringField[v];
+      if (domain >= 0 && domain != state.lastDomain)
+      {
+        crossingPoint[count] = origin + (state.t + 0.5 * segment) * inward;
+        crossingDomain[count] = domain;
+        crossingDepth[count] = state.tauView;
+        ++count;
+      }
+      else if (domain < 0 && mus > 0.0)
+      {
+        state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, state.tauView);
+      }
+      state.lastDomain = domain;
+    }
+    state.t = tNext;
+    if (state.t >= tExit) break;
+    stepWalk(state.walk);
+  }
+  state.done = state.t >= tExit || count < MAX_CROSSINGS;
+  return count;
+}
+
 // The refracted ray from `origin` voxel by voxel to where it leaves the opal
 // at tExit, gathering scattering and each domain once per crossing.
 void marchInside(vec3 origin, vec3 inward, float tExit)
 {
-  vec3 towardEye = -inward;
-  VoxelWalk walk = startWalk(origin, inward);
-  float tauView = 0.0;       // optical depth at 550 nm from P_in along the view path
-  int lastDomain = -1;       // the domain being crossed, counted once
-  float t = 0.0;
-  for (int guard = 0; guard < 65536 && t < tExit; ++guard)
+  WalkState state = WalkState(startWalk(origin, inward), 0.0, 0.0, -1, false);
+  for (int round = 0; round < 4096 && !state.done; ++round)
   {
-    float tNext = min(min(walk.tMax.x, walk.tMax.y), min(walk.tMax.z, tExit));
-    float segment = tNext - t;
-    if (segment > 0.0 && insideGrid(walk.cell))
+    int count = walkRecording(state, origin, inward, tExit);
+    for (int c = 0; c < count; ++c)
     {
-      int v = voxelIndex(walk.cell);
-      int domain = domainIdField[v];
-      float mus = scatteringField[v];
-      if (domain >= 0 && domain != lastDomain)
-      {
-        diffractAtCrossing(origin + (t + 0.5 * segment) * inward, domains[domain], towardEye, tauView);
-      }
-      else if (domain < 0 && mus > 0.0)
-      {
-        tauView = scatterAlongSegment(origin, inward, t, segment, mus, tauView);
-      }
-      lastDomain = domain;
+      diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c]);
     }
-    t = tNext;
-    if (t >= tExit) break;
-    stepWalk(walk);
   }
 }
 
@@ -241,7 +329,8 @@ void writePixel(int pixelIndex, float transmitted, float highlight, float tHit)
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    float value = (transmitted * radiance[l] + highlight) * bins[l].illuminant;
+    float gathered = radiance[l] + (EXACT_SCATTERING ? 0.0 : scatterAt(bins[l].rayleighScale));
+    float value = (transmitted * gathered + highlight) * bins[l].illuminant;
     xyz += value * bins[l].colourMatching * bins[l].width;
     if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
   }
@@ -279,6 +368,7 @@ void main()
     return;
   }
   for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
+  for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
   dominantLambda = 0.0;
   dominantY = 0.0;
 

@@ -59,6 +59,7 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
   copy(this->Background, p.Background);
   p.StepSize = this->StepSize;
   p.SpecularSamples = this->SpecularSamples;
+  p.SpectralNodes = this->SpectralNodes;
   p.LightFalloffAtEntry = this->LightFalloffAtEntry;
   p.WriteSpectrum = this->WriteSpectrum;
   return p;
@@ -86,6 +87,7 @@ void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
   copy(p.Background, this->Background);
   this->StepSize = p.StepSize;
   this->SpecularSamples = p.SpecularSamples;
+  this->SpectralNodes = p.SpectralNodes;
   this->LightFalloffAtEntry = p.LightFalloffAtEntry;
   this->WriteSpectrum = p.WriteSpectrum;
   this->Modified();
@@ -296,6 +298,7 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   print("Background", this->Background, 3);
   print("StepSize", &this->StepSize, 1);
   print("SpecularSamples", &this->SpecularSamples, 1);
+  print("SpectralNodes", &this->SpectralNodes, 1);
   print("LightFalloffAtEntry", &this->LightFalloffAtEntry, 1);
   print("WriteSpectrum", &this->WriteSpectrum, 1);
   print("DeviceIndex", &this->DeviceIndex, 1);

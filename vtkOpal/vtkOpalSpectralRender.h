@@ -115,6 +115,10 @@ public:
   /// Sub-rays per pixel axis for the light's highlight. Default 4.
   vtkSetMacro(SpecularSamples, int);
   vtkGetMacro(SpecularSamples, int);
+  /// Nodes of the body's scattering spectrum, resampled to every wavelength
+  /// (16: within 3e-5 of evaluating each); 0 evaluates every wavelength. Default 16.
+  vtkSetMacro(SpectralNodes, int);
+  vtkGetMacro(SpectralNodes, int);
   /// The paper's eq. 6: the 1/r^2 fall-off stops at the light's entry point. Default off.
   vtkSetMacro(LightFalloffAtEntry, bool);
   vtkGetMacro(LightFalloffAtEntry, bool);
@@ -175,6 +179,7 @@ protected:
   double Background[3];
   double StepSize;
   int SpecularSamples;
+  int SpectralNodes;
   bool LightFalloffAtEntry;
   bool WriteSpectrum;
   int DeviceIndex;

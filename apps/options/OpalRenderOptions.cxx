@@ -36,6 +36,10 @@ void OpalRenderOptions::addTo(CLI::App& app)
   app.add_option("--step-size", p.StepSize, "Longest march sub-step in mm (0 = one voxel)")
     ->capture_default_str()
     ->group(group);
+  app.add_option("--spectral-nodes", p.SpectralNodes,
+       "Nodes of the body's scattering spectrum (0: evaluate every wavelength)")
+    ->capture_default_str()
+    ->group(group);
   app.add_option("--specular-samples", p.SpecularSamples, "Sub-rays per pixel axis for the highlight")
     ->capture_default_str()
     ->group(group);

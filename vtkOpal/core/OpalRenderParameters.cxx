@@ -101,6 +101,10 @@ std::string validate(const RenderParameters& p)
   {
     m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
   }
+  else if (p.SpectralNodes != 0 && (p.SpectralNodes < 4 || p.SpectralNodes > 64))
+  {
+    m << "SpectralNodes must be 0 (every wavelength) or 4-64, got " << p.SpectralNodes << ".";
+  }
   else
   {
     for (double b : p.Background)

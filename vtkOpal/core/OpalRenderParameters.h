@@ -33,6 +33,8 @@ struct RenderParameters
   std::array<double, 3> Background{ 0.0, 0.0, 0.0 };   // sRGB in [0, 1]
   double StepSize = 0.0;                               // mm, longest march sub-step; 0: one voxel
   int SpecularSamples = 4;                             // per pixel axis, for the highlight
+  int SpectralNodes = 16;                              // nodes of the body's scattering spectrum; 0: every
+                                                       // wavelength (docs/design.md §3.4)
   bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
   bool WriteSpectrum = false;                          // fill the Spectrum output
 };

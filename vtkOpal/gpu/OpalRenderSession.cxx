@@ -463,14 +463,19 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
   return true;
 }
 
-ComputePipeline& RenderSession::marchPipeline(int wavelengths)
+// The march for a wavelength count: the scattering spectrum on nodes, or at
+// every wavelength where nodes are off or would not be fewer than the bins.
+ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes)
 {
-  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[wavelengths];
+  const bool exact = spectralNodes == 0 || wavelengths <= spectralNodes;
+  const int nodes = exact ? 4 : spectralNodes;
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
+    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING.
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths });
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0 });
   }
   return *march;
 }
@@ -487,7 +492,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   block.rectSize = gpu::ivec2(rect[2], rect[3]);
   block.writeSpectrum = spectrum ? 1 : 0;
   this->Buffers->Parameters->upload(&block, sizeof(block));
-  ComputePipeline& march = this->marchPipeline(block.wavelengthCount);
+  ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes);
   const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
   for (int ty = 0; ty < tilesY; ++ty)

@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace opal
 {
@@ -104,13 +105,14 @@ private:
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
-  ComputePipeline& marchPipeline(int wavelengths);
+  ComputePipeline& marchPipeline(int wavelengths, int spectralNodes);
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
   std::unique_ptr<ComputePipeline> LightPass;
   std::unique_ptr<ComputePipeline> ColourPass;
-  std::map<int, std::unique_ptr<ComputePipeline>> MarchPasses; // by wavelength count
+  // By wavelength count and spectral nodes (0: every wavelength).
+  std::map<std::pair<int, int>, std::unique_ptr<ComputePipeline>> MarchPasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
