@@ -17,8 +17,7 @@ layout(local_size_x = 256) in;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 
-layout(std430, set = 0, binding = LightOpticalDepthBinding) buffer LightOpticalDepthField { float lightOpticalDepth[]; };
-layout(std430, set = 0, binding = LightGeometryBinding) buffer LightGeometryField { float lightGeometry[]; };
+layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 
 layout(push_constant) uniform LightPassPush { LightPassWork work; };
 
@@ -31,6 +30,18 @@ float entryGeometry(vec3 p, vec3 lightEntry, vec3 direction)
   float transmission = 1.0 - fresnelReflectance(dot(surfaceNormal(lightEntry), direction), P.refractiveIndex);
   float r = P.lightFalloffAtEntry != 0 ? distance(P.light, lightEntry) : distance(P.light, p);
   return transmission * P.apexDistanceSquared / (r * r);
+}
+
+// Stores a voxel's optical depth and geometry factor where the light field
+// keeps them: in its own pair, and as the +x neighbour in the pair before it
+// (in its own pair too at the end of a row).
+void storeLight(int index, float opticalDepth, float geometry)
+{
+  vec2 light = vec2(opticalDepth, geometry);
+  int x = index % P.gridDimensions.x;
+  lightField[index].voxel = light;
+  if (x > 0) lightField[index - 1].nextVoxel = light;
+  if (x == P.gridDimensions.x - 1) lightField[index].nextVoxel = light;
 }
 
 float scatteringAt(vec3 p)
@@ -69,8 +80,7 @@ void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
     tau += scatteringAt(p + (t + 0.5 * step) * direction) * step;
     t += step;
   }
-  lightOpticalDepth[index] = tau;
-  lightGeometry[index] = entryGeometry(p, p + entry * direction, direction);
+  storeLight(index, tau, entryGeometry(p, p + entry * direction, direction));
 }
 
 // LightPassSweepFromAbove: the path from p to the light crosses the plane of the layer above
@@ -107,19 +117,22 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   {
     // The light enters the opal between p and q.
     float entry = bisectSurface(p, direction, step, 0.0);
-    lightOpticalDepth[index] = scatteringAt(p + 0.5 * entry * direction) * entry;
-    lightGeometry[index] = entryGeometry(p, p + entry * direction, direction);
+    storeLight(index, scatteringAt(p + 0.5 * entry * direction) * entry,
+      entryGeometry(p, p + entry * direction, direction));
     return;
   }
   float tau = 0.0, geometry = 0.0, weightSum = 0.0;
   float tauAll = 0.0, geometryAll = 0.0;
+  // The corners' light: two pairs, each a corner and its +x neighbour.
+  LightFieldPair nearZ = lightField[corners[0]], farZ = lightField[corners[2]];
+  vec2 cornerLight[4] = vec2[4](nearZ.voxel, nearZ.nextVoxel, farZ.voxel, farZ.nextVoxel);
   for (int corner = 0; corner < 4; ++corner)
   {
     int vi = corners[corner];
     float w = weights[corner];
     float inside = surfaceDistanceField[vi] <= 0.0 ? w : 0.0;
-    float tauCorner = lightOpticalDepth[vi];
-    float geometryCorner = lightGeometry[vi];
+    float tauCorner = cornerLight[corner].x;
+    float geometryCorner = cornerLight[corner].y;
     tau += inside * tauCorner;
     geometry += inside * geometryCorner;
     weightSum += inside;
@@ -130,11 +143,10 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   float geometryQ = weightSum > 1e-6 ? geometry / weightSum : geometryAll;
   // Two half-segments, each with the scattering of the voxel it lies in.
   int below = voxelIndex(c);
-  lightOpticalDepth[index] = tauQ + 0.5 * step *
-    (scatteringField[below] + scatteringAt(p + 0.75 * step * direction));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
   float rq = distance(P.light, q), rp = distance(P.light, p);
-  lightGeometry[index] = P.lightFalloffAtEntry != 0 ? geometryQ : geometryQ * (rq * rq) / (rp * rp);
+  storeLight(index, tauQ + 0.5 * step * (scatteringField[below] + scatteringAt(p + 0.75 * step * direction)),
+    P.lightFalloffAtEntry != 0 ? geometryQ : geometryQ * (rq * rq) / (rp * rp));
 }
 
 void main()
@@ -161,8 +173,7 @@ void main()
   if (surfaceDistanceField[index] > 0.0)
   {
     // Outside the opal: unattenuated light.
-    lightOpticalDepth[index] = 0.0;
-    lightGeometry[index] = P.apexDistanceSquared / (distanceToLight * distanceToLight);
+    storeLight(index, 0.0, P.apexDistanceSquared / (distanceToLight * distanceToLight));
     return;
   }
   if (work.mode == LightPassMarchTowardsLight)

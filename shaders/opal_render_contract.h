@@ -19,6 +19,7 @@
 
 namespace opal::gpu
 {
+using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
@@ -36,15 +37,14 @@ OPAL_CONSTANT int WavelengthTableBinding = 1;  // WavelengthBinRecord per wavele
 OPAL_CONSTANT int ScatteringBinding = 2;       // float per voxel: ScatteringCoefficient, 1/mm at 550 nm
 OPAL_CONSTANT int DomainIdBinding = 3;         // int per voxel: DomainId
 OPAL_CONSTANT int SurfaceDistanceBinding = 4;  // float per voxel: SurfaceDistance, mm, negative inside
-OPAL_CONSTANT int LightOpticalDepthBinding = 5; // float per voxel: optical depth to the light at 550 nm
-OPAL_CONSTANT int LightGeometryBinding = 6;    // float per voxel: Fresnel transmission x fall-off
-OPAL_CONSTANT int DomainTableBinding = 7;      // DomainRecord per domain
-OPAL_CONSTANT int PixelColourBinding = 8;      // PixelColour per pixel
-OPAL_CONSTANT int PixelBraggBinding = 9;       // PixelBragg per pixel
-OPAL_CONSTANT int PixelSpectrumBinding = 10;   // wavelengthCount floats per pixel
-OPAL_CONSTANT int PixelRadianceBinding = 11;   // 3 floats per pixel: linear sRGB
-OPAL_CONSTANT int PixelRGB8Binding = 12;       // uint per pixel: 8-bit sRGB, R in the low byte
-OPAL_CONSTANT int BindingCount = 13;
+OPAL_CONSTANT int LightFieldBinding = 5;       // LightFieldPair per voxel
+OPAL_CONSTANT int DomainTableBinding = 6;      // DomainRecord per domain
+OPAL_CONSTANT int PixelColourBinding = 7;      // PixelColour per pixel
+OPAL_CONSTANT int PixelBraggBinding = 8;       // PixelBragg per pixel
+OPAL_CONSTANT int PixelSpectrumBinding = 9;    // wavelengthCount floats per pixel
+OPAL_CONSTANT int PixelRadianceBinding = 10;   // 3 floats per pixel: linear sRGB
+OPAL_CONSTANT int PixelRGB8Binding = 11;       // uint per pixel: 8-bit sRGB, R in the low byte
+OPAL_CONSTANT int BindingCount = 12;
 
 // Every setting of a frame. A uniform block: read-only and never aliased by
 // the storage buffers, so compilers keep it in registers.
@@ -92,6 +92,16 @@ struct OPAL_ALIGNED WavelengthBinRecord
   float rayleighScale;
   float illuminant;
   OPAL_ALIGNED vec3 colourMatching;   // x-bar, y-bar, z-bar
+};
+
+// The light field (docs/design.md §3.3) of a voxel and of its +x neighbour
+// (the last voxel of a row repeats itself), each as (optical depth to the
+// light at 550 nm, Fresnel transmission x fall-off): a trilinear read takes
+// four loads instead of sixteen.
+struct OPAL_ALIGNED LightFieldPair
+{
+  vec2 voxel;
+  vec2 nextVoxel;
 };
 
 // One diffraction domain: the (111) lattice-plane normal (y >= 0) and the
@@ -147,7 +157,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

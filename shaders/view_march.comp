@@ -20,8 +20,7 @@ layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 
-layout(std430, set = 0, binding = LightOpticalDepthBinding) readonly buffer LightOpticalDepthField { float lightOpticalDepth[]; };
-layout(std430, set = 0, binding = LightGeometryBinding) readonly buffer LightGeometryField { float lightGeometry[]; };
+layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
@@ -37,18 +36,25 @@ float radiance[WAVELENGTHS];
 // sum of w exp(-tau s_k) over the sub-steps (unless EXACT_SCATTERING).
 float scatterNodes[SPECTRAL_NODES];
 
-float lightOpticalDepthAt(vec3 p)
+// The light field at p, trilinear over voxel centres and clamped: (optical
+// depth to the light at 550 nm, geometry factor). Each pair holds a voxel and
+// its +x neighbour, so the eight corners take four loads.
+vec2 lightAt(vec3 p)
 {
-  float tau;
-  OPAL_TRILINEAR(lightOpticalDepth, p, tau);
-  return tau;
-}
-
-float lightGeometryAt(vec3 p)
-{
-  float g;
-  OPAL_TRILINEAR(lightGeometry, p, g);
-  return g;
+  vec3 g = clamp((p - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
+  ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
+  ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
+  vec3 f = clamp(g - vec3(c0), 0.0, 1.0);
+  int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
+  LightFieldPair p00 = lightField[c0.x + c0.y * sy + c0.z * sz];
+  LightFieldPair p10 = lightField[c0.x + c1.y * sy + c0.z * sz];
+  LightFieldPair p01 = lightField[c0.x + c0.y * sy + c1.z * sz];
+  LightFieldPair p11 = lightField[c0.x + c1.y * sy + c1.z * sz];
+  vec2 x00 = mix(p00.voxel, p00.nextVoxel, f.x);
+  vec2 x10 = mix(p10.voxel, p10.nextVoxel, f.x);
+  vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
+  vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
+  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
 }
 
 vec3 primaryDirection(vec2 pixel)
@@ -127,8 +133,9 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, float tau
 {
   vec3 towardLight = normalize(P.light - at);
   float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
-  float tauLight = lightOpticalDepthAt(at);
-  float geometry = lightGeometryAt(at);
+  vec2 light = lightAt(at);
+  float tauLight = light.x;
+  float geometry = light.y;
   float weight = P.diffractionGain * geometry *
     mosaicWeight(lattice.latticeNormal, towardLight, towardEye, P.mosaicSpread) / OPAL_PI;
   for (int k = 1; k <= P.braggOrders; ++k)
@@ -195,8 +202,9 @@ float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, floa
   for (int q = 0; q < pieces; ++q)
   {
     vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
-    float tauTotal = lightOpticalDepthAt(at) + tauView + 0.5 * mus * ds;
-    float weight = lightGeometryAt(at) * mus * ds / (4.0 * OPAL_PI);
+    vec2 light = lightAt(at);
+    float tauTotal = light.x + tauView + 0.5 * mus * ds;
+    float weight = light.y * mus * ds / (4.0 * OPAL_PI);
     if (!EXACT_SCATTERING)
     {
       // exp(-tau (s0 + k ds)) = exp(-tau s0) exp(-tau ds)^k: two exps, then products.

@@ -60,6 +60,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, illuminant),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, colourMatching),
+    OPAL_FIELD("lightField[0].", LightFieldPair, voxel),
+    OPAL_FIELD("lightField[0].", LightFieldPair, nextVoxel),
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
     OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
     OPAL_FIELD("pixelColour[0].", PixelColour, xyz),
@@ -79,12 +81,12 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 }
 
 // Prefixes of the contract's structs in the shaders' reflection.
-const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "domains[0].", "pixelColour[0].",
+const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "lightField[0].", "domains[0].", "pixelColour[0].",
   "pixelBragg[0].", "work.", "tile.", "range." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
-  { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "lightField[0].", sizeof(LightFieldPair) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) } };
 
 std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)

@@ -24,6 +24,8 @@ constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant s
 constexpr int MarchTileSize = 64;                  // pixels per tile side: one submit each
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
 constexpr int LightLayersPerSubmit = 16;           // layers per light-pass submit (sweep)
+// On the device per voxel: three fields of 4 bytes and the light field's pair.
+constexpr std::uint64_t DeviceBytesPerVoxel = 3 * 4 + sizeof(gpu::LightFieldPair);
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
   sizeof(gpu::ColourRange) <= PushConstantBytes);
 
@@ -56,7 +58,7 @@ struct RenderSession::DeviceVolume
   RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
   VolumeGeometry Geometry;
   std::unique_ptr<VulkanBuffer> Scattering, DomainId, SurfaceDistance, DomainTable;
-  std::unique_ptr<VulkanBuffer> LightOpticalDepth, LightGeometry;
+  std::unique_ptr<VulkanBuffer> LightField;
 };
 
 // The per-frame buffers, kept while they are large enough.
@@ -129,8 +131,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->Volume.reset();
   this->LightField.reset();
   const std::size_t voxels = volume.voxelCount();
-  // Fields and light field: 5 floats per voxel, refused up front if too large.
-  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * 5 * 4;
+  // Fields and light field, refused up front if too large.
+  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * DeviceBytesPerVoxel;
   if (bytes > this->Context->memoryBudget())
   {
     throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than the " +
@@ -147,8 +149,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Scattering = field(volume.ScatteringCoefficient, "ScatteringCoefficient volume");
   uploaded->DomainId = field(volume.DomainId, "DomainId volume");
   uploaded->SurfaceDistance = field(volume.SurfaceDistance, "SurfaceDistance volume");
-  uploaded->LightOpticalDepth = std::make_unique<VulkanBuffer>(context, voxels * 4, "light optical depth volume");
-  uploaded->LightGeometry = std::make_unique<VulkanBuffer>(context, voxels * 4, "light geometry volume");
+  uploaded->LightField = std::make_unique<VulkanBuffer>(context, voxels * sizeof(gpu::LightFieldPair), "light field");
   uploaded->DomainTable =
     std::make_unique<VulkanBuffer>(context, volume.Domains.size() * sizeof(gpu::DomainRecord), "domain table");
   auto* records = uploaded->DomainTable->as<gpu::DomainRecord>();
@@ -293,7 +294,7 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t wavelengths = setup.Bins.size();
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
-  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * 5 * 4;
+  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * DeviceBytesPerVoxel;
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg)) + pixels * (3 * 4 + 4) + spectrumBytes;
   const std::uint64_t deviceBytes = volumeBytes + imageBytes;
@@ -394,8 +395,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::ScatteringBinding] = v.Scattering.get();
   buffers[gpu::DomainIdBinding] = v.DomainId.get();
   buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
-  buffers[gpu::LightOpticalDepthBinding] = v.LightOpticalDepth.get();
-  buffers[gpu::LightGeometryBinding] = v.LightGeometry.get();
+  buffers[gpu::LightFieldBinding] = v.LightField.get();
   buffers[gpu::DomainTableBinding] = v.DomainTable.get();
   buffers[gpu::PixelColourBinding] = b.PixelColour.get();
   buffers[gpu::PixelBraggBinding] = b.PixelBragg.get();
