@@ -62,6 +62,7 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
   p.SpectralNodes = this->SpectralNodes;
   p.LightFalloffAtEntry = this->LightFalloffAtEntry;
   p.WriteSpectrum = this->WriteSpectrum;
+  p.Quality = static_cast<opal::RenderQuality>(this->Quality);
   return p;
 }
 
@@ -90,6 +91,7 @@ void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
   this->SpectralNodes = p.SpectralNodes;
   this->LightFalloffAtEntry = p.LightFalloffAtEntry;
   this->WriteSpectrum = p.WriteSpectrum;
+  this->Quality = static_cast<int>(p.Quality);
   this->Modified();
 }
 
@@ -112,7 +114,8 @@ opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(
     p.RefractiveIndex = volume.RefractiveIndex;
   }
   p.PresetRotation = volume.PresetRotation;
-  return p;
+  // The image a preview renders is the smaller one: extent and data agree.
+  return opal::withQuality(p);
 }
 
 int vtkOpalSpectralRender::FillInputPortInformation(int, vtkInformation* info)
@@ -301,6 +304,7 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   print("SpectralNodes", &this->SpectralNodes, 1);
   print("LightFalloffAtEntry", &this->LightFalloffAtEntry, 1);
   print("WriteSpectrum", &this->WriteSpectrum, 1);
+  print("Quality", &this->Quality, 1);
   print("DeviceIndex", &this->DeviceIndex, 1);
   print("DeviceMemoryLimit", &this->DeviceMemoryLimit, 1);
 }

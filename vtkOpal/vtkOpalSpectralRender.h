@@ -123,6 +123,10 @@ public:
   vtkSetMacro(LightFalloffAtEntry, bool);
   vtkGetMacro(LightFalloffAtEntry, bool);
   vtkBooleanMacro(LightFalloffAtEntry, bool);
+  /// 0 final (default); 1 preview, for interaction: half the width and height,
+  /// 20 nm wavelength steps, 8 spectral nodes, a 2 x 2 highlight.
+  vtkSetClampMacro(Quality, int, 0, 1);
+  vtkGetMacro(Quality, int);
   /// Add the Spectrum array (one value per wavelength per pixel). Default off.
   vtkSetMacro(WriteSpectrum, bool);
   vtkGetMacro(WriteSpectrum, bool);
@@ -182,6 +186,7 @@ protected:
   int SpectralNodes;
   bool LightFalloffAtEntry;
   bool WriteSpectrum;
+  int Quality;
   int DeviceIndex;
   int DeviceMemoryLimit;
 

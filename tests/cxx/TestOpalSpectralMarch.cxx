@@ -4,6 +4,7 @@
 // 0.1% at worst, of the XYZ over the image); domain crossings recorded and
 // diffracted after the walk, in rounds when a ray crosses more domains than
 // the record holds (8), equal the sum of the domains rendered one at a time.
+// The preview quality renders half the size and about the same image.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
@@ -105,6 +106,33 @@ void checkCrossingRounds(opaltest::SceneRenderer& renderer)
   OPAL_CHECK(d.Max <= 1e-4, "10 domains on one ray (two rounds of the crossing record) give the sum of each alone: "
     "worst " + std::to_string(100 * d.Max) + "%");
 }
+double meanLuminance(const opal::RenderImage& image)
+{
+  double sum = 0;
+  for (std::size_t i = 1; i < image.XYZ.size(); i += 3)
+  {
+    sum += image.XYZ[i];
+  }
+  return sum / static_cast<double>(image.XYZ.size() / 3);
+}
+
+void checkPreview(opaltest::SceneRenderer& renderer)
+{
+  opal::ModelParameters model;
+  model.Dimensions = { 80, 40, 100 };
+  const auto volume = opal::buildVolume(model);
+  opal::RenderParameters p;
+  p.ImageSize = { 96, 72 };
+  p.Exposure = 5.0;
+  const opal::RenderImage final = renderer.render(volume->renderVolume(), p);
+  p.Quality = opal::RenderQuality::Preview;
+  const opal::RenderImage preview = renderer.render(volume->renderVolume(), p);
+  OPAL_CHECK(preview.ImageSize == (std::array<int, 2>{ 48, 36 }) && preview.Wavelengths.size() == 21,
+    "a preview renders 48 x 36 pixels at 21 wavelengths");
+  const double change = meanLuminance(preview) / meanLuminance(final) - 1;
+  OPAL_CHECK(std::fabs(change) < 0.03, "the preview's mean luminance is within 3% of the final image's: " +
+      std::to_string(100 * change) + "%");
+}
 } // namespace
 
 int TestOpalSpectralMarch(int, char*[])
@@ -116,6 +144,7 @@ int TestOpalSpectralMarch(int, char*[])
   }
   checkSpectralNodes(*renderer);
   checkCrossingRounds(*renderer);
+  checkPreview(*renderer);
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
   return opaltest::finish("TestOpalSpectralMarch");

@@ -2,6 +2,7 @@
 
 #include "OpalSpectralSampling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,6 +12,23 @@ namespace opal
 int wavelengthCount(const RenderParameters& p)
 {
   return wavelengthBinCount(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
+}
+
+RenderParameters withQuality(const RenderParameters& p)
+{
+  RenderParameters q = p;
+  q.Quality = RenderQuality::Final;
+  if (p.Quality != RenderQuality::Preview)
+  {
+    return q;
+  }
+  auto half = [](int n) { return n > 0 ? (n + 1) / 2 : n; };
+  q.ImageSize = { half(p.ImageSize[0]), half(p.ImageSize[1]) };
+  q.ImageRegion = { p.ImageRegion[0] / 2, p.ImageRegion[1] / 2, half(p.ImageRegion[2]), half(p.ImageRegion[3]) };
+  q.WavelengthStep = std::max(p.WavelengthStep, 20.0);
+  q.SpectralNodes = p.SpectralNodes == 0 ? 0 : 8;
+  q.SpecularSamples = std::min(p.SpecularSamples, 2);
+  return q;
 }
 
 std::string validate(const RenderParameters& p)
@@ -100,6 +118,10 @@ std::string validate(const RenderParameters& p)
   else if (p.SpecularSamples < 1 || p.SpecularSamples > 16)
   {
     m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
+  }
+  else if (p.Quality != RenderQuality::Final && p.Quality != RenderQuality::Preview)
+  {
+    m << "Quality must be 0 (final) or 1 (preview), got " << static_cast<int>(p.Quality) << ".";
   }
   else if (p.SpectralNodes != 0 && (p.SpectralNodes < 4 || p.SpectralNodes > 64))
   {

@@ -9,6 +9,15 @@
 namespace opal
 {
 
+// Final renders the parameters as they are; Preview, for interaction, renders
+// half the width and height, 20 nm wavelength steps, 8 spectral nodes and a
+// 2 x 2 highlight (withQuality).
+enum class RenderQuality : int
+{
+  Final = 0,
+  Preview = 1,
+};
+
 struct RenderParameters
 {
   std::array<int, 2> ImageSize{ 640, 480 };            // pixels
@@ -37,6 +46,7 @@ struct RenderParameters
                                                        // wavelength (docs/design.md §3.4)
   bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
   bool WriteSpectrum = false;                          // fill the Spectrum output
+  RenderQuality Quality = RenderQuality::Final;
 };
 
 // The largest number of wavelengths a render takes (the march keeps one
@@ -45,6 +55,12 @@ constexpr int MaxWavelengths = 401;
 
 // Empty if valid, else one sentence naming the parameter.
 std::string validate(const RenderParameters& parameters);
+
+// The parameters a frame renders with (Quality Final, the settings the
+// quality implies): the same for Final; for Preview the image and its region
+// halved (rounded up), WavelengthStep at least 20 nm, SpectralNodes 8 (0
+// stays 0) and SpecularSamples at most 2.
+RenderParameters withQuality(const RenderParameters& parameters);
 
 // Number of wavelength bins the parameters give.
 int wavelengthCount(const RenderParameters& parameters);

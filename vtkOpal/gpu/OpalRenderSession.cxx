@@ -228,13 +228,14 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
 
 // Frame set-up: validation, the camera and light in the model's frame, the
 // rectangles, the wavelength bins and the parameter block.
-RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& p) const
+RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& asked) const
 {
-  const std::string error = validate(p);
+  const std::string error = validate(asked);
   if (!error.empty())
   {
     throw std::invalid_argument(error);
   }
+  const RenderParameters p = withQuality(asked);
   FrameSetup setup;
   setup.Parameters = p;
   setup.Camera = cameraInModelFrame(p);
