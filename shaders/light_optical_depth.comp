@@ -7,17 +7,25 @@
 // follows as tau(lambda) = tau(550) (550/lambda)^4; this replaces the paper's
 // march towards the light at every sample and wavelength (eq. 6, 7).
 // With the light above the grid, a sweep layer by layer from the top makes it
-// O(1) per voxel (LightPassSweepFromAbove); otherwise each voxel marches to
-// the light (LightPassMarchTowardsLight).
+// O(1) per voxel (LightPassSweepFromAbove); the few voxels the light enters
+// within their step are queued and lit by a dispatch of their own
+// (LightPassEnterFromAbove), so the sweep carries none of that work, which a
+// CPU driver would pay for every voxel. Otherwise each voxel marches to the
+// light (LightPassMarchTowardsLight). The mode is a specialisation constant:
+// each pipeline holds only its own mode's code.
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 256) in;
-
 #include "opal_render_bindings.glsl"
+
+layout(local_size_x = LightPassGroupSize) in;
+layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
+
+layout(std430, set = 0, binding = LightEntryQueueBinding) buffer LightEntryQueues { LightEntryQueue queues[]; };
+layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 
 layout(push_constant) uniform LightPassPush { LightPassWork work; };
 
@@ -115,10 +123,14 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   }
   if (distanceQ > 0.0)
   {
-    // The light enters the opal between p and q.
-    float entry = bisectSurface(p, direction, step, 0.0);
-    storeLight(index, scatteringAt(p + 0.5 * entry * direction) * entry,
-      entryGeometry(p, p + entry * direction, direction));
+    // The light enters the opal between p and q: queued for LightPassEnterFromAbove.
+    int layerSize = P.gridDimensions.x * P.gridDimensions.z;
+    uint slot = atomicAdd(queues[c.y].count, 1u);
+    entryVoxels[c.y * layerSize + int(slot)] = uint(index);
+    if (slot % uint(LightPassGroupSize) == 0u)
+    {
+      atomicAdd(queues[c.y].groupsX, 1u);
+    }
     return;
   }
   float tau = 0.0, geometry = 0.0, weightSum = 0.0;
@@ -149,26 +161,48 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
     P.lightFalloffAtEntry != 0 ? geometryQ : geometryQ * (rq * rq) / (rp * rp));
 }
 
-void main()
+// LightPassEnterFromAbove: a queued voxel whose path to the light enters the
+// opal within one layer's step: its part of the path up to the entry point.
+void enterFromAbove(int index, vec3 p, vec3 direction)
+{
+  float step = P.gridSpacing.y / direction.y;
+  float entry = bisectSurface(p, direction, step, 0.0);
+  storeLight(index, scatteringAt(p + 0.5 * entry * direction) * entry,
+    entryGeometry(p, p + entry * direction, direction));
+}
+
+// The voxel this invocation lights, or -1.
+int voxelOfInvocation()
 {
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   int local = int(gl_GlobalInvocationID.x);
-  int index;
-  if (work.mode == LightPassMarchTowardsLight)
+  if (LIGHT_PASS_MODE == LightPassMarchTowardsLight)
   {
-    if (local >= work.count) return;
-    index = work.first + local;
+    return local < work.count ? work.first + local : -1;
   }
-  else
+  if (LIGHT_PASS_MODE == LightPassEnterFromAbove)
   {
-    if (local >= nx * P.gridDimensions.z) return;
-    index = local % nx + nx * (work.layer + ny * (local / nx));
+    int layerSize = nx * P.gridDimensions.z;
+    return local < int(queues[work.layer].count) ? int(entryVoxels[work.layer * layerSize + local]) : -1;
   }
+  return local < nx * P.gridDimensions.z ? local % nx + nx * (work.layer + ny * (local / nx)) : -1;
+}
+
+void main()
+{
+  int index = voxelOfInvocation();
+  if (index < 0) return;
+  int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   ivec3 c = ivec3(index % nx, (index / nx) % ny, index / (nx * ny));
   vec3 p = voxelCentre(c);
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
+  if (LIGHT_PASS_MODE == LightPassEnterFromAbove)
+  {
+    enterFromAbove(index, p, direction);
+    return;
+  }
   // A voxel centre: its own SurfaceDistance, no interpolation needed.
   if (surfaceDistanceField[index] > 0.0)
   {
@@ -176,7 +210,7 @@ void main()
     storeLight(index, 0.0, P.apexDistanceSquared / (distanceToLight * distanceToLight));
     return;
   }
-  if (work.mode == LightPassMarchTowardsLight)
+  if (LIGHT_PASS_MODE == LightPassMarchTowardsLight)
   {
     marchTowardsLight(index, p, direction, distanceToLight);
   }

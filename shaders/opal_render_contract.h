@@ -19,6 +19,7 @@
 
 namespace opal::gpu
 {
+using uint = std::uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using ivec2 = glm::ivec2;
@@ -44,7 +45,9 @@ OPAL_CONSTANT int PixelBraggBinding = 8;       // PixelBragg per pixel
 OPAL_CONSTANT int PixelSpectrumBinding = 9;    // wavelengthCount floats per pixel
 OPAL_CONSTANT int PixelRadianceBinding = 10;   // 3 floats per pixel: linear sRGB
 OPAL_CONSTANT int PixelRGB8Binding = 11;       // uint per pixel: 8-bit sRGB, R in the low byte
-OPAL_CONSTANT int BindingCount = 12;
+OPAL_CONSTANT int LightEntryQueueBinding = 12; // LightEntryQueue per layer of the grid
+OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
+OPAL_CONSTANT int BindingCount = 14;
 
 // Every setting of a frame. A uniform block: read-only and never aliased by
 // the storage buffers, so compilers keep it in registers.
@@ -128,19 +131,34 @@ struct PixelBragg
   int hit;                            // 1 where the ray meets the opal
 };
 
-// The light pass's modes.
+// The light pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the light
 OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
+OPAL_CONSTANT int LightPassEnterFromAbove = 2;    // the layer's voxels the light enters within a step
+
+// The voxels of one layer of the sweep where the light enters the opal
+// within their step (rare, and costly: a bisection and the surface normal),
+// queued by the sweep for a dispatch of their own: the indirect dispatch's
+// workgroups (x, y, z) and how many are queued.
+struct LightEntryQueue
+{
+  uint groupsX;
+  uint groupsY;
+  uint groupsZ;
+  uint count;
+};
 
 // Push constants of the light pass: the voxels [first, first + count) in
-// LightPassMarchTowardsLight, the layer y = layer in LightPassSweepFromAbove.
+// LightPassMarchTowardsLight, the layer y = layer in the other two modes.
 struct LightPassWork
 {
-  int mode;
   int first;
   int count;
   int layer;
 };
+
+// Invocations per workgroup of the light pass.
+OPAL_CONSTANT int LightPassGroupSize = 256;
 
 // Push constants of the view march: the tile of the rendered rectangle this
 // dispatch covers.
@@ -157,7 +175,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(LightEntryQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

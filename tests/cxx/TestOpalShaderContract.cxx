@@ -60,6 +60,10 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, illuminant),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, colourMatching),
+    OPAL_FIELD("queues[0].", LightEntryQueue, groupsX),
+    OPAL_FIELD("queues[0].", LightEntryQueue, groupsY),
+    OPAL_FIELD("queues[0].", LightEntryQueue, groupsZ),
+    OPAL_FIELD("queues[0].", LightEntryQueue, count),
     OPAL_FIELD("lightField[0].", LightFieldPair, voxel),
     OPAL_FIELD("lightField[0].", LightFieldPair, nextVoxel),
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
@@ -69,7 +73,6 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantWavelength),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantLuminance),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, hit),
-    OPAL_FIELD("work.", LightPassWork, mode),
     OPAL_FIELD("work.", LightPassWork, first),
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
@@ -81,12 +84,12 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 }
 
 // Prefixes of the contract's structs in the shaders' reflection.
-const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "lightField[0].", "domains[0].", "pixelColour[0].",
+const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "domains[0].", "pixelColour[0].",
   "pixelBragg[0].", "work.", "tile.", "range." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
-  { "lightField[0].", sizeof(LightFieldPair) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "lightField[0].", sizeof(LightFieldPair) }, { "queues[0].", sizeof(LightEntryQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) } };
 
 std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)

@@ -126,26 +126,50 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const StorageBufferBind
   this->Pipeline = VulkanHandle<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
 }
 
-void ComputePipeline::dispatchBytes(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes,
-  std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const
+void ComputePipeline::bindAndPush(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes) const
 {
-  VkDescriptorSet set = this->Bindings.set();
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Pipeline.get());
-  vkCmdBindDescriptorSets(
-    commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Bindings.pipelineLayout(), 0, 1, &set, 0, nullptr);
   if (bytes > this->Bindings.pushConstantBytes())
   {
     throw VulkanError("push constants of " + std::to_string(bytes) + " bytes exceed the layout's " +
         std::to_string(this->Bindings.pushConstantBytes()),
       VK_ERROR_UNKNOWN);
   }
+  VkDescriptorSet set = this->Bindings.set();
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Pipeline.get());
+  vkCmdBindDescriptorSets(
+    commands, VK_PIPELINE_BIND_POINT_COMPUTE, this->Bindings.pipelineLayout(), 0, 1, &set, 0, nullptr);
   vkCmdPushConstants(commands, this->Bindings.pipelineLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, bytes, pushConstants);
-  vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
+}
+
+namespace
+{
+// After a dispatch: its writes visible to the next dispatch (as storage or as
+// indirect arguments) and to the host.
+void barrierAfterDispatch(VkCommandBuffer commands)
+{
   auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_HOST_READ_BIT;
   vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+    &barrier, 0, nullptr, 0, nullptr);
+}
+} // namespace
+
+void ComputePipeline::dispatchBytes(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes,
+  std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const
+{
+  this->bindAndPush(commands, pushConstants, bytes);
+  vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
+  barrierAfterDispatch(commands);
+}
+
+void ComputePipeline::dispatchIndirectRecorded(
+  VkCommandBuffer commands, const VulkanBuffer& arguments, std::uint64_t offset) const
+{
+  vkCmdDispatchIndirect(commands, arguments.buffer(), offset);
+  barrierAfterDispatch(commands);
 }
 
 } // namespace opal

@@ -57,9 +57,21 @@ public:
     this->dispatchBytes(commands, &pushConstants, sizeof(PushConstants), groupsX, groupsY, groupsZ);
   }
 
+  // The same with the workgroup counts read by the device from `arguments`
+  // at `offset` (a VkDispatchIndirectCommand a previous dispatch wrote).
+  template <typename PushConstants>
+  void dispatchIndirect(VkCommandBuffer commands, const PushConstants& pushConstants, const VulkanBuffer& arguments,
+    std::uint64_t offset) const
+  {
+    this->bindAndPush(commands, &pushConstants, sizeof(PushConstants));
+    this->dispatchIndirectRecorded(commands, arguments, offset);
+  }
+
 private:
   void dispatchBytes(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes,
     std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const;
+  void bindAndPush(VkCommandBuffer commands, const void* pushConstants, std::uint32_t bytes) const;
+  void dispatchIndirectRecorded(VkCommandBuffer commands, const VulkanBuffer& arguments, std::uint64_t offset) const;
 
   const StorageBufferBindings& Bindings;
   VulkanHandle<VkPipeline> Pipeline;

@@ -24,8 +24,9 @@ constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant s
 constexpr int MarchTileSize = 64;                  // pixels per tile side: one submit each
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
 constexpr int LightLayersPerSubmit = 16;           // layers per light-pass submit (sweep)
-// On the device per voxel: three fields of 4 bytes and the light field's pair.
-constexpr std::uint64_t DeviceBytesPerVoxel = 3 * 4 + sizeof(gpu::LightFieldPair);
+// On the device per voxel: three fields of 4 bytes, the light field's pair
+// and a place in the light pass's entry queue.
+constexpr std::uint64_t DeviceBytesPerVoxel = 3 * 4 + sizeof(gpu::LightFieldPair) + 4;
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
   sizeof(gpu::ColourRange) <= PushConstantBytes);
 
@@ -59,6 +60,7 @@ struct RenderSession::DeviceVolume
   VolumeGeometry Geometry;
   std::unique_ptr<VulkanBuffer> Scattering, DomainId, SurfaceDistance, DomainTable;
   std::unique_ptr<VulkanBuffer> LightField;
+  std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
 };
 
 // The per-frame buffers, kept while they are large enough.
@@ -110,8 +112,11 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
-  this->LightPass =
-    std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, light.Words, light.WordCount);
+  for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassEnterFromAbove })
+  {
+    this->LightPasses[mode] = std::make_unique<ComputePipeline>(
+      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode });
+  }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
   this->Buffers->Parameters =
@@ -150,6 +155,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->DomainId = field(volume.DomainId, "DomainId volume");
   uploaded->SurfaceDistance = field(volume.SurfaceDistance, "SurfaceDistance volume");
   uploaded->LightField = std::make_unique<VulkanBuffer>(context, voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
+    context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::LightEntryQueue), "light entry queues");
+  uploaded->EntryVoxels = std::make_unique<VulkanBuffer>(context, voxels * sizeof(std::uint32_t), "light entry voxels");
   uploaded->DomainTable =
     std::make_unique<VulkanBuffer>(context, volume.Domains.size() * sizeof(gpu::DomainRecord), "domain table");
   auto* records = uploaded->DomainTable->as<gpu::DomainRecord>();
@@ -397,6 +405,8 @@ void RenderSession::bindBuffers()
   buffers[gpu::DomainIdBinding] = v.DomainId.get();
   buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
   buffers[gpu::LightFieldBinding] = v.LightField.get();
+  buffers[gpu::LightEntryQueueBinding] = v.EntryQueues.get();
+  buffers[gpu::LightEntryVoxelsBinding] = v.EntryVoxels.get();
   buffers[gpu::DomainTableBinding] = v.DomainTable.get();
   buffers[gpu::PixelColourBinding] = b.PixelColour.get();
   buffers[gpu::PixelBraggBinding] = b.PixelBragg.get();
@@ -426,14 +436,22 @@ bool RenderSession::sweepLightLayers(Progress& progress)
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
   const int layers = dims[1];
-  const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + 255) / 256);
+  const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + gpu::LightPassGroupSize - 1) /
+    gpu::LightPassGroupSize);
+  // Every layer's queue of entry voxels empty, its indirect dispatch of none.
+  auto* queues = this->Volume->EntryQueues->as<gpu::LightEntryQueue>();
+  std::fill(queues, queues + layers, gpu::LightEntryQueue{ 0, 1, 1, 0 });
+  const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
+  const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassEnterFromAbove);
   for (int top = layers - 1; top >= 0; top -= LightLayersPerSubmit)
   {
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
       for (int layer = top; layer > top - LightLayersPerSubmit && layer >= 0; --layer)
       {
-        const gpu::LightPassWork work{ gpu::LightPassSweepFromAbove, 0, 0, layer };
-        this->LightPass->dispatch(commands, work, groups);
+        const gpu::LightPassWork work{ 0, 0, layer };
+        sweep.dispatch(commands, work, groups);
+        enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
+          static_cast<std::uint64_t>(layer) * sizeof(gpu::LightEntryQueue));
       }
     });
     const int done = layers - std::max(0, top - LightLayersPerSubmit + 1);
@@ -452,9 +470,10 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
   for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
   {
     const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
-    const gpu::LightPassWork work{ gpu::LightPassMarchTowardsLight, static_cast<std::int32_t>(first), count, 0 };
+    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->LightPass->dispatch(commands, work, static_cast<std::uint32_t>((count + 255) / 256));
+      this->LightPasses.at(gpu::LightPassMarchTowardsLight)
+        ->dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     });
     if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
     {

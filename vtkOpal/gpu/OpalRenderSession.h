@@ -109,7 +109,8 @@ private:
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
-  std::unique_ptr<ComputePipeline> LightPass;
+  // The light pass's three modes (shaders/opal_render_contract.h), by mode.
+  std::map<int, std::unique_ptr<ComputePipeline>> LightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count and spectral nodes (0: every wavelength).
   std::map<std::pair<int, int>, std::unique_ptr<ComputePipeline>> MarchPasses;
