@@ -24,7 +24,7 @@ layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 
-layout(std430, set = 0, binding = LightEntryQueueBinding) buffer LightEntryQueues { LightEntryQueue queues[]; };
+layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueues { DispatchQueue queues[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 
 layout(push_constant) uniform LightPassPush { LightPassWork work; };

@@ -45,9 +45,17 @@ OPAL_CONSTANT int PixelBraggBinding = 8;       // PixelBragg per pixel
 OPAL_CONSTANT int PixelSpectrumBinding = 9;    // wavelengthCount floats per pixel
 OPAL_CONSTANT int PixelRadianceBinding = 10;   // 3 floats per pixel: linear sRGB
 OPAL_CONSTANT int PixelRGB8Binding = 11;       // uint per pixel: 8-bit sRGB, R in the low byte
-OPAL_CONSTANT int LightEntryQueueBinding = 12; // LightEntryQueue per layer of the grid
+OPAL_CONSTANT int LightEntryQueuesBinding = 12; // DispatchQueue per layer of the grid
 OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
-OPAL_CONSTANT int BindingCount = 14;
+OPAL_CONSTANT int PixelMirrorBinding = 14;     // PixelMirror per pixel
+OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue: the pixels queued for the highlight
+OPAL_CONSTANT int HighlightPixelsBinding = 16; // uint per pixel: the queued pixels
+OPAL_CONSTANT int BindingCount = 17;
+
+// The highlight pass's modes, one pipeline each (specialisation constant 0).
+OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
+OPAL_CONSTANT int HighlightShade = 1;  // the queued pixels: supersample the highlight
+OPAL_CONSTANT int HighlightGroupSize = 64;
 
 // Every setting of a frame. A uniform block: read-only and never aliased by
 // the storage buffers, so compilers keep it in registers.
@@ -123,6 +131,15 @@ struct OPAL_ALIGNED PixelColour
   float depth;
 };
 
+// Where the mirror image of a pixel's primary ray in the surface passes
+// closest to the light's centre (valid 0: it misses the opal or points
+// away); the view march writes it, the highlight pass reads it.
+struct OPAL_ALIGNED PixelMirror
+{
+  OPAL_ALIGNED vec3 nearLight;
+  int valid;
+};
+
 // The view march's Bragg result per pixel.
 struct PixelBragg
 {
@@ -136,11 +153,13 @@ OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the l
 OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
 OPAL_CONSTANT int LightPassEnterFromAbove = 2;    // the layer's voxels the light enters within a step
 
-// The voxels of one layer of the sweep where the light enters the opal
-// within their step (rare, and costly: a bisection and the surface normal),
-// queued by the sweep for a dispatch of their own: the indirect dispatch's
-// workgroups (x, y, z) and how many are queued.
-struct LightEntryQueue
+// Rare, costly work queued by one dispatch for a dispatch of its own (a CPU
+// driver runs a branch's code for every SIMD lane): the indirect dispatch's
+// workgroups (x, y, z) and how many items are queued. The light pass queues
+// a layer's voxels the light enters within their step (a bisection and the
+// surface normal); the highlight pass the pixels near the light's mirror
+// image (sub-rays traced to the surface).
+struct DispatchQueue
 {
   uint groupsX;
   uint groupsY;
@@ -160,8 +179,8 @@ struct LightPassWork
 // Invocations per workgroup of the light pass.
 OPAL_CONSTANT int LightPassGroupSize = 256;
 
-// Push constants of the view march: the tile of the rendered rectangle this
-// dispatch covers.
+// Push constants of the view march and the highlight pass: the tile of the
+// rendered rectangle this dispatch covers.
 struct MarchTile
 {
   ivec2 origin;
@@ -175,7 +194,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(LightEntryQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

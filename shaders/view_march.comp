@@ -1,8 +1,7 @@
 #version 450
 // ViewMarchPass (paper §6, docs/design.md §3.4): per pixel, the primary ray meets the
-// smooth surface (the zero of SurfaceDistance); the light's mirror image is
-// the Fresnel highlight (supersampled over the pixel, so a light smaller than
-// a pixel still shows); the refracted ray (Snell 1 -> mu, carrying 1 - F)
+// smooth surface (the zero of SurfaceDistance) and records where its mirror
+// ray passes the light (for HighlightPass); the refracted ray (Snell 1 -> mu, carrying 1 - F)
 // crosses the opal voxel by voxel (3-D DDA, so no one-voxel-thick domain is
 // tunnelled through) and gathers Rayleigh single scattering (eq. 8) and Bragg
 // diffraction (eq. 4, 9), each domain once per crossing.
@@ -19,6 +18,7 @@ layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
+#include "opal_camera.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
@@ -28,6 +28,8 @@ layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColo
 layout(std430, set = 0, binding = PixelBraggBinding) writeonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
 // Per pixel, WAVELENGTHS spectral radiances (only if P.writeSpectrum != 0).
 layout(std430, set = 0, binding = PixelSpectrumBinding) writeonly buffer PixelSpectrum { float pixelSpectrum[]; };
+// Per pixel: where its mirror ray passes the light, for the highlight pass.
+layout(std430, set = 0, binding = PixelMirrorBinding) writeonly buffer PixelMirrorImage { PixelMirror pixelMirror[]; };
 
 layout(push_constant) uniform MarchPush { MarchTile tile; };
 
@@ -55,70 +57,6 @@ vec2 lightAt(vec3 p)
   vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
   vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
   return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
-}
-
-vec3 primaryDirection(vec2 pixel)
-{
-  float width = float(P.imageWidth), height = float(P.imageHeight);
-  float tanHalf = P.tanHalfViewAngle;
-  vec2 ndc = vec2(2.0 * pixel.x / width - 1.0, 1.0 - 2.0 * pixel.y / height);
-  return normalize(P.forward + ndc.x * tanHalf * (width / height) * P.right +
-    ndc.y * tanHalf * P.up);
-}
-
-// Where the mirror ray of the primary ray through `pixel` passes closest to
-// the light's centre; w = 0 if the ray misses the opal or points away.
-vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
-{
-  vec3 d = primaryDirection(pixel);
-  vec2 box = gridBoxHits(eye, d);
-  cosI = 0.0;
-  if (box.x > box.y) return vec4(0.0);
-  float t = traceSurfaceEntry(eye, d, max(box.x, tFrom), box.y);
-  if (t < 0.0) return vec4(0.0);
-  vec3 hit = eye + t * d;
-  vec3 normal = surfaceNormal(hit);
-  cosI = -dot(d, normal);
-  vec3 mirrored = reflect(d, normal);
-  float along = dot(P.light - hit, mirrored);
-  if (cosI <= 0.0 || along <= 0.0) return vec4(0.0);
-  return vec4(hit + along * mirrored, 1.0);
-}
-
-// Fresnel reflectance of the light seen in the surface (the highlight, and
-// the paper's secondary ray in the mirror direction: the scene holds nothing
-// else to reflect). The light is often smaller than a pixel, so where the
-// mirror rays of this pixel and its neighbours (ray differentials) pass
-// within reach of it, n x n sub-rays cover the pixel; elsewhere it is 0.
-float specularHighlight(vec2 pixel, vec3 eye, float tHit, float mu)
-{
-  float h = P.smallestSpacing;
-  float cosI;
-  vec4 centre = mirrorRayNearLight(pixel, eye, tHit - 2.0 * h, cosI);
-  if (centre.w == 0.0) return 0.0;
-  vec4 nextX = mirrorRayNearLight(pixel + vec2(1.0, 0.0), eye, tHit - 4.0 * h, cosI);
-  vec4 nextY = mirrorRayNearLight(pixel + vec2(0.0, 1.0), eye, tHit - 4.0 * h, cosI);
-  float spread = (nextX.w == 0.0 || nextY.w == 0.0) ? 1e30
-    : max(distance(nextX.xyz, centre.xyz), distance(nextY.xyz, centre.xyz));
-  if (distance(centre.xyz, P.light) > P.lightRadius + 1.5 * spread)
-  {
-    return 0.0;
-  }
-  int n = P.specularSamples;
-  float sum = 0.0;
-  for (int sy = 0; sy < n; ++sy)
-  {
-    for (int sx = 0; sx < n; ++sx)
-    {
-      vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
-      vec4 near = mirrorRayNearLight(sub, eye, tHit - 4.0 * h, cosI);
-      if (near.w > 0.0 && distance(near.xyz, P.light) <= P.lightRadius)
-      {
-        sum += fresnelReflectance(cosI, mu);
-      }
-    }
-  }
-  return sum / float(n * n);
 }
 
 // What the march gathers per pixel besides the radiance: the brightest
@@ -331,14 +269,14 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
 }
 
 // Spectral radiance: the light's normalised D65 scales every term; the view
-// ray carries 1 - F out of the opal; the highlight adds the mirrored light.
-void writePixel(int pixelIndex, float transmitted, float highlight, float tHit)
+// ray carries 1 - F out of the opal (the highlight pass adds the mirrored light).
+void writePixel(int pixelIndex, float transmitted, float tHit)
 {
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
     float gathered = radiance[l] + (EXACT_SCATTERING ? 0.0 : scatterAt(bins[l].rayleighScale));
-    float value = (transmitted * gathered + highlight) * bins[l].illuminant;
+    float value = transmitted * gathered * bins[l].illuminant;
     xyz += value * bins[l].colourMatching * bins[l].width;
     if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
   }
@@ -350,6 +288,7 @@ void writeMiss(int pixelIndex)
 {
   pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
   pixelBragg[pixelIndex] = PixelBragg(0.0, 0.0, 0);
+  pixelMirror[pixelIndex] = PixelMirror(vec3(0.0), 0);
   if (P.writeSpectrum != 0)
   {
     for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
@@ -385,9 +324,11 @@ void main()
   vec3 normal = surfaceNormal(entry);
   float cosI = clamp(-dot(direction, normal), 0.0, 1.0);
   float transmitted = 1.0 - fresnelReflectance(cosI, mu);
-  float highlight = specularHighlight(pixel, eye, tHit, mu) * P.lightRadiance;
+  float cosMirror;
+  vec4 mirror = mirrorPointNearLight(entry, direction, normal, cosMirror);
+  pixelMirror[pixelIndex] = PixelMirror(mirror.xyz, int(mirror.w));
   vec3 inward = refract(direction, normal, 1.0 / mu);
   vec3 origin = entry - 1e-4 * P.smallestSpacing * normal;
   marchInside(origin, inward, traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y));
-  writePixel(pixelIndex, transmitted, highlight, tHit);
+  writePixel(pixelIndex, transmitted, tHit);
 }

@@ -60,16 +60,18 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, illuminant),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, colourMatching),
-    OPAL_FIELD("queues[0].", LightEntryQueue, groupsX),
-    OPAL_FIELD("queues[0].", LightEntryQueue, groupsY),
-    OPAL_FIELD("queues[0].", LightEntryQueue, groupsZ),
-    OPAL_FIELD("queues[0].", LightEntryQueue, count),
+    OPAL_FIELD("queues[0].", DispatchQueue, groupsX),
+    OPAL_FIELD("queues[0].", DispatchQueue, groupsY),
+    OPAL_FIELD("queues[0].", DispatchQueue, groupsZ),
+    OPAL_FIELD("queues[0].", DispatchQueue, count),
     OPAL_FIELD("lightField[0].", LightFieldPair, voxel),
     OPAL_FIELD("lightField[0].", LightFieldPair, nextVoxel),
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
     OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
     OPAL_FIELD("pixelColour[0].", PixelColour, xyz),
     OPAL_FIELD("pixelColour[0].", PixelColour, depth),
+    OPAL_FIELD("pixelMirror[0].", PixelMirror, nearLight),
+    OPAL_FIELD("pixelMirror[0].", PixelMirror, valid),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantWavelength),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantLuminance),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, hit),
@@ -85,12 +87,12 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 
 // Prefixes of the contract's structs in the shaders' reflection.
 const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "domains[0].", "pixelColour[0].",
-  "pixelBragg[0].", "work.", "tile.", "range." };
+  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "range." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
-  { "lightField[0].", sizeof(LightFieldPair) }, { "queues[0].", sizeof(LightEntryQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
-  { "pixelBragg[0].", sizeof(PixelBragg) } };
+  { "lightField[0].", sizeof(LightFieldPair) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) } };
 
 std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)
 {
@@ -170,7 +172,8 @@ int TestOpalShaderContract(int argc, char* argv[])
     return 2;
   }
   std::set<std::string> seen;
-  for (const char* shader : { "light_optical_depth.comp", "view_march.comp", "spectrum_to_colour.comp" })
+  for (const char* shader :
+    { "light_optical_depth.comp", "view_march.comp", "specular_highlight.comp", "spectrum_to_colour.comp" })
   {
     const std::set<std::string> names = checkShader(shader, reflect(argv[1], argv[2], shader));
     seen.insert(names.begin(), names.end());

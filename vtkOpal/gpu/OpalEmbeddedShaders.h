@@ -16,6 +16,7 @@ struct Spirv
 
 Spirv lightOpticalDepthShader();
 Spirv viewMarchShader();
+Spirv specularHighlightShader();
 Spirv spectrumToColourShader();
 
 } // namespace opal::embedded

@@ -67,7 +67,8 @@ struct RenderSession::DeviceVolume
 struct RenderSession::FrameBuffers
 {
   std::unique_ptr<VulkanBuffer> Parameters, WavelengthTable;
-  std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelSpectrum, PixelRadiance, PixelRGB8;
+  std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelMirror, PixelSpectrum, PixelRadiance, PixelRGB8;
+  std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
   std::size_t PixelCapacity = 0;
   std::size_t SpectrumFloats = 0;
 };
@@ -119,8 +120,16 @@ RenderSession::RenderSession(const VulkanOptions& options)
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
+  const embedded::Spirv highlight = embedded::specularHighlightShader();
+  for (int mode : { gpu::HighlightSelect, gpu::HighlightShade })
+  {
+    this->HighlightPasses[mode] = std::make_unique<ComputePipeline>(
+      *this->Context, *this->Bindings, highlight.Words, highlight.WordCount, std::vector<std::int32_t>{ mode });
+  }
   this->Buffers->Parameters =
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
+  this->Buffers->HighlightQueue =
+    std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::DispatchQueue), "highlight queue header");
 }
 
 RenderSession::~RenderSession() = default;
@@ -156,7 +165,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->SurfaceDistance = field(volume.SurfaceDistance, "SurfaceDistance volume");
   uploaded->LightField = std::make_unique<VulkanBuffer>(context, voxels * sizeof(gpu::LightFieldPair), "light field");
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
-    context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::LightEntryQueue), "light entry queues");
+    context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
   uploaded->EntryVoxels = std::make_unique<VulkanBuffer>(context, voxels * sizeof(std::uint32_t), "light entry voxels");
   uploaded->DomainTable =
     std::make_unique<VulkanBuffer>(context, volume.Domains.size() * sizeof(gpu::DomainRecord), "domain table");
@@ -305,7 +314,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
   const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * DeviceBytesPerVoxel;
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
-      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg)) + pixels * (3 * 4 + 4) + spectrumBytes;
+      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
+    spectrumBytes;
   const std::uint64_t deviceBytes = volumeBytes + imageBytes;
   if (deviceBytes > this->Context->memoryBudget())
   {
@@ -337,10 +347,14 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     const std::size_t n = setup.PixelCapacity;
     b.PixelColour.reset();
     b.PixelBragg.reset();
+    b.PixelMirror.reset();
+    b.HighlightPixels.reset();
     b.PixelRadiance.reset();
     b.PixelRGB8.reset();
     b.PixelColour = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelColour), "XYZ image");
     b.PixelBragg = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelBragg), "Bragg image");
+    b.PixelMirror = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelMirror), "mirror image");
+    b.HighlightPixels = std::make_unique<VulkanBuffer>(context, n * sizeof(std::uint32_t), "highlight queue");
     b.PixelRadiance = std::make_unique<VulkanBuffer>(context, n * 3 * sizeof(float), "Radiance image");
     b.PixelRGB8 = std::make_unique<VulkanBuffer>(context, n * sizeof(std::uint32_t), "RGB image");
     b.PixelCapacity = n;
@@ -405,11 +419,14 @@ void RenderSession::bindBuffers()
   buffers[gpu::DomainIdBinding] = v.DomainId.get();
   buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
   buffers[gpu::LightFieldBinding] = v.LightField.get();
-  buffers[gpu::LightEntryQueueBinding] = v.EntryQueues.get();
+  buffers[gpu::LightEntryQueuesBinding] = v.EntryQueues.get();
   buffers[gpu::LightEntryVoxelsBinding] = v.EntryVoxels.get();
   buffers[gpu::DomainTableBinding] = v.DomainTable.get();
   buffers[gpu::PixelColourBinding] = b.PixelColour.get();
   buffers[gpu::PixelBraggBinding] = b.PixelBragg.get();
+  buffers[gpu::PixelMirrorBinding] = b.PixelMirror.get();
+  buffers[gpu::HighlightQueueBinding] = b.HighlightQueue.get();
+  buffers[gpu::HighlightPixelsBinding] = b.HighlightPixels.get();
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();
@@ -439,8 +456,8 @@ bool RenderSession::sweepLightLayers(Progress& progress)
   const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + gpu::LightPassGroupSize - 1) /
     gpu::LightPassGroupSize);
   // Every layer's queue of entry voxels empty, its indirect dispatch of none.
-  auto* queues = this->Volume->EntryQueues->as<gpu::LightEntryQueue>();
-  std::fill(queues, queues + layers, gpu::LightEntryQueue{ 0, 1, 1, 0 });
+  auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
+  std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
   const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
   const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassEnterFromAbove);
   for (int top = layers - 1; top >= 0; top -= LightLayersPerSubmit)
@@ -451,7 +468,7 @@ bool RenderSession::sweepLightLayers(Progress& progress)
         const gpu::LightPassWork work{ 0, 0, layer };
         sweep.dispatch(commands, work, groups);
         enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
-          static_cast<std::uint64_t>(layer) * sizeof(gpu::LightEntryQueue));
+          static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
       }
     });
     const int done = layers - std::max(0, top - LightLayersPerSubmit + 1);
@@ -529,7 +546,22 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
       }
     }
   }
+  this->runHighlightPass(rect);
   return true;
+}
+
+// The highlight over the rectangle the march wrote (it recorded the mirror
+// rays): every pixel selects, the queued few are shaded (indirect).
+void RenderSession::runHighlightPass(const std::array<int, 4>& rect)
+{
+  *this->Buffers->HighlightQueue->as<gpu::DispatchQueue>() = gpu::DispatchQueue{ 0, 1, 1, 0 };
+  const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
+  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  this->Context->submitAndWait([&](VkCommandBuffer commands) {
+    this->HighlightPasses.at(gpu::HighlightSelect)
+      ->dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+    this->HighlightPasses.at(gpu::HighlightShade)->dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
+  });
 }
 
 // Automatic exposure: the body's median luminance to a mid grey (0.18),

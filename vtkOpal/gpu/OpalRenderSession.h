@@ -102,6 +102,7 @@ private:
   bool marchLightPerVoxel(Progress& progress);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
+  void runHighlightPass(const std::array<int, 4>& rect);
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
@@ -111,6 +112,8 @@ private:
   std::unique_ptr<StorageBufferBindings> Bindings;
   // The light pass's three modes (shaders/opal_render_contract.h), by mode.
   std::map<int, std::unique_ptr<ComputePipeline>> LightPasses;
+  // The highlight pass's two modes (select and shade), by mode.
+  std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count and spectral nodes (0: every wavelength).
   std::map<std::pair<int, int>, std::unique_ptr<ComputePipeline>> MarchPasses;

@@ -1,0 +1,133 @@
+#version 450
+// HighlightPass (docs/design.md §3.4): the Fresnel reflection of the light
+// seen in the surface (the paper's specular term and its secondary ray in the
+// mirror direction: the scene holds nothing else to reflect), added to the
+// pixels the view march wrote. The light is often smaller than a pixel, so
+// where the mirror rays of this pixel and of its right and lower neighbours
+// (ray differentials, which the march recorded) pass within reach of it,
+// n x n sub-rays cover the pixel; elsewhere nothing is added. Two
+// dispatches of this shader (specialisation constant 0): HighlightSelect over
+// every pixel reads what the march recorded and queues the pixels that may
+// see the light (and those at the rectangle's edge, whose neighbour it must
+// trace); HighlightShade, indirect, supersamples only those.
+#extension GL_GOOGLE_include_directive : require
+
+#include "opal_render_bindings.glsl"
+
+layout(local_size_x = HighlightGroupSize) in;
+layout(constant_id = 0) const int HIGHLIGHT_MODE = HighlightSelect;
+#include "opal_volume_fields.glsl"
+#include "opal_optics.glsl"
+#include "opal_camera.glsl"
+
+layout(std430, set = 0, binding = PixelColourBinding) buffer PixelColourImage { PixelColour pixelColour[]; };
+layout(std430, set = 0, binding = PixelBraggBinding) readonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
+layout(std430, set = 0, binding = PixelSpectrumBinding) buffer PixelSpectrum { float pixelSpectrum[]; };
+layout(std430, set = 0, binding = PixelMirrorBinding) readonly buffer PixelMirrorImage { PixelMirror pixelMirror[]; };
+layout(std430, set = 0, binding = HighlightQueueBinding) buffer HighlightQueue { DispatchQueue queue; };
+layout(std430, set = 0, binding = HighlightPixelsBinding) buffer HighlightPixels { uint queuedPixels[]; };
+
+// The mirror point of the primary ray through the pixel `offset` from
+// `local` in the rectangle: recorded by the march inside the rectangle,
+// traced here beyond its edge.
+vec4 neighbourMirror(ivec2 local, ivec2 offset, vec2 pixel, float tFrom)
+{
+  ivec2 next = local + offset;
+  if (next.x < P.rectSize.x && next.y < P.rectSize.y)
+  {
+    PixelMirror m = pixelMirror[next.x + P.rectSize.x * next.y];
+    return vec4(m.nearLight, float(m.valid));
+  }
+  if (HIGHLIGHT_MODE == HighlightSelect)
+  {
+    return vec4(0.0); // not reached: pixels at the edge are queued unseen
+  }
+  float cosI;
+  return mirrorRayNearLight(pixel + vec2(offset), P.eye, tFrom, cosI);
+}
+
+// The Fresnel reflectance averaged over n x n sub-rays of the pixel.
+float supersampledHighlight(vec2 pixel, float tFrom)
+{
+  int n = P.specularSamples;
+  float sum = 0.0;
+  for (int sy = 0; sy < n; ++sy)
+  {
+    for (int sx = 0; sx < n; ++sx)
+    {
+      vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
+      float cosI;
+      vec4 near = mirrorRayNearLight(sub, P.eye, tFrom, cosI);
+      if (near.w > 0.0 && distance(near.xyz, P.light) <= P.lightRadius)
+      {
+        sum += fresnelReflectance(cosI, P.refractiveIndex);
+      }
+    }
+  }
+  return sum / float(n * n);
+}
+
+// Whether the mirror rays of the pixel and its neighbours pass within reach
+// of the light; `onlyRecorded`: the neighbours beyond the rectangle's edge
+// count as within reach (HighlightShade traces them).
+bool nearLight(ivec2 local, int pixelIndex, bool onlyRecorded)
+{
+  PixelMirror centre = pixelMirror[pixelIndex];
+  if (pixelBragg[pixelIndex].hit == 0 || centre.valid == 0)
+  {
+    return false;
+  }
+  bool edge = local.x + 1 >= P.rectSize.x || local.y + 1 >= P.rectSize.y;
+  if (onlyRecorded && edge)
+  {
+    return true;
+  }
+  vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
+  float tFrom = pixelColour[pixelIndex].depth - 4.0 * P.smallestSpacing;
+  vec4 nextX = neighbourMirror(local, ivec2(1, 0), pixel, tFrom);
+  vec4 nextY = neighbourMirror(local, ivec2(0, 1), pixel, tFrom);
+  float spread = (nextX.w == 0.0 || nextY.w == 0.0) ? 1e30
+    : max(distance(nextX.xyz, centre.nearLight), distance(nextY.xyz, centre.nearLight));
+  return distance(centre.nearLight, P.light) <= P.lightRadius + 1.5 * spread;
+}
+
+// Adds the supersampled highlight to a queued pixel: the light's normalised
+// D65, reflected, to its XYZ and its spectrum.
+void shade(ivec2 local, int pixelIndex)
+{
+  if (!nearLight(local, pixelIndex, false))
+  {
+    return;
+  }
+  vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
+  float tFrom = pixelColour[pixelIndex].depth - 4.0 * P.smallestSpacing;
+  float highlight = supersampledHighlight(pixel, tFrom) * P.lightRadiance;
+  vec3 xyz = vec3(0.0);
+  for (int l = 0; l < P.wavelengthCount; ++l)
+  {
+    float value = highlight * bins[l].illuminant;
+    xyz += value * bins[l].colourMatching * bins[l].width;
+    if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * P.wavelengthCount + l] += value;
+  }
+  pixelColour[pixelIndex].xyz += xyz;
+}
+
+void main()
+{
+  int item = int(gl_GlobalInvocationID.x);
+  if (HIGHLIGHT_MODE == HighlightSelect)
+  {
+    if (item >= P.rectSize.x * P.rectSize.y) return;
+    ivec2 local = ivec2(item % P.rectSize.x, item / P.rectSize.x);
+    if (nearLight(local, item, true))
+    {
+      uint slot = atomicAdd(queue.count, 1u);
+      queuedPixels[slot] = uint(item);
+      if (slot % uint(HighlightGroupSize) == 0u) atomicAdd(queue.groupsX, 1u);
+    }
+    return;
+  }
+  if (item >= int(queue.count)) return;
+  int pixelIndex = int(queuedPixels[item]);
+  shade(ivec2(pixelIndex % P.rectSize.x, pixelIndex / P.rectSize.x), pixelIndex);
+}
