@@ -21,7 +21,7 @@ namespace opal
 namespace
 {
 constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
-constexpr int MarchTileSize = 64;                  // pixels per tile side: one submit each
+constexpr int MarchTileSize = 64;                  // pixels per tile side: one dispatch each
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
 constexpr int LightLayersPerSubmit = 16;           // layers per light-pass submit (sweep)
 // On the device per voxel: three fields of 4 bytes, the light field's pair
@@ -532,18 +532,19 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes);
   const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
+  // A row of tiles per submit: each submit costs a wait for the device.
   for (int ty = 0; ty < tilesY; ++ty)
   {
-    for (int tx = 0; tx < tilesX; ++tx)
-    {
-      const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
-      this->Context->submitAndWait([&](VkCommandBuffer commands) {
-        march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
-      });
-      if (!progress.report(from + (to - from) * static_cast<double>(ty * tilesX + tx + 1) / (tilesX * tilesY)))
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      for (int tx = 0; tx < tilesX; ++tx)
       {
-        return false;
+        const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
+        march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
       }
+    });
+    if (!progress.report(from + (to - from) * static_cast<double>(ty + 1) / tilesY))
+    {
+      return false;
     }
   }
   this->runHighlightPass(rect);
