@@ -2,7 +2,9 @@
 // second frame with only the camera changed runs neither the upload nor the
 // light pass and gives exactly the image of a fresh session rendering that
 // camera; a new light, rotation or refractive index reruns the light pass; an
-// aborted light pass leaves no stale field behind; abort is an explicit status.
+// aborted light pass leaves no stale field behind; abort is an explicit status;
+// the volume uploaded through staging buffers (the path of a GPU with
+// dedicated memory, forced on lavapipe) renders the same image.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
@@ -34,6 +36,20 @@ std::string stages(const opal::FrameStages& ran)
     s += on ? std::string(" ") + name : "";
   }
   return "ran:" + s;
+}
+// The path of a GPU with dedicated memory, forced on lavapipe.
+void checkStagingUploads(
+  const opal::RenderVolume& volume, const opal::RenderParameters& p, const opal::RenderImage& expected)
+{
+  opal::VulkanOptions staging;
+  staging.Validation = true;
+  staging.StagingUploads = true;
+  opaltest::SceneRenderer throughStaging(staging);
+  const opal::RenderImage image = throughStaging.render(volume, p);
+  OPAL_CHECK(identical(expected, image), "a volume uploaded through staging buffers renders the same image");
+  const auto messages = throughStaging.context().validationMessages();
+  OPAL_CHECK(messages.empty(),
+    "the validation layer is silent about the staging copies" + (messages.empty() ? "" : ": " + messages.front()));
 }
 } // namespace
 
@@ -91,6 +107,8 @@ int TestOpalRenderSession(int, char*[])
   const opal::RenderFrame after = session.render(lit);
   OPAL_CHECK(after.Status == opal::FrameStatus::Completed && after.Ran.LightPass,
     "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
+
+  checkStagingUploads(volume->renderVolume(), moved, b.Image);
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

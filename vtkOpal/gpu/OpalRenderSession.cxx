@@ -155,26 +155,31 @@ void RenderSession::setVolume(const RenderVolume& volume)
   }
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  auto field = [&](const void* values, const char* what) {
-    auto buffer = std::make_unique<VulkanBuffer>(context, voxels * 4, what);
-    buffer->upload(values, voxels * 4);
+  // What only the device reads and writes lives in device-local memory.
+  auto deviceLocal = [&](std::uint64_t bytes, const char* what, const void* values = nullptr) {
+    auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
+    if (values)
+    {
+      buffer->upload(values, bytes);
+    }
     return buffer;
   };
-  uploaded->Scattering = field(volume.ScatteringCoefficient, "ScatteringCoefficient volume");
-  uploaded->DomainId = field(volume.DomainId, "DomainId volume");
-  uploaded->SurfaceDistance = field(volume.SurfaceDistance, "SurfaceDistance volume");
-  uploaded->LightField = std::make_unique<VulkanBuffer>(context, voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->Scattering = deviceLocal(voxels * 4, "ScatteringCoefficient volume", volume.ScatteringCoefficient);
+  uploaded->DomainId = deviceLocal(voxels * 4, "DomainId volume", volume.DomainId);
+  uploaded->SurfaceDistance = deviceLocal(voxels * 4, "SurfaceDistance volume", volume.SurfaceDistance);
+  uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->EntryVoxels = deviceLocal(voxels * sizeof(std::uint32_t), "light entry voxels");
+  // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
-  uploaded->EntryVoxels = std::make_unique<VulkanBuffer>(context, voxels * sizeof(std::uint32_t), "light entry voxels");
-  uploaded->DomainTable =
-    std::make_unique<VulkanBuffer>(context, volume.Domains.size() * sizeof(gpu::DomainRecord), "domain table");
-  auto* records = uploaded->DomainTable->as<gpu::DomainRecord>();
+  std::vector<gpu::DomainRecord> records;
   for (const RenderDomain& domain : volume.Domains)
   {
-    *records++ = { gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
-      domain.PlaneSpacing };
+    records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
+      domain.PlaneSpacing });
   }
+  uploaded->DomainTable =
+    deviceLocal(records.size() * sizeof(gpu::DomainRecord), "domain table", records.empty() ? nullptr : records.data());
   uploaded->Geometry = VolumeGeometry(volume);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;

@@ -4,13 +4,16 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace opal
 {
 
-VulkanBuffer::VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const std::string& what)
+VulkanBuffer::VulkanBuffer(
+  VulkanContext& context, std::uint64_t bytes, const std::string& what, BufferPlacement placement)
   : Context(context)
   , Size(std::max<std::uint64_t>(bytes, 16))
+  , What(what)
 {
   const std::uint64_t range = context.limits().maxStorageBufferRange;
   if (this->Size > range)
@@ -23,31 +26,42 @@ VulkanBuffer::VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const st
   VkDevice device = context.device();
   auto info = vulkanStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
   info.size = this->Size;
-  info.usage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer = VK_NULL_HANDLE;
   checkVulkan(vkCreateBuffer(device, &info, nullptr, &buffer), "vkCreateBuffer");
   this->Buffer = VulkanHandle<VkBuffer>(buffer, [device](VkBuffer b) { vkDestroyBuffer(device, b, nullptr); });
-
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
+  this->allocate(requirements, placement, what);
+}
+
+// Memory of the placement's kind, bound to the buffer, mapped where the host may.
+void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what)
+{
+  VkDevice device = this->Context.device();
   // Released by the member's destructor also when a later step throws.
-  this->Reservation = context.reserveMemory(requirements.size);
-  auto allocate = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-  allocate.allocationSize = requirements.size;
-  allocate.memoryTypeIndex = context.memoryType(
-    requirements.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  this->Reservation = this->Context.reserveMemory(requirements.size);
+  constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  const std::uint32_t type = placement == BufferPlacement::DeviceLocal
+    ? this->Context.deviceLocalMemoryType(requirements.memoryTypeBits)
+    : this->Context.memoryType(requirements.memoryTypeBits, hostVisible);
+  auto allocateInfo = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+  allocateInfo.allocationSize = requirements.size;
+  allocateInfo.memoryTypeIndex = type;
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  const VkResult result = vkAllocateMemory(device, &allocate, nullptr, &memory);
-  if (result != VK_SUCCESS)
-  {
-    checkVulkan(result, ("vkAllocateMemory (" + what + ", " + std::to_string(requirements.size) + " bytes)").c_str());
-  }
+  checkVulkan(vkAllocateMemory(device, &allocateInfo, nullptr, &memory),
+    ("vkAllocateMemory (" + what + ", " + std::to_string(requirements.size) + " bytes)").c_str());
   this->Memory =
     VulkanHandle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-  checkVulkan(vkBindBufferMemory(device, buffer, memory, 0), "vkBindBufferMemory");
-  checkVulkan(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &this->Mapped), "vkMapMemory");
+  checkVulkan(vkBindBufferMemory(device, this->Buffer.get(), memory, 0), "vkBindBufferMemory");
+  const bool mappable = (this->Context.memoryTypeFlags(type) & hostVisible) == hostVisible &&
+    !(placement == BufferPlacement::DeviceLocal && this->Context.stagingUploads());
+  if (mappable)
+  {
+    checkVulkan(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &this->Mapped), "vkMapMemory");
+  }
 }
 
 VulkanBuffer::~VulkanBuffer()
@@ -56,6 +70,35 @@ VulkanBuffer::~VulkanBuffer()
   {
     vkUnmapMemory(this->Context.device(), this->Memory.get());
   }
+}
+
+void VulkanBuffer::upload(const void* source, std::uint64_t bytes)
+{
+  if (this->Mapped)
+  {
+    std::memcpy(this->Mapped, source, bytes);
+    return;
+  }
+  this->uploadThroughStaging(source, bytes);
+}
+
+void VulkanBuffer::uploadThroughStaging(const void* source, std::uint64_t bytes)
+{
+  if (bytes == 0)
+  {
+    return;
+  }
+  VulkanBuffer staging(this->Context, bytes, this->What + " (staging)", BufferPlacement::HostVisible);
+  std::memcpy(staging.Mapped, source, bytes);
+  this->Context.submitAndWait([&](VkCommandBuffer commands) {
+    const VkBufferCopy region{ 0, 0, bytes };
+    vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
+    auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+      &barrier, 0, nullptr, 0, nullptr);
+  });
 }
 
 } // namespace opal

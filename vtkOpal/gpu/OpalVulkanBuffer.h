@@ -1,5 +1,10 @@
-// A storage (or uniform) buffer in host-visible, coherent memory, mapped for its lifetime.
-// (Every Vulkan device offers such memory; lavapipe has no other kind.)
+// A storage (or uniform) buffer. HostVisible buffers live in host-visible,
+// coherent memory, mapped for their lifetime (the pixel images the host reads
+// back, what the host writes every frame). DeviceLocal buffers (the volume's
+// fields and light field) prefer device-local memory: where that memory is
+// also host-visible (lavapipe, integrated GPUs) they are mapped like the
+// others; on a device with dedicated memory they are not, and uploads go
+// through a staging buffer and a copy on the device.
 #pragma once
 
 #include "OpalVulkanContext.h"
@@ -8,7 +13,6 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
-#include <cstring>
 #include <string>
 
 namespace opal
@@ -16,30 +20,45 @@ namespace opal
 
 class VulkanContext;
 
+enum class BufferPlacement
+{
+  HostVisible,
+  DeviceLocal,
+};
+
 class VulkanBuffer
 {
 public:
   // Throws VulkanError naming the limit if `bytes` exceeds the device's
   // storage-buffer range, before anything is allocated. `what` names the
   // buffer in messages.
-  VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const std::string& what);
+  VulkanBuffer(VulkanContext& context, std::uint64_t bytes, const std::string& what,
+    BufferPlacement placement = BufferPlacement::HostVisible);
   ~VulkanBuffer();
   VulkanBuffer(const VulkanBuffer&) = delete;
   VulkanBuffer& operator=(const VulkanBuffer&) = delete;
 
   VkBuffer buffer() const { return this->Buffer.get(); }
   std::uint64_t size() const { return this->Size; }
-  void* data() const { return this->Mapped; }
+  // Whether the host can read and write it directly (always for HostVisible).
+  bool mapped() const { return this->Mapped != nullptr; }
+  // The mapped memory (nullptr for a DeviceLocal buffer in dedicated memory).
   template <typename T>
   T* as() const
   {
     return static_cast<T*>(this->Mapped);
   }
-  void upload(const void* source, std::uint64_t bytes) { std::memcpy(this->Mapped, source, bytes); }
+  // Copies `bytes` from the host into the buffer's start: directly where it
+  // is mapped, else through a staging buffer (waits for the copy).
+  void upload(const void* source, std::uint64_t bytes);
 
 private:
+  void allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what);
+  void uploadThroughStaging(const void* source, std::uint64_t bytes);
+
   VulkanContext& Context;
   std::uint64_t Size;
+  std::string What;
   // Declared first, so released last: after the buffer and its memory.
   MemoryReservation Reservation;
   VulkanHandle<VkBuffer> Buffer;

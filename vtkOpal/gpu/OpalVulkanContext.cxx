@@ -240,6 +240,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   this->Fence = VulkanHandle<VkFence>(fence, [device](VkFence f) { vkDestroyFence(device, f, nullptr); });
 
   this->MemoryLimit = options.MemoryLimitBytes;
+  this->StagingUploads = options.StagingUploads;
   if (const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB"))
   {
     this->MemoryLimit = static_cast<std::uint64_t>(std::strtoull(limit, nullptr, 10)) << 20;
@@ -266,6 +267,18 @@ std::uint32_t VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryProperty
   }
   throw VulkanError("vkGetPhysicalDeviceMemoryProperties: no host-visible, coherent memory type for a buffer",
     VK_ERROR_FEATURE_NOT_PRESENT);
+}
+
+std::uint32_t VulkanContext::deviceLocalMemoryType(std::uint32_t typeBits) const
+{
+  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  {
+    if ((typeBits & (1u << i)) && (this->memoryTypeFlags(i) & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
+    {
+      return i;
+    }
+  }
+  return this->memoryType(typeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 }
 
 MemoryReservation& MemoryReservation::operator=(MemoryReservation&& other) noexcept

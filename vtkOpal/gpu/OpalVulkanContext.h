@@ -29,6 +29,9 @@ struct VulkanOptions
   // Refuse device allocations beyond this many bytes in all (0: no limit);
   // also settable by OPAL_VULKAN_MEMORY_LIMIT_MB. Simulates a small device.
   std::uint64_t MemoryLimitBytes = 0;
+  // Upload the volume through staging buffers even where device-local memory
+  // is host-visible (lavapipe): exercises the path a discrete GPU takes.
+  bool StagingUploads = false;
 };
 
 class VulkanContext;
@@ -65,6 +68,13 @@ public:
 
   // Memory type index with the given properties among the allowed type bits.
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
+  // A device-local memory type among the allowed bits, else a host-visible one.
+  std::uint32_t deviceLocalMemoryType(std::uint32_t typeBits) const;
+  VkMemoryPropertyFlags memoryTypeFlags(std::uint32_t type) const
+  {
+    return this->MemoryProperties.memoryTypes[type].propertyFlags;
+  }
+  bool stagingUploads() const { return this->StagingUploads; }
 
   // Book-keeping of the optional memory limit: a reservation of `bytes`,
   // released when the returned object goes; throws a VulkanError naming the
@@ -101,6 +111,7 @@ private:
   VulkanHandle<VkCommandPool> CommandPool;
   VulkanHandle<VkFence> Fence;
   std::uint64_t MemoryLimit = 0;
+  bool StagingUploads = false;
   std::uint64_t MemoryInUse = 0;
   mutable std::mutex MessageMutex;
   std::vector<std::string> Messages;
