@@ -21,9 +21,12 @@ namespace opal
 namespace
 {
 constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
+// Work per submit: each submit costs a wait for the device (about 10 ms on
+// lavapipe), and none may run long enough to trip a GPU's watchdog.
 constexpr int MarchTileSize = 64;                  // pixels per tile side: one dispatch each
+constexpr std::int64_t MarchPixelsPerSubmit = 1 << 17;
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
-constexpr int LightLayersPerSubmit = 16;           // layers per light-pass submit (sweep)
+constexpr std::int64_t LightSweepVoxelsPerSubmit = 1 << 20;
 // On the device per voxel: three fields of 4 bytes, the light field's pair
 // and a place in the light pass's entry queue.
 constexpr std::uint64_t DeviceBytesPerVoxel = 3 * 4 + sizeof(gpu::LightFieldPair) + 4;
@@ -465,10 +468,12 @@ bool RenderSession::sweepLightLayers(Progress& progress)
   std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
   const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
   const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassEnterFromAbove);
-  for (int top = layers - 1; top >= 0; top -= LightLayersPerSubmit)
+  const int layersPerSubmit =
+    static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
+  for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
   {
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      for (int layer = top; layer > top - LightLayersPerSubmit && layer >= 0; --layer)
+      for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
         const gpu::LightPassWork work{ 0, 0, layer };
         sweep.dispatch(commands, work, groups);
@@ -476,7 +481,7 @@ bool RenderSession::sweepLightLayers(Progress& progress)
           static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
       }
     });
-    const int done = layers - std::max(0, top - LightLayersPerSubmit + 1);
+    const int done = layers - std::max(0, top - layersPerSubmit + 1);
     if (!progress.report(0.2 * done / layers))
     {
       return false;
@@ -537,37 +542,44 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes);
   const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
-  // A row of tiles per submit: each submit costs a wait for the device.
-  for (int ty = 0; ty < tilesY; ++ty)
+  const int rowsPerSubmit = static_cast<int>(
+    std::max<std::int64_t>(1, MarchPixelsPerSubmit / (static_cast<std::int64_t>(tilesX) * MarchTileSize * MarchTileSize)));
+  *this->Buffers->HighlightQueue->as<gpu::DispatchQueue>() = gpu::DispatchQueue{ 0, 1, 1, 0 };
+  for (int firstRow = 0; firstRow < tilesY; firstRow += rowsPerSubmit)
   {
+    const int endRow = std::min(tilesY, firstRow + rowsPerSubmit);
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      for (int tx = 0; tx < tilesX; ++tx)
+      for (int ty = firstRow; ty < endRow; ++ty)
       {
-        const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
-        march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
+        for (int tx = 0; tx < tilesX; ++tx)
+        {
+          const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
+          march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
+        }
+      }
+      if (endRow == tilesY)
+      {
+        this->recordHighlightPass(commands, rect); // after the last rows, in the same submit
       }
     });
-    if (!progress.report(from + (to - from) * static_cast<double>(ty + 1) / tilesY))
+    if (!progress.report(from + (to - from) * static_cast<double>(endRow) / tilesY))
     {
       return false;
     }
   }
-  this->runHighlightPass(rect);
   return true;
 }
 
 // The highlight over the rectangle the march wrote (it recorded the mirror
-// rays): every pixel selects, the queued few are shaded (indirect).
-void RenderSession::runHighlightPass(const std::array<int, 4>& rect)
+// rays): every pixel selects, the queued few are shaded (indirect). The host
+// emptied the queue before the submit.
+void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const
 {
-  *this->Buffers->HighlightQueue->as<gpu::DispatchQueue>() = gpu::DispatchQueue{ 0, 1, 1, 0 };
   const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
   const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
-  this->Context->submitAndWait([&](VkCommandBuffer commands) {
-    this->HighlightPasses.at(gpu::HighlightSelect)
-      ->dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
-    this->HighlightPasses.at(gpu::HighlightShade)->dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
-  });
+  this->HighlightPasses.at(gpu::HighlightSelect)
+    ->dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+  this->HighlightPasses.at(gpu::HighlightShade)->dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
 }
 
 // Automatic exposure: the body's median luminance to a mid grey (0.18),

@@ -102,7 +102,7 @@ private:
   bool marchLightPerVoxel(Progress& progress);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
-  void runHighlightPass(const std::array<int, 4>& rect);
+  void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const;
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
