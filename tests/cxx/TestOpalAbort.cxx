@@ -18,7 +18,7 @@ int TestOpalAbort(int, char*[])
 {
   if (!opaltest::vulkanDeviceAvailable())
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   opaltest::silenceExpectedErrors();
   vtkNew<vtkOpalSource> source;

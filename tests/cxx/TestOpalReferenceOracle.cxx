@@ -294,7 +294,7 @@ int TestOpalReferenceOracle(int argc, char* argv[])
 {
   if (!opaltest::vulkanDeviceAvailable())
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   // VTK's -D: the folder of the official CIE tables (vtkOpal/core/data).
   vtkNew<vtkTesting> testing;

@@ -41,7 +41,7 @@ int TestOpalRenderBadInput(int argc, char* argv[])
   }
   if (!opaltest::vulkanDeviceAvailable())
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
 
   const std::vector<BadCase> cases = {

@@ -174,7 +174,7 @@ int TestOpalRenderImages(int argc, char* argv[])
 {
   if (!opaltest::vulkanDeviceAvailable())
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   // Image regression against the baseline (-V, tests/Data/Baseline/
   // TestOpalRenderImages.png) with VTK's machinery and, finer, level by level.

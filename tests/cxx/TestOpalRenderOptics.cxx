@@ -295,7 +295,7 @@ int TestOpalRenderOptics(int, char*[])
   auto renderer = opaltest::makeRenderer();
   if (!renderer)
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   checkHighlight(*renderer);
   checkBraggSnell(*renderer);

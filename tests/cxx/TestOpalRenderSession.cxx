@@ -58,7 +58,7 @@ int TestOpalRenderSession(int, char*[])
   auto renderer = opaltest::makeRenderer();
   if (!renderer)
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   opal::ModelParameters model;
   model.Dimensions = { 40, 20, 50 };

@@ -140,7 +140,7 @@ int TestOpalSpectralMarch(int, char*[])
   auto renderer = opaltest::makeRenderer();
   if (!renderer)
   {
-    return opaltest::SkipReturnCode;
+    return opaltest::noDeviceReturnCode();
   }
   checkSpectralNodes(*renderer);
   checkCrossingRounds(*renderer);
