@@ -45,6 +45,14 @@ void addFieldData(const opal::RenderImage& image, const std::string& deviceName,
   exposure->SetName("Exposure");
   exposure->InsertNextValue(image.Exposure);
   fields->AddArray(exposure);
+  vtkNew<vtkStringArray> illuminant;
+  illuminant->SetName("Illuminant");
+  illuminant->InsertNextValue(image.Illuminant);
+  fields->AddArray(illuminant);
+  vtkNew<vtkDoubleArray> illuminantScale;
+  illuminantScale->SetName("IlluminantScale");
+  illuminantScale->InsertNextValue(image.IlluminantScale);
+  fields->AddArray(illuminantScale);
   vtkNew<vtkStringArray> device;
   device->SetName("VulkanDevice");
   device->InsertNextValue(deviceName);

@@ -63,6 +63,7 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
   p.LightFalloffAtEntry = this->LightFalloffAtEntry;
   p.WriteSpectrum = this->WriteSpectrum;
   p.Quality = static_cast<opal::RenderQuality>(this->Quality);
+  p.Illuminant = static_cast<opal::LightSpectrum>(this->Illuminant);
   return p;
 }
 
@@ -92,6 +93,7 @@ void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
   this->LightFalloffAtEntry = p.LightFalloffAtEntry;
   this->WriteSpectrum = p.WriteSpectrum;
   this->Quality = static_cast<int>(p.Quality);
+  this->Illuminant = static_cast<int>(p.Illuminant);
   this->Modified();
 }
 
@@ -305,6 +307,7 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   print("LightFalloffAtEntry", &this->LightFalloffAtEntry, 1);
   print("WriteSpectrum", &this->WriteSpectrum, 1);
   print("Quality", &this->Quality, 1);
+  print("Illuminant", &this->Illuminant, 1);
   print("DeviceIndex", &this->DeviceIndex, 1);
   print("DeviceMemoryLimit", &this->DeviceMemoryLimit, 1);
 }

@@ -127,6 +127,11 @@ public:
   /// 20 nm wavelength steps, 8 spectral nodes, a 2 x 2 highlight.
   vtkSetClampMacro(Quality, int, 0, 1);
   vtkGetMacro(Quality, int);
+  /// The light's spectrum: 0 D65 (default, normalised to luminance 1), 1 none
+  /// (unit spectral irradiance: Spectrum is radiance per unit source
+  /// spectrum). The field data Illuminant and IlluminantScale record it.
+  vtkSetClampMacro(Illuminant, int, 0, 1);
+  vtkGetMacro(Illuminant, int);
   /// Add the Spectrum array (one value per wavelength per pixel). Default off.
   vtkSetMacro(WriteSpectrum, bool);
   vtkGetMacro(WriteSpectrum, bool);
@@ -187,6 +192,7 @@ protected:
   bool LightFalloffAtEntry;
   bool WriteSpectrum;
   int Quality;
+  int Illuminant;
   int DeviceIndex;
   int DeviceMemoryLimit;
 

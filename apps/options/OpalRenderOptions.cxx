@@ -40,6 +40,13 @@ void OpalRenderOptions::addTo(CLI::App& app)
        "Nodes of the body's scattering spectrum (0: evaluate every wavelength)")
     ->capture_default_str()
     ->group(group);
+  app.add_option("--illuminant", p.Illuminant,
+       "The light's spectrum: D65 (normalised to luminance 1), or none (unit spectral irradiance)")
+    ->transform(CLI::CheckedTransformer(
+      std::map<std::string, opal::LightSpectrum>{ { "D65", opal::LightSpectrum::D65 },
+        { "none", opal::LightSpectrum::None } },
+      CLI::ignore_case))
+    ->group(group);
   app.add_option("--quality", p.Quality,
        "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight")
     ->transform(CLI::CheckedTransformer(

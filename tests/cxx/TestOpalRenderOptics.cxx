@@ -4,7 +4,8 @@
 // over tilt angles (lambda_max at normal incidence, lambda_min at grazing), a
 // flat domain's spectrum peaking at lambda_max, the transmittance of a
 // homogeneous slab, monochromatic hues, and no ray tunnelling through a
-// one-voxel-thick tilted domain.
+// one-voxel-thick tilted domain; an index-matched boundary and a flat
+// illuminant.
 #include "OpalOptics.h"
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
@@ -100,6 +101,35 @@ void checkHighlight(SceneRenderer& renderer)
       std::fabs(rgb[2] - mean) < 0.01 * mean,
     "D65 maps to sRGB white within 1%: " + std::to_string(rgb[0]) + " " + std::to_string(rgb[1]) + " " +
       std::to_string(rgb[2]));
+}
+
+// The validation settings: an index-matched boundary (mu = 1) reflects
+// nothing; with Illuminant none the highlight's spectrum is flat, the
+// Fresnel reflectance times the light's radiance at every wavelength.
+void checkValidationSettings(SceneRenderer& renderer)
+{
+  SlabScene scene;
+  opal::RenderParameters p = opaltest::slabView();
+  p.LightRadius = 2.0;
+  p.RefractiveIndex = 1.0;
+  opal::RenderImage image = renderChecked(renderer, scene, p, "index-matched");
+  const std::size_t i = opaltest::pixelIndex(image, Centre, Centre);
+  OPAL_CHECK(image.XYZ[3 * i + 1] == 0.0f, "an index-matched boundary shows no highlight, got Y " +
+      std::to_string(image.XYZ[3 * i + 1]));
+  p.RefractiveIndex = Mu;
+  p.Illuminant = opal::LightSpectrum::None;
+  p.WriteSpectrum = true;
+  image = renderChecked(renderer, scene, p, "illuminant none");
+  const double expected = std::pow((Mu - 1) / (Mu + 1), 2) * 28.0 * 28.0 / (opal::Pi * 2.0 * 2.0);
+  const std::size_t n = image.Wavelengths.size();
+  double worst = 0;
+  for (std::size_t l = 0; l < n; ++l)
+  {
+    worst = std::max(worst, std::fabs(image.Spectrum[i * n + l] / expected - 1));
+  }
+  OPAL_CHECK(worst < 0.01 && image.Illuminant == "none" && image.IlluminantScale == 1.0,
+    "Illuminant none: the highlight's spectrum is F x the light's radiance at every wavelength, worst " +
+      std::to_string(100 * worst) + "%");
 }
 
 // The light straight above the domain's centre: glancing angle 90 deg - tilt.
@@ -298,6 +328,7 @@ int TestOpalRenderOptics(int, char*[])
     return opaltest::noDeviceReturnCode();
   }
   checkHighlight(*renderer);
+  checkValidationSettings(*renderer);
   checkBraggSnell(*renderer);
   checkFlatDomainSpectrum(*renderer);
   checkSlabTransmittance(*renderer);

@@ -183,9 +183,9 @@ std::string validate(const ModelParameters& p)
     message << "DomainCount must not be negative, got " << p.DomainCount << ".";
     return message.str();
   }
-  if (!(p.RefractiveIndex > 1))
+  if (!(p.RefractiveIndex >= 1))
   {
-    message << "RefractiveIndex must exceed 1, got " << p.RefractiveIndex << ".";
+    message << "RefractiveIndex must be at least 1 (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
     return message.str();
   }
   if (p.MaxPlacementAttempts < 1)

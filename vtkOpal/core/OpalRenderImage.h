@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace opal
@@ -32,6 +33,10 @@ struct RenderImage
   std::vector<float> Spectrum;                 // Wavelengths.size() per pixel, if asked for
   std::vector<double> Wavelengths;             // nm
   double Exposure = 1;
+  // The light's spectrum: "D65" (normalised by IlluminantScale, luminance 1)
+  // or "none" (unit spectral irradiance, IlluminantScale 1).
+  std::string Illuminant = "D65";
+  double IlluminantScale = 1;
   RenderTimings Timings;
 };
 

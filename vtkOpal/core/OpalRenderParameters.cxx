@@ -87,9 +87,9 @@ std::string validate(const RenderParameters& p)
     m << "WavelengthStep " << p.WavelengthStep << " nm gives " << wavelengthCount(p)
       << " wavelengths; at most " << MaxWavelengths << " are supported.";
   }
-  else if (!(p.RefractiveIndex > 1 && p.RefractiveIndex < 4))
+  else if (!(p.RefractiveIndex >= 1 && p.RefractiveIndex < 4))
   {
-    m << "RefractiveIndex must lie in (1, 4), got " << p.RefractiveIndex << ".";
+    m << "RefractiveIndex must lie in [1, 4) (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
   }
   else if (!(p.BraggBandwidth > 0 && p.BraggBandwidth < 1))
   {
@@ -118,6 +118,10 @@ std::string validate(const RenderParameters& p)
   else if (p.SpecularSamples < 1 || p.SpecularSamples > 16)
   {
     m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
+  }
+  else if (p.Illuminant != LightSpectrum::D65 && p.Illuminant != LightSpectrum::None)
+  {
+    m << "Illuminant must be 0 (D65) or 1 (none), got " << static_cast<int>(p.Illuminant) << ".";
   }
   else if (p.Quality != RenderQuality::Final && p.Quality != RenderQuality::Preview)
   {

@@ -9,6 +9,15 @@
 namespace opal
 {
 
+// The light's spectrum: D65 normalised to luminance 1 (sum of D65 y-bar
+// dlambda = 1), or None: unit spectral irradiance, so the Spectrum output is
+// radiance per unit source spectrum (for comparisons with other renderers).
+enum class LightSpectrum : int
+{
+  D65 = 0,
+  None = 1,
+};
+
 // Final renders the parameters as they are; Preview, for interaction, renders
 // half the width and height, 20 nm wavelength steps, 8 spectral nodes and a
 // 2 x 2 highlight (withQuality).
@@ -47,6 +56,7 @@ struct RenderParameters
   bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
   bool WriteSpectrum = false;                          // fill the Spectrum output
   RenderQuality Quality = RenderQuality::Final;
+  LightSpectrum Illuminant = LightSpectrum::D65;
 };
 
 // The largest number of wavelengths a render takes (the march keeps one

@@ -135,7 +135,8 @@ std::vector<WavelengthBin> sampleWavelengths(double lo, double hi, double step)
   }
   for (WavelengthBin& bin : bins)
   {
-    bin.D65 = luminance > 0 ? bin.D65 / luminance : 0.0;
+    bin.D65Scale = luminance > 0 ? 1.0 / luminance : 0.0;
+    bin.D65 *= bin.D65Scale;
   }
   return bins;
 }

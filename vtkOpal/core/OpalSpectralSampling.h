@@ -14,7 +14,8 @@ struct WavelengthBin
   double Lambda;        // bin centre, nm
   double Width;         // nm
   double RayleighScale; // (550 / lambda)^4: mu_s(lambda) = mu_s(550) * scale
-  double D65;           // normalised relative power
+  double D65;           // normalised relative power (luminance 1 over the bins)
+  double D65Scale;      // the normalisation: D65 = CIE table value x D65Scale
   double XBar, YBar, ZBar;
 };
 

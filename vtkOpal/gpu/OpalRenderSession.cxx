@@ -375,11 +375,11 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.SpectrumFloats = spectrumFloats;
     rebind = true;
   }
-  const std::array<double, 3> sampling{ setup.Parameters.WavelengthRange[0], setup.Parameters.WavelengthRange[1],
-    setup.Parameters.WavelengthStep };
+  const std::array<double, 4> sampling{ setup.Parameters.WavelengthRange[0], setup.Parameters.WavelengthRange[1],
+    setup.Parameters.WavelengthStep, static_cast<double>(setup.Parameters.Illuminant) };
   if (this->WavelengthSampling != sampling)
   {
-    this->uploadWavelengthTable(setup.Bins);
+    this->uploadWavelengthTable(setup.Bins, setup.Parameters.Illuminant);
     this->WavelengthSampling = sampling;
     rebind = true;
   }
@@ -396,7 +396,9 @@ RenderSession::LightFieldKey RenderSession::lightFieldKey(const FrameSetup& setu
   return { { light.x, light.y, light.z }, setup.Parameters.RefractiveIndex, setup.Parameters.LightFalloffAtEntry };
 }
 
-void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins)
+// The table of the bins, with the light's spectrum: normalised D65, or 1
+// (unit spectral irradiance) for LightSpectrum::None.
+void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant)
 {
   FrameBuffers& b = *this->Buffers;
   b.WavelengthTable.reset();
@@ -406,7 +408,7 @@ void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins
   for (const WavelengthBin& bin : bins)
   {
     *record++ = { static_cast<float>(bin.Lambda), static_cast<float>(bin.Width),
-      static_cast<float>(bin.RayleighScale), static_cast<float>(bin.D65),
+      static_cast<float>(bin.RayleighScale), illuminant == LightSpectrum::D65 ? static_cast<float>(bin.D65) : 1.0f,
       gpu::vec3(static_cast<float>(bin.XBar), static_cast<float>(bin.YBar), static_cast<float>(bin.ZBar)) };
   }
 }
@@ -640,6 +642,9 @@ RenderImage RenderSession::readBack(const FrameSetup& setup) const
   {
     image.Wavelengths.push_back(bin.Lambda);
   }
+  const bool d65 = setup.Parameters.Illuminant == LightSpectrum::D65;
+  image.Illuminant = d65 ? "D65" : "none";
+  image.IlluminantScale = d65 && !setup.Bins.empty() ? setup.Bins.front().D65Scale : 1.0;
   const auto* rgb8 = b.PixelRGB8->as<std::uint32_t>();
   const auto* colour = b.PixelColour->as<gpu::PixelColour>();
   const auto* bragg = b.PixelBragg->as<gpu::PixelBragg>();

@@ -95,7 +95,7 @@ private:
   FrameSetup setUpFrame(const RenderParameters& parameters) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   void prepareFrameBuffers(const FrameSetup& setup);
-  void uploadWavelengthTable(const std::vector<WavelengthBin>& bins);
+  void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
   void bindBuffers();
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   bool sweepLightLayers(Progress& progress);
@@ -120,7 +120,7 @@ private:
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
-  std::optional<std::array<double, 3>> WavelengthSampling;    // range and step of the table
+  std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
 };
 
