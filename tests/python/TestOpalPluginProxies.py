@@ -87,5 +87,14 @@ lut = GetColorTransferFunction("DominantBraggWavelength")
 points = list(lut.RGBPoints)
 check(points[0] == 380.0 and points[-4] == 780.0 and len(points) > 40,
       "the Visible spectrum colour map is the default for DominantBraggWavelength")
+at750 = points[points.index(750.0) + 1:points.index(750.0) + 4]
+check(at750[0] > at750[1] and at750[0] > at750[2] and at750[0] < 0.5,
+      f"the colour map shows 750 nm as dark red, not pink: {at750}")
+
+for proxy in (volume, render, bragg):
+    hints = proxy.GetHints()
+    menus = [hints.GetNestedElement(i) for i in range(hints.GetNumberOfNestedElements())] if hints else []
+    check(any(m.GetName() == "ShowInMenu" and m.GetAttribute("category") == "Opal" for m in menus),
+          f"{proxy.GetXMLName()} is in the Opal menu category")
 
 finish("TestOpalPluginProxies")

@@ -50,13 +50,18 @@ std::array<std::uint8_t, 3> wavelengthToSrgb8(double lambda)
 {
   const std::array<double, 3> xyz{ cieColourMatching(0, lambda), cieColourMatching(1, lambda),
     cieColourMatching(2, lambda) };
-  std::array<double, 3> rgb = huePreservingToneMap(xyzToLinearSrgb(xyz));
-  const double highest = std::max({ rgb[0], rgb[1], rgb[2] });
-  std::array<std::uint8_t, 3> bytes{ 0, 0, 0 };
-  for (int c = 0; c < 3 && highest > 0; ++c)
+  std::array<double, 3> rgb = xyzToLinearSrgb(xyz);
+  for (double& v : rgb)
   {
-    bytes[static_cast<std::size_t>(c)] =
-      static_cast<std::uint8_t>(std::lround(255.0 * srgbEncode(rgb[static_cast<std::size_t>(c)] / highest)));
+    v = std::max(v, 0.0); // clipped to the gamut, not desaturated (which turns deep red pink)
+  }
+  const double highest = std::max({ rgb[0], rgb[1], rgb[2] });
+  const double edge = lambda < 400.0 ? cieColourMatching(1, 400.0) : cieColourMatching(1, 700.0);
+  const double brightness = lambda < 400.0 || lambda > 700.0 ? std::min(1.0, xyz[1] / edge) : 1.0;
+  std::array<std::uint8_t, 3> bytes{ 0, 0, 0 };
+  for (std::size_t c = 0; c < 3 && highest > 0; ++c)
+  {
+    bytes[c] = static_cast<std::uint8_t>(std::lround(255.0 * srgbEncode(brightness * rgb[c] / highest)));
   }
   return bytes;
 }

@@ -20,8 +20,12 @@ std::array<double, 3> huePreservingToneMap(std::array<double, 3> rgb);
 // The sRGB transfer function of one linear component in [0, 1].
 double srgbEncode(double linear);
 
-// The display colour of light of one wavelength (nm), at the brightest the
-// gamut allows; black outside the CIE tables (360-830 nm).
+// The display colour of light of one wavelength (nm): its CIE 1931 colour in
+// linear sRGB with the out-of-gamut negative channel clipped to 0, at the
+// brightest the gamut allows between 400 and 700 nm; beyond, dimmed as the
+// eye's sensitivity y-bar falls relative to 400 or 700 nm, so both ends of
+// the spectrum fade to black as spectral light does (700-780 nm: dark red to
+// black, not pink). Black outside the CIE tables (360-830 nm).
 std::array<std::uint8_t, 3> wavelengthToSrgb8(double lambda);
 
 } // namespace opal
