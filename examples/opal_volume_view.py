@@ -42,8 +42,9 @@ GetColorTransferFunction("ScatteringCoefficient").ApplyPreset("Grayscale", True)
 domains = OutputPort(volume, 1)
 domainDisplay = Show(domains, view)
 ColorBy(domainDisplay, ("CELLS", "BraggLambdaMax"))
+# The plugin's own "Visible spectrum" map (each wavelength in its colour) is
+# this array's default; its range is the visible spectrum.
 lut = GetColorTransferFunction("BraggLambdaMax")
-lut.ApplyPreset("Rainbow Uniform", True)
 lut.RescaleTransferFunction(380.0, 780.0)
 domainDisplay.SetScalarBarVisibility(view, True)
 
