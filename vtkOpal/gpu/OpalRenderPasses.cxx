@@ -1,0 +1,204 @@
+// The render session's passes (docs/design.md §3.3-3.5): the light field,
+// the view march with its highlight, the exposure and the colour.
+#include "OpalRenderSession.h"
+
+#include "OpalEmbeddedShaders.h"
+#include "OpalRenderSessionState.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace opal
+{
+
+using namespace sessiondetail;
+
+// Light pass: the optical depth to the light and its geometry factor for
+// every voxel (docs/design.md §3.3). The field counts as held only once the
+// pass completes, so an aborted pass leaves nothing stale behind.
+bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
+{
+  const bool completed = this->Volume->Geometry.lightAboveGrid(setup.Camera.Light)
+    ? this->sweepLightLayers(progress)
+    : this->marchLightPerVoxel(progress);
+  if (completed)
+  {
+    this->LightField = lightFieldKey(setup);
+  }
+  return completed;
+}
+
+// Layer by layer from the top: each layer reads the one above.
+bool RenderSession::sweepLightLayers(Progress& progress)
+{
+  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
+  const int layers = dims[1];
+  const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + gpu::LightPassGroupSize - 1) /
+    gpu::LightPassGroupSize);
+  // Every layer's queue of entry voxels empty, its indirect dispatch of none.
+  auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
+  std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
+  const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
+  const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassEnterFromAbove);
+  const int layersPerSubmit =
+    static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
+  for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
+  {
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
+      {
+        const gpu::LightPassWork work{ 0, 0, layer };
+        sweep.dispatch(commands, work, groups);
+        enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
+          static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
+      }
+    });
+    const int done = layers - std::max(0, top - layersPerSubmit + 1);
+    if (!progress.report(0.2 * done / layers))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Every voxel marches to the light (lights low or to the side).
+bool RenderSession::marchLightPerVoxel(Progress& progress)
+{
+  const std::size_t voxels = this->Volume->Shape.voxelCount();
+  for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
+  {
+    const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
+    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      this->LightPasses.at(gpu::LightPassMarchTowardsLight)
+        ->dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
+    });
+    if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The march for a wavelength count: the scattering spectrum on nodes, or at
+// every wavelength where nodes are off or would not be fewer than the bins.
+ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes)
+{
+  const bool exact = spectralNodes == 0 || wavelengths <= spectralNodes;
+  const int nodes = exact ? 4 : spectralNodes;
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes }];
+  if (!march)
+  {
+    const embedded::Spirv code = embedded::viewMarchShader();
+    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING.
+    march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0 });
+  }
+  return *march;
+}
+
+// March a rectangle of an image of the given size, in tiles (one submit
+// each, so no frame trips a device timeout), reporting progress in [from, to].
+bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2>& size,
+  const std::array<int, 4>& rect, bool spectrum, Progress& progress, double from, double to)
+{
+  gpu::RenderParameterBlock block = setup.Block;
+  block.imageWidth = size[0];
+  block.imageHeight = size[1];
+  block.rectOrigin = gpu::ivec2(rect[0], rect[1]);
+  block.rectSize = gpu::ivec2(rect[2], rect[3]);
+  block.writeSpectrum = spectrum ? 1 : 0;
+  this->Buffers->Parameters->upload(&block, sizeof(block));
+  ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes);
+  const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
+  const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
+  const int rowsPerSubmit = static_cast<int>(
+    std::max<std::int64_t>(1, MarchPixelsPerSubmit / (static_cast<std::int64_t>(tilesX) * MarchTileSize * MarchTileSize)));
+  *this->Buffers->HighlightQueue->as<gpu::DispatchQueue>() = gpu::DispatchQueue{ 0, 1, 1, 0 };
+  for (int firstRow = 0; firstRow < tilesY; firstRow += rowsPerSubmit)
+  {
+    const int endRow = std::min(tilesY, firstRow + rowsPerSubmit);
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      for (int ty = firstRow; ty < endRow; ++ty)
+      {
+        for (int tx = 0; tx < tilesX; ++tx)
+        {
+          const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
+          march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
+        }
+      }
+      if (endRow == tilesY)
+      {
+        this->recordHighlightPass(commands, rect); // after the last rows, in the same submit
+      }
+    });
+    if (!progress.report(from + (to - from) * static_cast<double>(endRow) / tilesY))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The highlight over the rectangle the march wrote (it recorded the mirror
+// rays): every pixel selects, the queued few are shaded (indirect). The host
+// emptied the queue before the submit.
+void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const
+{
+  const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
+  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  this->HighlightPasses.at(gpu::HighlightSelect)
+    ->dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+  this->HighlightPasses.at(gpu::HighlightShade)->dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
+}
+
+// Automatic exposure: the body's median luminance to a mid grey (0.18),
+// measured on a thumbnail of the whole image, so that any region or piece
+// of the image gets the same exposure and pieces agree with the whole.
+bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress, double& exposure)
+{
+  const std::array<int, 2>& size = setup.Thumbnail;
+  if (!this->marchRegion(setup, size, { 0, 0, size[0], size[1] }, false, progress, 0.2, 0.25))
+  {
+    return false;
+  }
+  const auto* colour = this->Buffers->PixelColour->as<gpu::PixelColour>();
+  const auto* bragg = this->Buffers->PixelBragg->as<gpu::PixelBragg>();
+  std::vector<float> luminance;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]); ++i)
+  {
+    if (bragg[i].hit != 0 && colour[i].xyz.y > 0)
+    {
+      luminance.push_back(colour[i].xyz.y);
+    }
+  }
+  exposure = 1.0;
+  if (!luminance.empty())
+  {
+    std::nth_element(luminance.begin(), luminance.begin() + luminance.size() / 2, luminance.end());
+    exposure = 0.18 / luminance[luminance.size() / 2];
+  }
+  return true;
+}
+
+// Colour: XYZ to linear and 8-bit sRGB with the exposure, in chunks within
+// the dispatch limit.
+void RenderSession::runColourPass(const FrameSetup& setup, double exposure)
+{
+  gpu::RenderParameterBlock* block = this->Buffers->Parameters->as<gpu::RenderParameterBlock>();
+  block->exposure = static_cast<float>(exposure);
+  constexpr std::size_t ColourChunk = 65535 * 64;
+  for (std::size_t first = 0; first < setup.Pixels; first += ColourChunk)
+  {
+    const gpu::ColourRange range{ static_cast<std::int32_t>(first) };
+    const std::size_t count = std::min(ColourChunk, setup.Pixels - first);
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      this->ColourPass->dispatch(commands, range, static_cast<std::uint32_t>((count + 63) / 64));
+    });
+  }
+}
+
+// Read-back: the pixel buffers into the image's arrays.
+} // namespace opal

@@ -1,0 +1,105 @@
+// What the render session's two source files share (private to OpalGpu):
+// the budgets of work per submit, small conversions, and the state the
+// session keeps between frames (docs/design.md §5). OpalRenderSession.cxx
+// holds the frame's set-up and buffers, OpalRenderPasses.cxx the passes.
+#pragma once
+
+#include "OpalComputePipeline.h"
+#include "OpalRenderCamera.h"
+#include "OpalRenderSession.h"
+#include "OpalSpectralSampling.h"
+#include "OpalVulkanBuffer.h"
+#include "opal_render_contract.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace opal
+{
+
+namespace sessiondetail
+{
+constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
+// Work per submit: each submit costs a wait for the device, and none may run
+// long enough to trip a GPU's watchdog.
+constexpr int MarchTileSize = 64;                  // pixels per tile side: one dispatch each
+constexpr std::int64_t MarchPixelsPerSubmit = 1 << 17;
+constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
+constexpr std::int64_t LightSweepVoxelsPerSubmit = 1 << 20;
+// On the device per voxel: three fields of 4 bytes, the light field's pair
+// and a place in the light pass's entry queue.
+constexpr std::uint64_t DeviceBytesPerVoxel = 3 * 4 + sizeof(gpu::LightFieldPair) + 4;
+static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
+  sizeof(gpu::ColourRange) <= PushConstantBytes);
+
+using Clock = std::chrono::steady_clock;
+inline double secondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+inline gpu::vec3 toVec3(const glm::dvec3& v)
+{
+  return gpu::vec3(v);
+}
+
+inline gpu::vec3 toVec3(const std::array<double, 3>& a)
+{
+  return gpu::vec3(static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2]));
+}
+
+// sRGB-encoded [0, 1] to linear (IEC 61966-2-1).
+inline float srgbToLinear(double encoded)
+{
+  return static_cast<float>(encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4));
+}
+} // namespace sessiondetail
+
+// The volume on the device: its fields, its domain table and its light field.
+struct RenderSession::DeviceVolume
+{
+  RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
+  VolumeGeometry Geometry;
+  std::unique_ptr<VulkanBuffer> Scattering, DomainId, SurfaceDistance, DomainTable;
+  std::unique_ptr<VulkanBuffer> LightField;
+  std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
+};
+
+// The per-frame buffers, kept while they are large enough.
+struct RenderSession::FrameBuffers
+{
+  std::unique_ptr<VulkanBuffer> Parameters, WavelengthTable;
+  std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelMirror, PixelSpectrum, PixelRadiance, PixelRGB8;
+  std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
+  std::size_t PixelCapacity = 0;
+  std::size_t SpectrumFloats = 0;
+};
+
+// Everything a frame derives from its parameters before touching the device.
+struct RenderSession::FrameSetup
+{
+  RenderParameters Parameters;
+  RenderCamera Camera;
+  std::array<int, 4> Region{};
+  std::array<int, 2> Thumbnail{};
+  std::size_t Pixels = 0;
+  std::size_t PixelCapacity = 0; // the image rectangle or the exposure thumbnail, whichever is larger
+  std::vector<WavelengthBin> Bins;
+  gpu::RenderParameterBlock Block{};
+};
+
+// The caller's progress over the stages of a frame: light pass 20%, march
+// 75%, colour 5%. False once the caller asked to abort.
+class RenderSession::Progress
+{
+public:
+  explicit Progress(const RenderProgress& callback) : Callback(callback) {}
+  bool report(double fraction) { return !this->Callback || this->Callback(fraction); }
+
+private:
+  const RenderProgress& Callback;
+};
+
+} // namespace opal
