@@ -2,6 +2,7 @@
 its screenshot is not blank: the render's quarter holds the opal's colours
 (saturated, bright pixels) and the chart's quarter holds a curve."""
 import os
+import random
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -18,7 +19,10 @@ state = os.path.join(config.OUTPUT_DIRECTORY, "inspect.pvsm")
 for path in (screenshot, state):
     if os.path.exists(path):
         os.remove(path)
-run(["xvfb-run", "-a", config.PVBATCH, example, config.PLUGIN, screenshot, "--small", "--state", state])
+# xvfb-run -a takes the first free display from -n on, racily: a random
+# start keeps two runs on one machine apart.
+run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), config.PVBATCH, example, config.PLUGIN, screenshot,
+     "--small", "--state", state])
 
 reader = vtkPNGReader()
 reader.SetFileName(screenshot)

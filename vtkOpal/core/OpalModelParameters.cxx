@@ -63,10 +63,11 @@ std::string withinRangeError(const char* name, const std::array<double, 2>& rang
 
 } // namespace
 
-std::string validate(const ModelParameters& p)
+namespace
 {
-  std::ostringstream message;
-  // Every real-valued parameter must be a finite number before anything else.
+// Every real-valued parameter must be a finite number before anything else.
+std::string finiteError(const ModelParameters& p)
+{
   const std::pair<const char*, std::vector<double>> reals[] = {
     { "PhysicalSize", { p.PhysicalSize.begin(), p.PhysicalSize.end() } },
     { "SemiAxes", { p.SemiAxes.begin(), p.SemiAxes.end() } },
@@ -85,12 +86,18 @@ std::string validate(const ModelParameters& p)
     {
       if (!std::isfinite(value))
       {
+        std::ostringstream message;
         message << name << " must be a finite number, got " << value << ".";
         return message.str();
       }
     }
   }
-  // Plausible magnitudes: beyond them lengths squared overflow or underflow.
+  return {};
+}
+
+// Plausible magnitudes: beyond them lengths squared overflow or underflow.
+std::string magnitudeError(const ModelParameters& p)
+{
   const struct
   {
     const char* Name;
@@ -111,43 +118,55 @@ std::string validate(const ModelParameters& p)
     {
       if (std::fabs(value) > magnitude.Hi || (value > 0 && value < magnitude.Lo))
       {
+        std::ostringstream message;
         message << magnitude.Name << " must lie within [" << magnitude.Lo << ", " << magnitude.Hi << "] "
                 << magnitude.Unit << ", got " << value << ".";
         return message.str();
       }
     }
   }
+  return {};
+}
+
+// The grid and the half-ellipsoid, which sits on the base y = 0, centred in x and z.
+std::string shapeError(const ModelParameters& p)
+{
   static const char* axis = "xyz";
+  std::ostringstream message;
   for (int a = 0; a < 3; ++a)
   {
     if (p.Dimensions[a] < 1)
     {
       message << "Dimensions must be positive, got " << p.Dimensions[a] << " along " << axis[a] << ".";
-      return message.str();
     }
-    if (!(p.PhysicalSize[a] > 0))
+    else if (!(p.PhysicalSize[a] > 0))
     {
-      message << "PhysicalSize must be positive, got " << p.PhysicalSize[a] << " mm along " << axis[a]
-              << ".";
-      return message.str();
+      message << "PhysicalSize must be positive, got " << p.PhysicalSize[a] << " mm along " << axis[a] << ".";
     }
-    if (!(p.SemiAxes[a] > 0))
+    else if (!(p.SemiAxes[a] > 0))
     {
       message << "SemiAxes must be positive, got " << p.SemiAxes[a] << " mm along " << axis[a] << ".";
+    }
+    if (!message.str().empty())
+    {
       return message.str();
     }
   }
-  // The half-ellipsoid sits on the base y = 0, centred in x and z.
   const std::array<double, 3> room{ p.PhysicalSize[0] / 2, p.PhysicalSize[1], p.PhysicalSize[2] / 2 };
   for (int a = 0; a < 3; ++a)
   {
     if (p.SemiAxes[a] > room[a] * (1 + 1e-9))
     {
-      message << "SemiAxes: the shape does not fit the box: semi-axis " << axis[a] << " = "
-              << p.SemiAxes[a] << " mm exceeds " << room[a] << " mm (PhysicalSize).";
+      message << "SemiAxes: the shape does not fit the box: semi-axis " << axis[a] << " = " << p.SemiAxes[a]
+              << " mm exceeds " << room[a] << " mm (PhysicalSize).";
       return message.str();
     }
   }
+  return {};
+}
+
+std::string rangesError(const ModelParameters& p)
+{
   for (const std::string& error : {
          positiveRangeError("ScatteringDiameterRange", p.ScatteringDiameterRange),
          positiveRangeError("DomainRadiusRange", p.DomainRadiusRange),
@@ -169,29 +188,44 @@ std::string validate(const ModelParameters& p)
   }
   if (p.DomainVertexRange[0] < 3)
   {
-    message << "DomainVertexRange needs at least 3 vertices, got " << p.DomainVertexRange[0] << ".";
-    return message.str();
+    return "DomainVertexRange needs at least 3 vertices, got " + std::to_string(p.DomainVertexRange[0]) + ".";
   }
+  return {};
+}
+
+std::string scalarsError(const ModelParameters& p)
+{
+  std::ostringstream message;
   if (!(p.ScatteringVolumeFraction > 0 && p.ScatteringVolumeFraction <= MaxVolumeFraction))
   {
     message << "ScatteringVolumeFraction must lie in (0, " << MaxVolumeFraction << "], got "
             << p.ScatteringVolumeFraction << ".";
-    return message.str();
   }
-  if (p.DomainCount < 0)
+  else if (p.DomainCount < 0)
   {
     message << "DomainCount must not be negative, got " << p.DomainCount << ".";
-    return message.str();
   }
-  if (!(p.RefractiveIndex >= 1))
+  else if (!(p.RefractiveIndex >= 1))
   {
     message << "RefractiveIndex must be at least 1 (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
-    return message.str();
   }
-  if (p.MaxPlacementAttempts < 1)
+  else if (p.MaxPlacementAttempts < 1)
   {
     message << "MaxPlacementAttempts must be at least 1, got " << p.MaxPlacementAttempts << ".";
-    return message.str();
+  }
+  return message.str();
+}
+} // namespace
+
+std::string validate(const ModelParameters& p)
+{
+  for (auto check : { finiteError, magnitudeError, shapeError, rangesError, scalarsError })
+  {
+    const std::string error = check(p);
+    if (!error.empty())
+    {
+      return error;
+    }
   }
   return {};
 }

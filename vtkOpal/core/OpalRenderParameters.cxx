@@ -31,12 +31,16 @@ RenderParameters withQuality(const RenderParameters& p)
   return q;
 }
 
-std::string validate(const RenderParameters& p)
+namespace
+{
+bool finite3(const std::array<double, 3>& v)
+{
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+std::string imageError(const RenderParameters& p)
 {
   std::ostringstream m;
-  auto finite3 = [](const std::array<double, 3>& v) {
-    return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
-  };
   if (p.ImageSize[0] < 1 || p.ImageSize[1] < 1 || p.ImageSize[0] > 16384 || p.ImageSize[1] > 16384)
   {
     m << "ImageSize must be 1-16384 pixels each way, got " << p.ImageSize[0] << " x " << p.ImageSize[1] << ".";
@@ -48,7 +52,13 @@ std::string validate(const RenderParameters& p)
     m << "ImageRegion (" << p.ImageRegion[0] << ", " << p.ImageRegion[1] << ", " << p.ImageRegion[2] << ", "
       << p.ImageRegion[3] << ") must lie within the " << p.ImageSize[0] << " x " << p.ImageSize[1] << " image.";
   }
-  else if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition) || !finite3(p.ViewUp))
+  return m.str();
+}
+
+std::string cameraError(const RenderParameters& p)
+{
+  std::ostringstream m;
+  if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition) || !finite3(p.ViewUp))
   {
     m << "EyePosition, FocalPoint, LightPosition and ViewUp must be finite.";
   }
@@ -72,8 +82,13 @@ std::string validate(const RenderParameters& p)
   {
     m << (finite3(p.ModelRotation) ? "PresetRotation" : "ModelRotation") << " must be finite.";
   }
-  else if (!(p.WavelengthRange[0] >= 200 && p.WavelengthRange[1] <= 1000 &&
-             p.WavelengthRange[0] <= p.WavelengthRange[1]))
+  return m.str();
+}
+
+std::string spectrumError(const RenderParameters& p)
+{
+  std::ostringstream m;
+  if (!(p.WavelengthRange[0] >= 200 && p.WavelengthRange[1] <= 1000 && p.WavelengthRange[0] <= p.WavelengthRange[1]))
   {
     m << "WavelengthRange must be min <= max within [200, 1000] nm, got [" << p.WavelengthRange[0] << ", "
       << p.WavelengthRange[1] << "].";
@@ -84,10 +99,24 @@ std::string validate(const RenderParameters& p)
   }
   else if (wavelengthCount(p) > MaxWavelengths)
   {
-    m << "WavelengthStep " << p.WavelengthStep << " nm gives " << wavelengthCount(p)
-      << " wavelengths; at most " << MaxWavelengths << " are supported.";
+    m << "WavelengthStep " << p.WavelengthStep << " nm gives " << wavelengthCount(p) << " wavelengths; at most "
+      << MaxWavelengths << " are supported.";
   }
-  else if (!(p.RefractiveIndex >= 1 && p.RefractiveIndex < 4))
+  else if (p.Illuminant != LightSpectrum::D65 && p.Illuminant != LightSpectrum::None)
+  {
+    m << "Illuminant must be 0 (D65) or 1 (none), got " << static_cast<int>(p.Illuminant) << ".";
+  }
+  else if (p.SpectralNodes != 0 && (p.SpectralNodes < 4 || p.SpectralNodes > 64))
+  {
+    m << "SpectralNodes must be 0 (every wavelength) or 4-64, got " << p.SpectralNodes << ".";
+  }
+  return m.str();
+}
+
+std::string opticsError(const RenderParameters& p)
+{
+  std::ostringstream m;
+  if (!(p.RefractiveIndex >= 1 && p.RefractiveIndex < 4))
   {
     m << "RefractiveIndex must lie in [1, 4) (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
   }
@@ -107,7 +136,13 @@ std::string validate(const RenderParameters& p)
   {
     m << "MosaicSpread must lie in [0, 90] degrees, got " << p.MosaicSpread << ".";
   }
-  else if (!(p.Exposure >= 0 && std::isfinite(p.Exposure)))
+  return m.str();
+}
+
+std::string samplingError(const RenderParameters& p)
+{
+  std::ostringstream m;
+  if (!(p.Exposure >= 0 && std::isfinite(p.Exposure)))
   {
     m << "Exposure must be 0 (automatic) or positive, got " << p.Exposure << ".";
   }
@@ -119,30 +154,29 @@ std::string validate(const RenderParameters& p)
   {
     m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
   }
-  else if (p.Illuminant != LightSpectrum::D65 && p.Illuminant != LightSpectrum::None)
-  {
-    m << "Illuminant must be 0 (D65) or 1 (none), got " << static_cast<int>(p.Illuminant) << ".";
-  }
   else if (p.Quality != RenderQuality::Final && p.Quality != RenderQuality::Preview)
   {
     m << "Quality must be 0 (final) or 1 (preview), got " << static_cast<int>(p.Quality) << ".";
   }
-  else if (p.SpectralNodes != 0 && (p.SpectralNodes < 4 || p.SpectralNodes > 64))
+  else if (!std::all_of(p.Background.begin(), p.Background.end(), [](double b) { return b >= 0 && b <= 1; }))
   {
-    m << "SpectralNodes must be 0 (every wavelength) or 4-64, got " << p.SpectralNodes << ".";
-  }
-  else
-  {
-    for (double b : p.Background)
-    {
-      if (!(b >= 0 && b <= 1))
-      {
-        m << "Background components must lie in [0, 1].";
-        break;
-      }
-    }
+    m << "Background components must lie in [0, 1].";
   }
   return m.str();
+}
+} // namespace
+
+std::string validate(const RenderParameters& p)
+{
+  for (auto check : { imageError, cameraError, spectrumError, opticsError, samplingError })
+  {
+    const std::string error = check(p);
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return {};
 }
 
 } // namespace opal

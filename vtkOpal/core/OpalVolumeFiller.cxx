@@ -45,89 +45,98 @@ bool VolumeFiller::isSurfaceVoxel(int i, int j, int k) const
 void VolumeFiller::fill(
   const std::array<int, 6>& extent, int kBegin, int kEnd, const VolumeFields& out) const
 {
-  const Grid& grid = this->VoxelGrid;
-  const std::int64_t nx = extent[1] - extent[0] + 1;
-  const std::int64_t ny = extent[3] - extent[2] + 1;
-  const std::vector<Domain>& domains = this->Layout.domains();
-  const double mu = this->Parameters.RefractiveIndex;
   for (int k = kBegin; k < kEnd; ++k)
   {
     for (int j = extent[2]; j <= extent[3]; ++j)
     {
-      const std::int64_t rowStart = nx * ((j - extent[2]) + ny * (k - extent[4]));
-      // The row's diffraction voxels, in increasing x.
-      auto domainVoxel = this->Layout.lowerBound(grid.linearIndex(extent[0], j, k));
-      const auto domainEnd = this->Layout.voxels().end();
-      for (int i = extent[0]; i <= extent[1]; ++i)
-      {
-        const std::int64_t o = rowStart + (i - extent[0]);
-        const std::int64_t globalIndex = grid.linearIndex(i, j, k);
-        const std::array<double, 3> p = grid.position(i, j, k);
-        // The shape is symmetric in x: evaluate the distance at the canonical
-        // voxel of each mirror pair (so every piece gets identical values) and
-        // reuse the mirror's value when this row already holds it.
-        const int mirror = grid.Dimensions[0] - 1 - i;
-        double distance;
-        if (mirror < i && mirror >= extent[0])
-        {
-          distance = out.SurfaceDistance[o - (i - mirror)];
-        }
-        else
-        {
-          distance = this->Shape.signedDistance(grid.position(std::min(i, mirror), j, k));
-        }
-        out.SurfaceDistance[o] = static_cast<float>(distance);
+      this->fillRow(extent, j, k, out);
+    }
+  }
+}
 
-        float* normal = out.Normal + 3 * o;
-        normal[0] = normal[1] = normal[2] = 0.0f;
-        out.DomainId[o] = -1;
-        out.BraggLambdaMax[o] = 0.0f;
-        out.BraggLambdaMin[o] = 0.0f;
-        out.ScatteringCoefficient[o] = 0.0f;
-        out.ParticleDiameter[o] = 0.0f;
+void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const VolumeFields& out) const
+{
+  const Grid& grid = this->VoxelGrid;
+  const std::int64_t nx = extent[1] - extent[0] + 1;
+  const std::int64_t ny = extent[3] - extent[2] + 1;
+  const std::int64_t rowStart = nx * ((j - extent[2]) + ny * (k - extent[4]));
+  // The row's diffraction voxels, in increasing x.
+  auto domainVoxel = this->Layout.lowerBound(grid.linearIndex(extent[0], j, k));
+  const auto domainEnd = this->Layout.voxels().end();
+  for (int i = extent[0]; i <= extent[1]; ++i)
+  {
+    const std::int64_t o = rowStart + (i - extent[0]);
+    const std::int64_t globalIndex = grid.linearIndex(i, j, k);
+    // The shape is symmetric in x: evaluate the distance at the canonical
+    // voxel of each mirror pair (so every piece gets identical values) and
+    // reuse the mirror's value when this row already holds it.
+    const int mirror = grid.Dimensions[0] - 1 - i;
+    const double distance = mirror < i && mirror >= extent[0]
+      ? static_cast<double>(out.SurfaceDistance[o - (i - mirror)])
+      : this->Shape.signedDistance(grid.position(std::min(i, mirror), j, k));
+    out.SurfaceDistance[o] = static_cast<float>(distance);
+    clearVoxel(o, out);
+    while (domainVoxel != domainEnd && domainVoxel->Index < globalIndex)
+    {
+      ++domainVoxel;
+    }
+    if (domainVoxel != domainEnd && domainVoxel->Index == globalIndex)
+    {
+      this->fillDiffractionVoxel(o, this->Layout.domains()[static_cast<std::size_t>(domainVoxel->DomainId)], out);
+    }
+    else if (this->Shape.contains(grid.position(i, j, k)))
+    {
+      this->fillScatteringVoxel(o, { i, j, k }, distance, out);
+    }
+    else
+    {
+      out.VoxelType[o] = EmptyVoxel;
+    }
+  }
+}
 
-        while (domainVoxel != domainEnd && domainVoxel->Index < globalIndex)
-        {
-          ++domainVoxel;
-        }
-        if (domainVoxel != domainEnd && domainVoxel->Index == globalIndex)
-        {
-          // Diffraction voxel: FCC (111) planes, no scattering (paper §6.2).
-          const Domain& domain = domains[static_cast<std::size_t>(domainVoxel->DomainId)];
-          const double lambdaMax = braggLambdaMax(domain.ParticleDiameter, mu);
-          out.VoxelType[o] = DiffractionVoxel;
-          out.DomainId[o] = domain.Id;
-          out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
-          out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
-          out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
-          for (int a = 0; a < 3; ++a)
-          {
-            normal[a] = static_cast<float>(domain.Normal[static_cast<std::size_t>(a)]);
-          }
-        }
-        else if (this->Shape.contains(p))
-        {
-          const double diameter = this->scatteringDiameter(globalIndex);
-          out.VoxelType[o] = ScatteringVoxel;
-          out.ParticleDiameter[o] = static_cast<float>(diameter);
-          out.ScatteringCoefficient[o] =
-            static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
-          // Only voxels within one spacing of the surface can have an empty
-          // neighbour; the margin keeps float rounding of reused distances moot.
-          if (distance >= -1.5 * this->MaxSpacing && this->isSurfaceVoxel(i, j, k))
-          {
-            const std::array<double, 3> n = this->Shape.outwardNormal(p);
-            for (int a = 0; a < 3; ++a)
-            {
-              normal[a] = static_cast<float>(n[static_cast<std::size_t>(a)]);
-            }
-          }
-        }
-        else
-        {
-          out.VoxelType[o] = EmptyVoxel;
-        }
-      }
+void VolumeFiller::clearVoxel(std::int64_t o, const VolumeFields& out)
+{
+  float* normal = out.Normal + 3 * o;
+  normal[0] = normal[1] = normal[2] = 0.0f;
+  out.DomainId[o] = -1;
+  out.BraggLambdaMax[o] = 0.0f;
+  out.BraggLambdaMin[o] = 0.0f;
+  out.ScatteringCoefficient[o] = 0.0f;
+  out.ParticleDiameter[o] = 0.0f;
+}
+
+// Diffraction voxel: FCC (111) planes, no scattering (paper §6.2).
+void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, const VolumeFields& out) const
+{
+  const double mu = this->Parameters.RefractiveIndex;
+  const double lambdaMax = braggLambdaMax(domain.ParticleDiameter, mu);
+  out.VoxelType[o] = DiffractionVoxel;
+  out.DomainId[o] = domain.Id;
+  out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
+  out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
+  out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(domain.Normal[a]);
+  }
+}
+
+void VolumeFiller::fillScatteringVoxel(
+  std::int64_t o, const std::array<int, 3>& ijk, double distance, const VolumeFields& out) const
+{
+  const double diameter = this->scatteringDiameter(this->VoxelGrid.linearIndex(ijk[0], ijk[1], ijk[2]));
+  out.VoxelType[o] = ScatteringVoxel;
+  out.ParticleDiameter[o] = static_cast<float>(diameter);
+  out.ScatteringCoefficient[o] = static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
+  // Only voxels within one spacing of the surface can have an empty
+  // neighbour; the margin keeps float rounding of reused distances moot.
+  if (distance >= -1.5 * this->MaxSpacing && this->isSurfaceVoxel(ijk[0], ijk[1], ijk[2]))
+  {
+    const std::array<double, 3> n = this->Shape.outwardNormal(this->VoxelGrid.position(ijk[0], ijk[1], ijk[2]));
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(n[a]);
     }
   }
 }

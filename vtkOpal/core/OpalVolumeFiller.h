@@ -48,6 +48,10 @@ public:
 
 private:
   bool isSurfaceVoxel(int i, int j, int k) const;
+  void fillRow(const std::array<int, 6>& extent, int j, int k, const VolumeFields& out) const;
+  static void clearVoxel(std::int64_t o, const VolumeFields& out);
+  void fillDiffractionVoxel(std::int64_t o, const Domain& domain, const VolumeFields& out) const;
+  void fillScatteringVoxel(std::int64_t o, const std::array<int, 3>& ijk, double distance, const VolumeFields& out) const;
 
   ModelParameters Parameters;
   const DomainLayout& Layout;
