@@ -1,5 +1,7 @@
 #include "OpalCliSupport.h"
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <unistd.h>
 #include <utility>
@@ -7,6 +9,24 @@
 std::string oneLineFailure(const std::string& program, const std::string& what)
 {
   return program + ": " + what + " (see --help)\n";
+}
+
+int parseArguments(CLI::App& app, int argc, char** argv)
+{
+  try
+  {
+    app.parse(argc, argv);
+    return -1;
+  }
+  catch (const CLI::CallForHelp& help)
+  {
+    return app.exit(help);
+  }
+  catch (const CLI::ParseError& error)
+  {
+    app.exit(error); // prints the one line of app.failure_message
+    return 2;
+  }
 }
 
 ProgressBar::ProgressBar(std::string label)

@@ -7,6 +7,16 @@
 // CLI11's failure message as one line: "program: what went wrong (see --help)".
 std::string oneLineFailure(const std::string& program, const std::string& what);
 
+namespace CLI
+{
+class App;
+}
+
+// Parses the arguments; returns -1 to go on, else the exit status: 0 after
+// --help, 2 (with one line on stderr) for any bad argument, whatever CLI11's
+// own code for it.
+int parseArguments(CLI::App& app, int argc, char** argv);
+
 // A labelled progress bar on stderr when stderr is a terminal (silent
 // otherwise); each finished bar ends its line once.
 class ProgressBar

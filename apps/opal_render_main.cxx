@@ -132,7 +132,10 @@ int main(int argc, char** argv)
   Outputs outputs;
   addOutputOptions(app, outputs);
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-render", e.what()); });
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = parseArguments(app, argc, argv); status >= 0)
+  {
+    return status;
+  }
   if (outputs.Images.empty() && outputs.ImageData.empty())
   {
     std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;

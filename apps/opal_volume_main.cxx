@@ -28,7 +28,10 @@ int main(int argc, char** argv)
   std::string output = "opal.vti";
   app.add_option("-o,--output", output, "Output .vti file")->capture_default_str();
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what()); });
-  CLI11_PARSE(app, argc, argv);
+  if (const int status = parseArguments(app, argc, argv); status >= 0)
+  {
+    return status;
+  }
   // A full disk or a file-size limit then fails the write (and is reported)
   // instead of killing the process half way through a file.
   std::signal(SIGXFSZ, SIG_IGN);

@@ -35,6 +35,7 @@ expect_one_line() {
   local name=$1 pattern=$2; shift 2
   "$@" >bad.out 2>bad.err
   local status=$?
+  status_of_last=$status
   [[ $status != 0 ]] || fail "$name: exits non-zero"
   [[ $(wc -l <bad.err) == 1 ]] || fail "$name: one line on stderr, got: $(cat bad.err)"
   grep -q -- "$pattern" bad.err || fail "$name: the line names $pattern: $(cat bad.err)"
@@ -47,6 +48,9 @@ expect_one_line "volume fraction 0.9" "ScatteringVolumeFraction" "$render" "${sm
 expect_one_line "three vertex values" "--domain-vertex-range" "$render" --domain-vertex-range 3 4 5 -o x.png
 expect_one_line "nothing to write" "nothing to write" "$render" "${small[@]}"
 expect_one_line "opal-volume bad dimensions" "Dimensions" "$volume" --dimensions 0 20 50 -o x.vti
+expect_one_line "width beyond an int" "--width" "$render" --width 99999999999 -o x.png
+[[ $status_of_last == 2 ]] || fail "a bad argument exits 2 (got $status_of_last)"
+expect_one_line "memory limit not a number" "OPAL_VULKAN_MEMORY_LIMIT_MB" env OPAL_VULKAN_MEMORY_LIMIT_MB=abc "$render" "${small[@]}" -o x.png
 [[ ! -e x.png && ! -e x.vti ]] || fail "bad arguments write nothing"
 
 # A failing render leaves an earlier image untouched and no partial file.

@@ -3,6 +3,7 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -239,11 +240,22 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   checkVulkan(vkCreateFence(device, &fenceInfo, nullptr, &fence), "vkCreateFence");
   this->Fence = VulkanHandle<VkFence>(fence, [device](VkFence f) { vkDestroyFence(device, f, nullptr); });
 
-  this->MemoryLimit = options.MemoryLimitBytes;
   this->StagingUploads = options.StagingUploads;
-  if (const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB"))
+  // An explicit limit wins over the environment's, which must be a whole
+  // number of MB (no silent "no limit" for a typo).
+  this->MemoryLimit = options.MemoryLimitBytes;
+  const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB");
+  if (this->MemoryLimit == 0 && limit && *limit)
   {
-    this->MemoryLimit = static_cast<std::uint64_t>(std::strtoull(limit, nullptr, 10)) << 20;
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long megabytes = std::strtoull(limit, &end, 10);
+    if (*end != '\0' || errno == ERANGE || limit[0] == '-' || megabytes > (1ull << 40))
+    {
+      throw VulkanError(std::string("OPAL_VULKAN_MEMORY_LIMIT_MB must be a whole number of MB, got \"") + limit + "\"",
+        VK_ERROR_INITIALIZATION_FAILED);
+    }
+    this->MemoryLimit = static_cast<std::uint64_t>(megabytes) << 20;
   }
 }
 
