@@ -7,6 +7,7 @@
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkImageData.h"
@@ -18,6 +19,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 vtkStandardNewMacro(vtkOpalBraggMap);
@@ -27,7 +29,7 @@ vtkOpalBraggMap::vtkOpalBraggMap()
   const opal::BraggMapSettings defaults;
   std::copy(defaults.LightPosition.begin(), defaults.LightPosition.end(), this->LightPosition);
   std::copy(defaults.EyePosition.begin(), defaults.EyePosition.end(), this->EyePosition);
-  this->RefractiveIndex = defaults.RefractiveIndex;
+  this->RefractiveIndex = 0; // the input's (its field data RefractiveIndex)
   this->BraggOrder = defaults.BraggOrder;
   this->MosaicSpread = defaults.MosaicSpread;
 }
@@ -130,9 +132,11 @@ int vtkOpalBraggMap::RequestData(
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
   output->ShallowCopy(input);
-  if (!(this->RefractiveIndex > 1) || this->BraggOrder < 1 || !(this->MosaicSpread >= 0))
+  if (!((this->RefractiveIndex == 0 || this->RefractiveIndex >= 1) && std::isfinite(this->RefractiveIndex)) ||
+    this->BraggOrder < 1 || !(this->MosaicSpread >= 0))
   {
-    vtkErrorMacro("RefractiveIndex must exceed 1, BraggOrder be at least 1 and MosaicSpread not negative.");
+    vtkErrorMacro("RefractiveIndex must be 0 (the volume's) or at least 1, BraggOrder at least 1 and MosaicSpread "
+                  "not negative.");
     return 0;
   }
   // The volume carries the domains on its points, the layout on its cells.
@@ -145,7 +149,14 @@ int vtkOpalBraggMap::RequestData(
     vtkErrorMacro(<< error);
     return 0;
   }
-  const opal::BraggMapSettings settings = this->GetSettings();
+  opal::BraggMapSettings settings = this->GetSettings();
+  if (settings.RefractiveIndex == 0)
+  {
+    // The volume's, as its field data records it (the volume and its domain polygons both carry it).
+    vtkDataArray* recorded = input->GetFieldData()->GetArray("RefractiveIndex");
+    settings.RefractiveIndex = recorded && recorded->GetNumberOfTuples() > 0 ? recorded->GetComponent(0, 0)
+                                                                            : opal::BraggMapSettings().RefractiveIndex;
+  }
   vtkDataArray* ids = attributes->GetArray("DomainId");
   vtkDataArray* normals = attributes->GetArray("Normal");
   vtkDataArray* diameters = attributes->GetArray("ParticleDiameter");

@@ -34,7 +34,7 @@ public:
   /// Eye position in mm, for the mosaic weight. Default (0, 60, 0).
   vtkSetVector3Macro(EyePosition, double);
   vtkGetVector3Macro(EyePosition, double);
-  /// Refractive index mu of opal. Default 1.45.
+  /// Refractive index mu; 0 (the default): the input volume's (field data RefractiveIndex).
   vtkSetMacro(RefractiveIndex, double);
   vtkGetMacro(RefractiveIndex, double);
   /// Bragg order k. Default 1.

@@ -83,6 +83,22 @@ cells = sm.Fetch(polygons).GetCellData()
 check(cells.GetArray("BraggWavelength") is not None and cells.GetArray("BraggColor") is not None,
       "the Bragg map works on the domain polygons (cell data)")
 
+# One refractive index: the Bragg map's default (0) takes the volume's.
+denser = OpalVolume(Dimensions=[40, 20, 50], DomainCount=20, RefractiveIndex=1.6)  # noqa: F821
+denserMap = OpalBraggMap(Input=denser, LightPosition=[0, 60, 0])  # noqa: F821
+denserMap.UpdatePipeline()
+data = sm.Fetch(denserMap)
+pd = data.GetPointData()
+ids = vtk_to_numpy(pd.GetArray("DomainId"))
+voxels = numpy.nonzero(ids >= 0)[0][::11]
+expected = bragg_closed_form(numpy.array([data.GetPoint(int(i)) for i in voxels]),
+                             vtk_to_numpy(pd.GetArray("Normal"))[voxels],
+                             vtk_to_numpy(pd.GetArray("ParticleDiameter"))[voxels].astype(float),
+                             numpy.array([0.0, 60.0, 0.0]), mu=1.6)
+got = vtk_to_numpy(pd.GetArray("BraggWavelength"))[voxels]
+check(len(voxels) > 0 and numpy.allclose(got, expected, rtol=1e-4),
+      "the Bragg map's default refractive index is the volume's (1.6)")
+
 lut = GetColorTransferFunction("DominantBraggWavelength")
 points = list(lut.RGBPoints)
 check(points[0] == 380.0 and points[-4] == 780.0 and len(points) > 40,
