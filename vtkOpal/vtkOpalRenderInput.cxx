@@ -1,6 +1,5 @@
 #include "vtkOpalRenderInput.h"
 
-#include "OpalOptics.h"
 #include "OpalPresets.h"
 #include "vtkOpalSource.h"
 
@@ -72,12 +71,9 @@ std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>
   domains.resize(static_cast<std::size_t>(normals->GetNumberOfTuples()));
   for (vtkIdType d = 0; d < normals->GetNumberOfTuples(); ++d)
   {
-    opal::RenderDomain& domain = domains[static_cast<std::size_t>(d)];
-    for (int a = 0; a < 3; ++a)
-    {
-      domain.LatticeNormal[static_cast<std::size_t>(a)] = static_cast<float>(normals->GetComponent(d, a));
-    }
-    domain.PlaneSpacing = static_cast<float>(opal::fccPlaneSpacing(diameters->GetComponent(d, 0)));
+    std::array<double, 3> normal;
+    normals->GetTuple(d, normal.data());
+    domains[static_cast<std::size_t>(d)] = opal::renderDomain(normal, diameters->GetComponent(d, 0));
   }
   return {};
 }

@@ -40,20 +40,12 @@ void OpalRenderOptions::addTo(CLI::App& app)
        "Nodes of the body's scattering spectrum (0: evaluate every wavelength)")
     ->capture_default_str()
     ->group(group);
-  app.add_option("--illuminant", p.Illuminant,
-       "The light's spectrum: D65 (normalised to luminance 1), or none (unit spectral irradiance)")
-    ->transform(CLI::CheckedTransformer(
-      std::map<std::string, opal::LightSpectrum>{ { "D65", opal::LightSpectrum::D65 },
-        { "none", opal::LightSpectrum::None } },
-      CLI::ignore_case))
-    ->group(group);
-  app.add_option("--quality", p.Quality,
-       "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight")
-    ->transform(CLI::CheckedTransformer(
-      std::map<std::string, opal::RenderQuality>{ { "final", opal::RenderQuality::Final },
-        { "preview", opal::RenderQuality::Preview } },
-      CLI::ignore_case))
-    ->group(group);
+  addEnumOption(app, "--illuminant", p.Illuminant,
+    { { "D65", opal::LightSpectrum::D65 }, { "none", opal::LightSpectrum::None } },
+    "The light's spectrum: D65 (normalised to luminance 1), or none (unit spectral irradiance)", group);
+  addEnumOption(app, "--quality", p.Quality,
+    { { "final", opal::RenderQuality::Final }, { "preview", opal::RenderQuality::Preview } },
+    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight", group);
   app.add_option("--specular-samples", p.SpecularSamples, "Sub-rays per pixel axis for the highlight")
     ->capture_default_str()
     ->group(group);

@@ -49,11 +49,6 @@ RenderCamera cameraInModelFrame(const RenderParameters& p)
   return camera;
 }
 
-glm::dvec3 lightInModelFrame(const RenderParameters& p)
-{
-  return toModelFrame(p) * vec(p.LightPosition);
-}
-
 std::array<int, 4> renderedRegion(const RenderParameters& p)
 {
   return { p.ImageRegion[0], p.ImageRegion[1],

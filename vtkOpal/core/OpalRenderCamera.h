@@ -25,9 +25,6 @@ struct RenderCamera
 // Throws std::invalid_argument if ViewUp is parallel to the view direction.
 RenderCamera cameraInModelFrame(const RenderParameters& parameters);
 
-// The light's position in the model's frame (what the light field depends on).
-glm::dvec3 lightInModelFrame(const RenderParameters& parameters);
-
 // The rectangle of the image the parameters ask for: x0, y0, width, height.
 std::array<int, 4> renderedRegion(const RenderParameters& parameters);
 

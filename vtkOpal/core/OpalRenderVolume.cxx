@@ -12,19 +12,23 @@ std::size_t RenderVolume::voxelCount() const
     static_cast<std::size_t>(this->Dimensions[2]);
 }
 
+RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDiameter)
+{
+  RenderDomain domain;
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    domain.LatticeNormal[a] = static_cast<float>(normal[a]);
+  }
+  domain.PlaneSpacing = static_cast<float>(fccPlaneSpacing(static_cast<float>(particleDiameter)));
+  return domain;
+}
+
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
 {
   std::vector<RenderDomain> table(layout.domains().size());
   for (const Domain& domain : layout.domains())
   {
-    RenderDomain& entry = table[static_cast<std::size_t>(domain.Id)];
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      entry.LatticeNormal[a] = static_cast<float>(domain.Normal[a]);
-    }
-    // From the diameter as the volume's float arrays hold it, so a render of
-    // a saved or VTK-built volume gets the same table.
-    entry.PlaneSpacing = static_cast<float>(fccPlaneSpacing(static_cast<float>(domain.ParticleDiameter)));
+    table[static_cast<std::size_t>(domain.Id)] = renderDomain(domain.Normal, domain.ParticleDiameter);
   }
   return table;
 }

@@ -34,7 +34,12 @@ struct RenderVolume
   std::size_t voxelCount() const;
 };
 
-// Domain i of the layout as RenderDomain i: its normal and (111) spacing.
+// A domain with this lattice normal and sphere diameter (nm), taken as the
+// volume's float arrays hold it, so a table built from a layout and one read
+// back from a volume's field data are the same.
+RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDiameter);
+
+// Domain i of the layout as RenderDomain i.
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 
 // Empty if the render can read the volume, else one sentence naming what is

@@ -69,7 +69,6 @@ public:
   // arrays are not needed afterwards. Throws std::invalid_argument for an
   // unusable volume (naming what is wrong) and VulkanError if it does not fit.
   void setVolume(const RenderVolume& volume);
-  bool hasVolume() const { return static_cast<bool>(this->Volume); }
 
   // Renders a frame of the volume. Throws std::invalid_argument for bad
   // parameters (naming the parameter) or without a volume, VulkanError for

@@ -40,8 +40,6 @@ public:
 
   VkBuffer buffer() const { return this->Buffer.get(); }
   std::uint64_t size() const { return this->Size; }
-  // Whether the host can read and write it directly (always for HostVisible).
-  bool mapped() const { return this->Mapped != nullptr; }
   // The mapped memory (nullptr for a DeviceLocal buffer in dedicated memory).
   template <typename T>
   T* as() const
