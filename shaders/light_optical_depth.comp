@@ -6,13 +6,17 @@
 // Absorption is 0 and mu_s is proportional to lambda^-4, so every wavelength
 // follows as tau(lambda) = tau(550) (550/lambda)^4; this replaces the paper's
 // march towards the light at every sample and wavelength (eq. 6, 7).
-// With the light above the grid, a sweep layer by layer from the top makes it
-// O(1) per voxel (LightPassSweepFromAbove); the few voxels the light enters
-// within their step are queued and lit by a dispatch of their own
-// (LightPassEnterFromAbove), so the sweep carries none of that work, which a
-// CPU driver would pay for every voxel. Otherwise each voxel marches to the
-// light (LightPassMarchTowardsLight). The mode is a specialisation constant:
-// each pipeline holds only its own mode's code.
+// The medium is the one the view march crosses: each cell's mu_s, inside the
+// smooth surface (SurfaceDistance <= 0) only; paths cross it cell by cell.
+// Voxels in the skin (near the surface, inside or out) are walked to the
+// light exactly; outside ones store values continued from the inside, so a
+// trilinear read just inside the surface sees no unattenuated outside light.
+// With the light above the grid, a sweep layer by layer from the top makes
+// the rest O(1) per voxel (LightPassSweepFromAbove); the skin voxels it meets
+// are queued and walked by a dispatch of their own (LightPassWalkQueued), so
+// the sweep carries none of that work, which a CPU driver would pay for every
+// voxel. Otherwise each voxel walks to the light (LightPassWalkTowardsLight).
+// The mode is a specialisation constant: each pipeline holds only its own code.
 #extension GL_GOOGLE_include_directive : require
 
 #include "opal_render_bindings.glsl"
@@ -21,6 +25,7 @@ layout(local_size_x = LightPassGroupSize) in;
 layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
+#include "opal_voxel_walk.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 
@@ -28,7 +33,6 @@ layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueu
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 
 layout(push_constant) uniform LightPassPush { LightPassWork work; };
-
 
 // The light's geometric factor at p, given where its path enters the opal:
 // Fresnel transmission there times the inverse-square fall-off, 1 at the apex.
@@ -40,135 +44,163 @@ float entryGeometry(vec3 p, vec3 lightEntry, vec3 direction)
   return transmission * P.apexDistanceSquared / (r * r);
 }
 
-// Stores a voxel's optical depth and geometry factor where the light field
+// Stores a voxel's (optical depth, geometry factor) where the light field
 // keeps them: in its own pair, and as the +x neighbour in the pair before it
 // (in its own pair too at the end of a row).
-void storeLight(int index, float opticalDepth, float geometry)
+void storeLight(int index, vec2 light)
 {
-  vec2 light = vec2(opticalDepth, geometry);
   int x = index % P.gridDimensions.x;
   lightField[index].voxel = light;
   if (x > 0) lightField[index - 1].nextVoxel = light;
   if (x == P.gridDimensions.x - 1) lightField[index].nextVoxel = light;
 }
 
-float scatteringAt(vec3 p)
+float scatteringIn(ivec3 cell)
 {
-  ivec3 v = voxelOf(p);
-  return insideGrid(v) ? scatteringField[voxelIndex(v)] : 0.0;
+  return insideGrid(cell) ? scatteringField[voxelIndex(cell)] : 0.0;
 }
 
-// LightPassMarchTowardsLight: march towards the light, one sample per voxel length at the midpoints,
-// until the path leaves the opal at L_in (eq. 7, absorption 0).
-void marchTowardsLight(int index, vec3 p, vec3 direction, float distanceToLight)
+// The skin: outside voxel centres nearer the surface than a cell's diagonal
+// are corners of trilinear reads at points inside, so they need values.
+float skinDepth()
 {
-  float h = P.smallestSpacing;
-  float tau = 0.0;
-  float t = 0.0;
-  float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
-  float entry = tEnd;
-  // The path cannot leave the opal within the surface distance of a point on
-  // it (a distance field changes at most as fast as one moves): test for the
-  // exit only beyond the distance known to be safe, as sphere tracing does.
+  return length(P.gridSpacing);
+}
+
+// Walks the path from p + t direction cell by cell while it stays inside the
+// smooth surface, adding each cell's mu_s times its length there to tau;
+// returns where the path leaves the surface (bisected), or tEnd. The surface
+// is tested only beyond the distance known to be safe, as sphere tracing
+// does (a distance field changes at most as fast as one moves).
+float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout float tau)
+{
+  vec3 origin = p + t * direction;
+  float span = tEnd - t;
+  VoxelWalk walk = startWalk(origin, direction);
+  float s = 0.0;
   float safe = 0.0;
-  for (int i = 0; i < 65536 && t < tEnd; ++i)
+  for (int i = 0; i < 65536 && s < span; ++i)
   {
-    float step = min(h, tEnd - t);
-    if (t + step > safe)
+    float sNext = min(cellExit(walk), span);
+    float mus = scatteringIn(walk.cell);
+    if (sNext > safe)
     {
-      float d = surfaceDistance(p + (t + step) * direction);
+      float d = surfaceDistance(origin + sNext * direction);
       if (d > 0.0)
       {
-        entry = bisectSurface(p, direction, t + step, t);
-        tau += scatteringAt(p + 0.5 * (t + entry) * direction) * (entry - t);
-        break;
+        float sOut = bisectSurface(origin, direction, sNext, s);
+        tau += mus * max(sOut - s, 0.0);
+        return t + sOut;
       }
-      safe = t + step - 0.9 * d;
+      safe = sNext - 0.9 * d;
     }
-    tau += scatteringAt(p + (t + 0.5 * step) * direction) * step;
-    t += step;
+    tau += mus * (sNext - s);
+    s = sNext;
+    stepWalk(walk);
   }
-  storeLight(index, tau, entryGeometry(p, p + entry * direction, direction));
+  return tEnd;
 }
 
-// LightPassSweepFromAbove: the path from p to the light crosses the plane of the layer above
-// at q; the optical depth and geometry there are interpolated from that
-// layer (over its voxels inside the opal only, so the outside's unattenuated
-// values do not leak in) and the short segment p-q is added. O(1) per voxel.
+// An outside voxel whose path to the light misses the opal: values
+// continued from the inside, so that reads between it and inside voxels
+// stay close to the inside's. Where the opal lies behind it (away from the
+// light), linearly across the surface there: the optical depth negative in
+// proportion to the distance, the Fresnel transmission of that surface
+// point. Beside the shadow line, where nothing lies behind, the light of the
+// nearest point just inside (unattenuated light there would brighten the
+// terminator).
+vec2 continuedFromInside(vec3 p, vec3 direction)
+{
+  float back = traceSurfaceEntry(p, -direction, 0.0, 2.0 * skinDepth());
+  if (back >= 0.0)
+  {
+    vec3 surfacePoint = p - back * direction;
+    float mus = scatteringIn(voxelOf(surfacePoint - 0.5 * P.smallestSpacing * direction));
+    return vec2(-mus * back, entryGeometry(p, surfacePoint, direction));
+  }
+  vec3 q = p - (surfaceDistance(p) + 0.01 * P.smallestSpacing) * surfaceNormal(p);
+  vec3 towardLight = normalize(P.light - q);
+  float tau = 0.0;
+  float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau);
+  return vec2(tau, entryGeometry(p, q + exit * towardLight, towardLight));
+}
+
+// The exact light at p (eq. 6, 7, absorption 0): the path to the light
+// crossed cell by cell through every stretch inside the opal; the light
+// enters where the stretch nearest the light leaves it (L_in). An outside
+// p behind the opal thus gets the light through it, one beside it the
+// continuation above.
+vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, bool startsInside)
+{
+  float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
+  float tau = 0.0;
+  float lightEntry = -1.0;
+  float t = 0.0;
+  bool inside = startsInside;
+  for (int stretch = 0; stretch < 64 && t < tEnd; ++stretch)
+  {
+    if (!inside)
+    {
+      t = traceSurfaceEntry(p, direction, t, tEnd);
+      if (t < 0.0) break;
+    }
+    lightEntry = walkInside(p, direction, t, tEnd, tau);
+    t = lightEntry + 0.5 * P.smallestSpacing;
+    inside = false;
+  }
+  if (lightEntry < 0.0)
+  {
+    return continuedFromInside(p, direction);
+  }
+  return vec2(tau, entryGeometry(p, p + lightEntry * direction, direction));
+}
+
+// Queues a voxel of layer y for LightPassMarchQueued (an append list and the
+// workgroups of its indirect dispatch).
+void queueVoxel(int index, int y)
+{
+  int layerSize = P.gridDimensions.x * P.gridDimensions.z;
+  uint slot = atomicAdd(queues[y].count, 1u);
+  entryVoxels[y * layerSize + int(slot)] = uint(index);
+  if (slot % uint(LightPassGroupSize) == 0u)
+  {
+    atomicAdd(queues[y].groupsX, 1u);
+  }
+}
+
+// LightPassSweepFromAbove: the path from p to the light crosses the plane of
+// the layer above at q; the light there is interpolated from that layer and
+// the short segment p-q added. O(1) per voxel. Skin voxels (outside, or with
+// an outside voxel among q's corners, or in the top layer) are queued for
+// the exact walk instead: interpolating over outside values, or only over
+// the inside ones, is what darkened the rim on steep sides.
 void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
 {
   float step = P.gridSpacing.y / direction.y;
   vec3 q = p + step * direction;
-  bool topLayer = c.y == P.gridDimensions.y - 1;
-  // q lies in the plane of the layer above's centres: bilinear there in x, z.
-  ivec3 layerAbove = ivec3(0, min(c.y + 1, P.gridDimensions.y - 1), 0);
   vec2 g = clamp((q.xz - P.gridOrigin.xz) / P.gridSpacing.xz, vec2(0.0), vec2(P.gridDimensions.xz - 1));
   ivec2 c0 = clamp(ivec2(floor(g)), ivec2(0), max(P.gridDimensions.xz - 2, ivec2(0)));
   ivec2 c1 = min(c0 + 1, P.gridDimensions.xz - 1);
   vec2 f = clamp(g - vec2(c0), 0.0, 1.0);
-  int corners[4];
-  float weights[4];
-  float distanceQ = 0.0;
-  for (int corner = 0; corner < 4; ++corner)
+  int above = min(c.y + 1, P.gridDimensions.y - 1);
+  int nearZ = voxelIndex(ivec3(c0.x, above, c0.y)), farZ = voxelIndex(ivec3(c0.x, above, c1.y));
+  int nearZNext = voxelIndex(ivec3(c1.x, above, c0.y)), farZNext = voxelIndex(ivec3(c1.x, above, c1.y));
+  bool skin = c.y == P.gridDimensions.y - 1 || surfaceDistanceField[index] > 0.0 ||
+    max(max(surfaceDistanceField[nearZ], surfaceDistanceField[nearZNext]),
+      max(surfaceDistanceField[farZ], surfaceDistanceField[farZNext])) > 0.0;
+  if (skin)
   {
-    corners[corner] = voxelIndex(ivec3((corner & 1) != 0 ? c1.x : c0.x, layerAbove.y, (corner & 2) != 0 ? c1.y : c0.y));
-    weights[corner] = ((corner & 1) != 0 ? f.x : 1.0 - f.x) * ((corner & 2) != 0 ? f.y : 1.0 - f.y);
-    distanceQ += weights[corner] * surfaceDistanceField[corners[corner]];
-  }
-  if (topLayer)
-  {
-    // Above the grid the surface distance continues linearly (the opal may
-    // reach the grid's top face): use that, not the top layer's own values.
-    distanceQ = surfaceDistance(q);
-  }
-  if (distanceQ > 0.0)
-  {
-    // The light enters the opal between p and q: queued for LightPassEnterFromAbove.
-    int layerSize = P.gridDimensions.x * P.gridDimensions.z;
-    uint slot = atomicAdd(queues[c.y].count, 1u);
-    entryVoxels[c.y * layerSize + int(slot)] = uint(index);
-    if (slot % uint(LightPassGroupSize) == 0u)
-    {
-      atomicAdd(queues[c.y].groupsX, 1u);
-    }
+    queueVoxel(index, c.y);
     return;
   }
-  float tau = 0.0, geometry = 0.0, weightSum = 0.0;
-  float tauAll = 0.0, geometryAll = 0.0;
   // The corners' light: two pairs, each a corner and its +x neighbour.
-  LightFieldPair nearZ = lightField[corners[0]], farZ = lightField[corners[2]];
-  vec2 cornerLight[4] = vec2[4](nearZ.voxel, nearZ.nextVoxel, farZ.voxel, farZ.nextVoxel);
-  for (int corner = 0; corner < 4; ++corner)
-  {
-    int vi = corners[corner];
-    float w = weights[corner];
-    float inside = surfaceDistanceField[vi] <= 0.0 ? w : 0.0;
-    float tauCorner = cornerLight[corner].x;
-    float geometryCorner = cornerLight[corner].y;
-    tau += inside * tauCorner;
-    geometry += inside * geometryCorner;
-    weightSum += inside;
-    tauAll += w * tauCorner;
-    geometryAll += w * geometryCorner;
-  }
-  float tauQ = weightSum > 1e-6 ? tau / weightSum : tauAll;
-  float geometryQ = weightSum > 1e-6 ? geometry / weightSum : geometryAll;
+  LightFieldPair nearPair = lightField[nearZ], farPair = lightField[farZ];
+  vec2 lightQ = mix(mix(nearPair.voxel, nearPair.nextVoxel, f.x), mix(farPair.voxel, farPair.nextVoxel, f.x), f.y);
   // Two half-segments, each with the scattering of the voxel it lies in.
-  int below = voxelIndex(c);
+  float segment = 0.5 * step * (scatteringField[index] + scatteringIn(voxelOf(p + 0.75 * step * direction)));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
   float rq = distance(P.light, q), rp = distance(P.light, p);
-  storeLight(index, tauQ + 0.5 * step * (scatteringField[below] + scatteringAt(p + 0.75 * step * direction)),
-    P.lightFalloffAtEntry != 0 ? geometryQ : geometryQ * (rq * rq) / (rp * rp));
-}
-
-// LightPassEnterFromAbove: a queued voxel whose path to the light enters the
-// opal within one layer's step: its part of the path up to the entry point.
-void enterFromAbove(int index, vec3 p, vec3 direction)
-{
-  float step = P.gridSpacing.y / direction.y;
-  float entry = bisectSurface(p, direction, step, 0.0);
-  storeLight(index, scatteringAt(p + 0.5 * entry * direction) * entry,
-    entryGeometry(p, p + entry * direction, direction));
+  storeLight(index, vec2(lightQ.x + segment, P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)));
 }
 
 // The voxel this invocation lights, or -1.
@@ -180,7 +212,7 @@ int voxelOfInvocation()
   {
     return local < work.count ? work.first + local : -1;
   }
-  if (LIGHT_PASS_MODE == LightPassEnterFromAbove)
+  if (LIGHT_PASS_MODE == LightPassMarchQueued)
   {
     int layerSize = nx * P.gridDimensions.z;
     return local < int(queues[work.layer].count) ? int(entryVoxels[work.layer * layerSize + local]) : -1;
@@ -198,24 +230,18 @@ void main()
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
-  if (LIGHT_PASS_MODE == LightPassEnterFromAbove)
-  {
-    enterFromAbove(index, p, direction);
-    return;
-  }
   // A voxel centre: its own SurfaceDistance, no interpolation needed.
-  if (surfaceDistanceField[index] > 0.0)
+  float d = surfaceDistanceField[index];
+  if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
   {
-    // Outside the opal: unattenuated light.
-    storeLight(index, 0.0, P.apexDistanceSquared / (distanceToLight * distanceToLight));
+    // Outside beyond the skin: nothing inside reads it; unattenuated light.
+    storeLight(index, vec2(0.0, P.apexDistanceSquared / (distanceToLight * distanceToLight)));
     return;
   }
-  if (LIGHT_PASS_MODE == LightPassMarchTowardsLight)
-  {
-    marchTowardsLight(index, p, direction, distanceToLight);
-  }
-  else
+  if (LIGHT_PASS_MODE == LightPassSweepFromAbove)
   {
     sweepFromLayerAbove(index, c, p, direction);
+    return;
   }
+  storeLight(index, lightAlongPath(p, direction, distanceToLight, d <= 0.0));
 }

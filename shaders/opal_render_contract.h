@@ -151,13 +151,12 @@ struct PixelBragg
 // The light pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the light
 OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
-OPAL_CONSTANT int LightPassEnterFromAbove = 2;    // the layer's voxels the light enters within a step
+OPAL_CONSTANT int LightPassMarchQueued = 2;       // the skin voxels the sweep queued: each marches to the light
 
 // Rare, costly work queued by one dispatch for a dispatch of its own (a CPU
 // driver runs a branch's code for every SIMD lane): the indirect dispatch's
 // workgroups (x, y, z) and how many items are queued. The light pass queues
-// a layer's voxels the light enters within their step (a bisection and the
-// surface normal); the highlight pass the pixels near the light's mirror
+// a layer's skin voxels (each walked to the light exactly); the highlight pass the pixels near the light's mirror
 // image (sub-rays traced to the surface).
 struct DispatchQueue
 {

@@ -46,10 +46,38 @@ vec4 neighbourMirror(ivec2 local, ivec2 offset, vec2 pixel, float tFrom)
   return mirrorRayNearLight(pixel + vec2(offset), P.eye, tFrom, cosI);
 }
 
-// The Fresnel reflectance averaged over n x n sub-rays of the pixel.
-float supersampledHighlight(vec2 pixel, float tFrom)
+// The share of a sub-ray's cell (area `cellArea` where the mirror rays pass
+// the light) that the light's disc covers, the sub-ray's mirror ray passing
+// at distance d from the light's centre: the overlap of the disc with a disc
+// of the cell's area (the lens of two circles), over that area. Filtering
+// each sub-ray this way makes n x n sub-rays converge on the pixel's true
+// coverage far faster than point samples, whose edge pixels jump by 1/n^2,
+// and holds for a light image smaller than a sub-ray's cell as for a larger.
+float discCoverage(float d, float cellArea)
 {
-  int n = P.specularSamples;
+  float r = P.lightRadius;
+  if (cellArea <= 0.0)
+  {
+    return d <= r ? 1.0 : 0.0; // no ray differentials: a point sample
+  }
+  float rho = sqrt(cellArea / OPAL_PI);
+  if (d >= r + rho) return 0.0;
+  if (d <= abs(r - rho)) return min(r, rho) * min(r, rho) * OPAL_PI / cellArea;
+  float lens = r * r * acos(clamp((d * d + r * r - rho * rho) / (2.0 * d * r), -1.0, 1.0)) +
+    rho * rho * acos(clamp((d * d + rho * rho - r * r) / (2.0 * d * rho), -1.0, 1.0)) -
+    0.5 * sqrt(max((-d + r + rho) * (d + r - rho) * (d - r + rho) * (d + r + rho), 0.0));
+  return lens / cellArea;
+}
+
+// The Fresnel reflectance averaged over n x n sub-rays of the pixel, whose
+// mirror rays sweep `pixelArea` near the light (0: unknown), `spread` across.
+// n is SpecularSamples, or more where a sub-ray's cell would be wider than
+// half the light's radius (a light image smaller than the sub-rays' spacing,
+// as at small image sizes), up to 64.
+float supersampledHighlight(vec2 pixel, float tFrom, float pixelArea, float spread)
+{
+  int n = clamp(int(ceil(2.0 * spread / P.lightRadius)), P.specularSamples, max(P.specularSamples, 64));
+  float cellArea = pixelArea / float(n * n);
   float sum = 0.0;
   for (int sy = 0; sy < n; ++sy)
   {
@@ -58,50 +86,59 @@ float supersampledHighlight(vec2 pixel, float tFrom)
       vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
       float cosI;
       vec4 near = mirrorRayNearLight(sub, P.eye, tFrom, cosI);
-      if (near.w > 0.0 && distance(near.xyz, P.light) <= P.lightRadius)
+      if (near.w > 0.0)
       {
-        sum += fresnelReflectance(cosI, P.refractiveIndex);
+        sum += discCoverage(distance(near.xyz, P.light), cellArea) * fresnelReflectance(cosI, P.refractiveIndex);
       }
     }
   }
   return sum / float(n * n);
 }
 
-// Whether the mirror rays of the pixel and its neighbours pass within reach
-// of the light; `onlyRecorded`: the neighbours beyond the rectangle's edge
-// count as within reach (HighlightShade traces them).
-bool nearLight(ivec2 local, int pixelIndex, bool onlyRecorded)
+// Where the mirror rays of the pixel and its right and lower neighbours
+// pass near the light (ray differentials): x how far apart (-1 where they do
+// not come within reach of the light), y the area the pixel's mirror rays
+// sweep there (0 where a neighbour misses: sub-rays then decide as point
+// samples). `onlyRecorded`: the neighbours beyond the rectangle's edge count
+// as within reach (HighlightShade traces them).
+vec2 reachOfLight(ivec2 local, int pixelIndex, bool onlyRecorded)
 {
   PixelMirror centre = pixelMirror[pixelIndex];
   if (pixelBragg[pixelIndex].hit == 0 || centre.valid == 0)
   {
-    return false;
+    return vec2(-1.0, 0.0);
   }
   bool edge = local.x + 1 >= P.rectSize.x || local.y + 1 >= P.rectSize.y;
   if (onlyRecorded && edge)
   {
-    return true;
+    return vec2(0.0);
   }
   vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
   float tFrom = pixelColour[pixelIndex].depth - 4.0 * P.smallestSpacing;
   vec4 nextX = neighbourMirror(local, ivec2(1, 0), pixel, tFrom);
   vec4 nextY = neighbourMirror(local, ivec2(0, 1), pixel, tFrom);
-  float spread = (nextX.w == 0.0 || nextY.w == 0.0) ? 1e30
-    : max(distance(nextX.xyz, centre.nearLight), distance(nextY.xyz, centre.nearLight));
-  return distance(centre.nearLight, P.light) <= P.lightRadius + 1.5 * spread;
+  if (nextX.w == 0.0 || nextY.w == 0.0)
+  {
+    return vec2(0.0); // at the silhouette
+  }
+  vec3 dx = nextX.xyz - centre.nearLight, dy = nextY.xyz - centre.nearLight;
+  float spread = max(length(dx), length(dy));
+  bool near = distance(centre.nearLight, P.light) <= P.lightRadius + 1.5 * spread;
+  return vec2(near ? spread : -1.0, length(cross(dx, dy)));
 }
 
 // Adds the supersampled highlight to a queued pixel: the light's normalised
 // D65, reflected, to its XYZ and its spectrum.
 void shade(ivec2 local, int pixelIndex)
 {
-  if (!nearLight(local, pixelIndex, false))
+  vec2 reach = reachOfLight(local, pixelIndex, false);
+  if (reach.x < 0.0)
   {
     return;
   }
   vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
   float tFrom = pixelColour[pixelIndex].depth - 4.0 * P.smallestSpacing;
-  float highlight = supersampledHighlight(pixel, tFrom) * P.lightRadiance;
+  float highlight = supersampledHighlight(pixel, tFrom, reach.y, reach.x) * P.lightRadiance;
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < P.wavelengthCount; ++l)
   {
@@ -119,7 +156,7 @@ void main()
   {
     if (item >= P.rectSize.x * P.rectSize.y) return;
     ivec2 local = ivec2(item % P.rectSize.x, item / P.rectSize.x);
-    if (nearLight(local, item, true))
+    if (reachOfLight(local, item, true).x >= 0.0)
     {
       uint slot = atomicAdd(queue.count, 1u);
       queuedPixels[slot] = uint(item);

@@ -19,6 +19,7 @@ layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"
+#include "opal_voxel_walk.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
@@ -40,7 +41,8 @@ float scatterNodes[SPECTRAL_NODES];
 
 // The light field at p, trilinear over voxel centres and clamped: (optical
 // depth to the light at 550 nm, geometry factor). Each pair holds a voxel and
-// its +x neighbour, so the eight corners take four loads.
+// its +x neighbour, so the eight corners take four loads. The light pass
+// gives the outside corners near the surface values continued from inside.
 vec2 lightAt(vec3 p)
 {
   vec3 g = clamp((p - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
@@ -56,7 +58,10 @@ vec2 lightAt(vec3 p)
   vec2 x10 = mix(p10.voxel, p10.nextVoxel, f.x);
   vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
   vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
-  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+  vec2 light = mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+  // Outside voxels beside the opal hold depths continued linearly (negative)
+  // from the inside: a read just inside the surface stays at or above 0.
+  return vec2(max(light.x, 0.0), light.y);
 }
 
 // What the march gathers per pixel besides the radiance: the brightest
@@ -167,38 +172,6 @@ float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, floa
   return tauView;
 }
 
-// A 3-D DDA over the voxel cells (Amanatides & Woo): the current cell and the
-// ray distances to its next boundary along each axis.
-struct VoxelWalk
-{
-  ivec3 cell;
-  ivec3 stepDir;
-  vec3 tMax;
-  vec3 tDelta;
-};
-
-VoxelWalk startWalk(vec3 origin, vec3 direction)
-{
-  VoxelWalk walk;
-  vec3 cellLow = P.gridOrigin - 0.5 * P.gridSpacing;
-  walk.cell = voxelOf(origin);
-  walk.stepDir = ivec3(sign(direction));
-  vec3 inverse = 1.0 / max(abs(direction), vec3(1e-20));
-  vec3 nextBoundary = cellLow + (vec3(walk.cell) + max(vec3(walk.stepDir), vec3(0.0))) * P.gridSpacing;
-  walk.tMax = (nextBoundary - origin) * inverse * sign(direction);
-  walk.tMax = mix(walk.tMax, vec3(1e30), equal(walk.stepDir, ivec3(0)));
-  walk.tDelta = P.gridSpacing * inverse;
-  return walk;
-}
-
-// Steps to the next voxel along the axis whose boundary comes first.
-void stepWalk(inout VoxelWalk walk)
-{
-  if (walk.tMax.x <= walk.tMax.y && walk.tMax.x <= walk.tMax.z) { walk.cell.x += walk.stepDir.x; walk.tMax.x += walk.tDelta.x; }
-  else if (walk.tMax.y <= walk.tMax.z) { walk.cell.y += walk.stepDir.y; walk.tMax.y += walk.tDelta.y; }
-  else { walk.cell.z += walk.stepDir.z; walk.tMax.z += walk.tDelta.z; }
-}
-
 // Domain crossings recorded during the walk and diffracted after it: the
 // walk's loop then holds no diffraction (41 bins) that every SIMD lane would
 // pay at every voxel; a ray crossing more domains walks on in further rounds.
@@ -225,7 +198,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
   int count = 0;
   for (int guard = 0; guard < 65536 && state.t < tExit && count < MAX_CROSSINGS; ++guard)
   {
-    float tNext = min(min(state.walk.tMax.x, state.walk.tMax.y), min(state.walk.tMax.z, tExit));
+    float tNext = min(cellExit(state.walk), tExit);
     float segment = tNext - state.t;
     if (segment > 0.0 && insideGrid(state.walk.cell))
     {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 namespace opalreference
 {
@@ -99,7 +100,44 @@ class Volume
 public:
   explicit Volume(const Scene& scene)
     : S(scene)
+    , Scattering(scene.Scattering)
+    , DomainId(scene.DomainId)
   {
+    this->fillSkin();
+  }
+
+  // docs/design.md §3.3: the medium is the smooth surface's inside; a cell
+  // whose centre lies outside (within a cell diagonal), with no coefficient
+  // of its own, takes those of its inside neighbour (of 26) with the
+  // smallest SurfaceDistance.
+  void fillSkin()
+  {
+    const auto& n = this->S.Dimensions;
+    const double diagonal = std::sqrt(this->S.Spacing[0] * this->S.Spacing[0] + this->S.Spacing[1] * this->S.Spacing[1] +
+      this->S.Spacing[2] * this->S.Spacing[2]);
+    for (int k = 0; k < n[2]; ++k)
+      for (int j = 0; j < n[1]; ++j)
+        for (int i = 0; i < n[0]; ++i)
+        {
+          const std::size_t v = this->index(i, j, k);
+          const double d = this->S.SurfaceDistance[v];
+          if (d <= 0 || d > diagonal || this->S.Scattering[v] != 0 || this->S.DomainId[v] >= 0)
+            continue;
+          std::size_t deepest = v;
+          for (int c = std::max(k - 1, 0); c <= std::min(k + 1, n[2] - 1); ++c)
+            for (int b = std::max(j - 1, 0); b <= std::min(j + 1, n[1] - 1); ++b)
+              for (int a = std::max(i - 1, 0); a <= std::min(i + 1, n[0] - 1); ++a)
+              {
+                const std::size_t w = this->index(a, b, c);
+                if (this->S.SurfaceDistance[w] < this->S.SurfaceDistance[deepest])
+                  deepest = w;
+              }
+          if (this->S.SurfaceDistance[deepest] <= 0)
+          {
+            this->Scattering[v] = this->S.Scattering[deepest];
+            this->DomainId[v] = this->S.DomainId[deepest];
+          }
+        }
   }
 
   std::size_t index(int i, int j, int k) const
@@ -124,7 +162,7 @@ public:
   double scattering(const dvec3& p) const
   {
     int c[3];
-    return this->voxel(p, c) ? this->S.Scattering[this->index(c[0], c[1], c[2])] : 0.0;
+    return this->voxel(p, c) ? this->Scattering[this->index(c[0], c[1], c[2])] : 0.0;
   }
 
   // Trilinear SurfaceDistance between voxel centres, continued linearly beyond them.
@@ -178,9 +216,12 @@ public:
   }
 
   // Where a ray first crosses into the opal (small fixed steps, then bisection), or -1.
-  double entry(const dvec3& o, const dvec3& d) const
+  // From tFrom on where that point lies outside (a neighbouring ray's hit less a margin).
+  double entry(const dvec3& o, const dvec3& d, double tFrom = 0) const
   {
-    const auto [t0, t1] = this->box(o, d);
+    auto [t0, t1] = this->box(o, d);
+    if (tFrom > t0 && this->distance(o + tFrom * d) > 0)
+      t0 = tFrom;
     const double step = 0.02 * this->minSpacing();
     for (double t = t0; t <= t1; t += step)
     {
@@ -205,6 +246,8 @@ public:
   double minSpacing() const { return std::min({ this->S.Spacing[0], this->S.Spacing[1], this->S.Spacing[2] }); }
 
   const Scene& S;
+  std::vector<float> Scattering; // the scene's, with the skin filled
+  std::vector<int> DomainId;
 };
 
 double fresnel(double cosI, double mu)
@@ -245,23 +288,114 @@ void lightAt(const Volume& v, const dvec3& p, const dvec3& light, double apexDis
   const double r2 = glm::dot(light - p, light - p);
   g = (1 - fresnel(glm::dot(v.normal(entry), d), mu)) * apexDistance2 / r2;
 }
-} // namespace
 
-Image render(const Scene& scene, const View& view, const std::string& cieDirectory)
+// --- Converged mode: the light exactly, the view path refined ---
+
+// The optical depth over [a, b] of p + t d in the piecewise-constant field,
+// exactly: every grid plane between voxel cells that the segment crosses,
+// listed and sorted; each piece's midpoint names its voxel.
+double exactDepth(const Volume& v, const dvec3& p, const dvec3& d, double a, double b)
 {
-  const Volume volume(scene);
-  const std::vector<Band> bands = wavelengthBands(view, cieDirectory);
-  const dvec3 eye(view.Eye[0], view.Eye[1], view.Eye[2]);
-  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
-  const dvec3 forward = glm::normalize(dvec3(view.FocalPoint[0], view.FocalPoint[1], view.FocalPoint[2]) - eye);
-  const dvec3 right = glm::normalize(glm::cross(forward, dvec3(view.ViewUp[0], view.ViewUp[1], view.ViewUp[2])));
-  const dvec3 up = glm::cross(right, forward);
-  const double tanHalf = std::tan(view.ViewAngle * Pi / 360.0);
-  const double aspect = static_cast<double>(view.Width) / view.Height;
-  const double mu = view.RefractiveIndex;
-  const double h = volume.minSpacing();
+  std::vector<double> cuts{ a, b };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (d[k] == 0)
+      continue;
+    const double spacing = v.S.Spacing[k], first = v.S.Origin[k] + 0.5 * spacing;
+    const double lo = std::min(p[k] + a * d[k], p[k] + b * d[k]), hi = std::max(p[k] + a * d[k], p[k] + b * d[k]);
+    for (double i = std::ceil((lo - first) / spacing); first + i * spacing <= hi; ++i)
+      cuts.push_back((first + i * spacing - p[k]) / d[k]);
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double tau = 0;
+  for (std::size_t i = 1; i < cuts.size(); ++i)
+  {
+    const double t0 = std::max(cuts[i - 1], a), t1 = std::min(cuts[i], b);
+    if (t1 > t0)
+      tau += v.scattering(p + 0.5 * (t0 + t1) * d) * (t1 - t0);
+  }
+  return tau;
+}
 
-  // Irradiance 1 at the apex: the top of the surface over the grid's centre column.
+// The stretches of p + t d, 0 <= t <= tEnd, inside the smooth surface:
+// scanned in half-voxel steps, each end bisected.
+std::vector<std::array<double, 2>> insideStretches(const Volume& v, const dvec3& p, const dvec3& d, double tEnd)
+{
+  std::vector<std::array<double, 2>> stretches;
+  const double step = 0.5 * v.minSpacing();
+  bool inside = v.distance(p) <= 0;
+  double start = 0;
+  for (double t = step; inside || t - step < tEnd; t += step)
+  {
+    const double at = std::min(t, tEnd);
+    const bool now = v.distance(p + at * d) <= 0;
+    if (now != inside)
+    {
+      const double edge = v.bisect(p, d, at - step, at, !inside);
+      if (inside)
+        stretches.push_back({ start, edge });
+      start = edge;
+      inside = now;
+    }
+    if (at >= tEnd)
+    {
+      if (inside)
+        stretches.push_back({ start, tEnd });
+      break;
+    }
+  }
+  return stretches;
+}
+
+// The light at p exactly (converged mode): the optical depth of every
+// stretch of the straight path inside the opal, each exact; the light
+// enters where the stretch nearest it ends (L_in).
+void lightExact(const Volume& v, const dvec3& p, const dvec3& light, double apexDistance2, double mu, double& tau, double& g)
+{
+  const dvec3 d = glm::normalize(light - p);
+  const double tEnd = std::min(v.box(p, d)[1], glm::length(light - p));
+  tau = 0;
+  dvec3 entry = p;
+  for (const auto& stretch : insideStretches(v, p, d, tEnd))
+  {
+    tau += exactDepth(v, p, d, stretch[0], stretch[1]);
+    entry = p + stretch[1] * d;
+  }
+  g = (1 - fresnel(glm::dot(v.normal(entry), d), mu)) * apexDistance2 / glm::dot(light - p, light - p);
+}
+
+// --- Camera, surface and view path ---
+
+struct Camera
+{
+  explicit Camera(const View& view)
+    : Eye(view.Eye[0], view.Eye[1], view.Eye[2])
+    , Forward(glm::normalize(dvec3(view.FocalPoint[0], view.FocalPoint[1], view.FocalPoint[2]) - Eye))
+    , Right(glm::normalize(glm::cross(Forward, dvec3(view.ViewUp[0], view.ViewUp[1], view.ViewUp[2]))))
+    , Up(glm::cross(Right, Forward))
+    , TanHalf(std::tan(view.ViewAngle * Pi / 360.0))
+    , Aspect(static_cast<double>(view.Width) / view.Height)
+    , Width(view.Width)
+    , Height(view.Height)
+  {
+  }
+
+  // The ray through image point (x, y), in pixels from the top left.
+  dvec3 direction(double x, double y) const
+  {
+    const double nx = 2 * x / this->Width - 1, ny = 1 - 2 * y / this->Height;
+    return glm::normalize(this->Forward + nx * this->TanHalf * this->Aspect * this->Right + ny * this->TanHalf * this->Up);
+  }
+
+  dvec3 Eye, Forward, Right, Up;
+  double TanHalf, Aspect;
+  int Width, Height;
+};
+
+// |L - apex|^2: irradiance 1 at the apex, the top of the surface over the grid's centre column.
+double apexDistanceSquared(const Volume& volume, const dvec3& light)
+{
+  const Scene& scene = volume.S;
   const int ci = scene.Dimensions[0] / 2, ck = scene.Dimensions[2] / 2;
   const dvec3 column(scene.Origin[0] + ci * scene.Spacing[0], 0, scene.Origin[2] + ck * scene.Spacing[2]);
   const double top = scene.Origin[1] + (scene.Dimensions[1] - 1) * scene.Spacing[1];
@@ -276,178 +410,396 @@ Image render(const Scene& scene, const View& view, const std::string& cieDirecto
       break;
     }
   }
-  const double apexDistance2 = glm::dot(light - apex, light - apex);
-  const double lightRadiance = apexDistance2 / (Pi * view.LightRadius * view.LightRadius);
+  return glm::dot(light - apex, light - apex);
+}
 
-  auto direction = [&](double x, double y) {
-    const double nx = 2 * x / view.Width - 1, ny = 1 - 2 * y / view.Height;
-    return glm::normalize(forward + nx * tanHalf * aspect * right + ny * tanHalf * up);
-  };
+// The light's Fresnel highlight at a pixel: over s x s sub-rays, the
+// fraction whose mirror ray meets the light's sphere, each weighted by F.
+double highlightCoverage(const Volume& volume, const Camera& camera, const View& view, int px, int py, int s)
+{
+  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
+  double highlight = 0;
+  for (int sy = 0; sy < s; ++sy)
+    for (int sx = 0; sx < s; ++sx)
+    {
+      const dvec3 sd = camera.direction(px + (sx + 0.5) / s, py + (sy + 0.5) / s);
+      const double st = volume.entry(camera.Eye, sd);
+      if (st < 0)
+        continue;
+      const dvec3 sp = camera.Eye + st * sd;
+      const dvec3 sn = volume.normal(sp);
+      const dvec3 mirrored = glm::reflect(sd, sn);
+      const double along = glm::dot(light - sp, mirrored);
+      if (-glm::dot(sd, sn) > 0 && along > 0 && glm::length(sp + along * mirrored - light) <= view.LightRadius)
+        highlight += fresnel(-glm::dot(sd, sn), view.RefractiveIndex) / (s * s);
+    }
+  return highlight;
+}
 
+// The mirror image of the primary ray through image point (x, y): where it
+// passes closest to the light, and the cosine of incidence.
+struct MirrorRay
+{
+  bool Hit = false;
+  dvec3 Near{ 0.0 };
+  double CosIncidence = 0;
+};
+
+MirrorRay mirrorRay(const Volume& volume, const Camera& camera, const dvec3& light, double x, double y, double tFrom)
+{
+  MirrorRay ray;
+  const dvec3 d = camera.direction(x, y);
+  const double t = volume.entry(camera.Eye, d, tFrom);
+  if (t < 0)
+    return ray;
+  const dvec3 p = camera.Eye + t * d, n = volume.normal(p), mirrored = glm::reflect(d, n);
+  ray.Hit = -glm::dot(d, n) > 0;
+  ray.Near = p + std::max(glm::dot(light - p, mirrored), 0.0) * mirrored;
+  ray.CosIncidence = -glm::dot(d, n);
+  return ray;
+}
+
+// The highlight over the image square [x, x + size]^2, as a share of it
+// (converged mode): whole where the mirror rays of its corners and centre
+// all pass inside the light's disc (or those that meet the opal all
+// outside it) by more than their spread, else split in four, `depth` levels
+// down, the leaves point-sampled; each part weighted by its Fresnel
+// reflectance.
+double adaptiveHighlight(const Volume& volume, const Camera& camera, const View& view, double x, double y, double size,
+  int depth, double tFrom)
+{
+  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
+  const double r = view.LightRadius;
+  const MirrorRay centre = mirrorRay(volume, camera, light, x + 0.5 * size, y + 0.5 * size, tFrom);
+  std::vector<MirrorRay> rays{ centre };
+  for (const auto& corner : { glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1) })
+    rays.push_back(mirrorRay(volume, camera, light, x + corner.x * size, y + corner.y * size, tFrom));
+  // Over the rays that meet the opal: how near and far they pass the light, and their spread.
+  bool allHit = true, anyHit = false;
+  double nearest = 1e300, farthest = 0, spread = 0;
+  for (const MirrorRay& ray : rays)
+  {
+    allHit = allHit && ray.Hit;
+    if (!ray.Hit)
+      continue;
+    anyHit = true;
+    nearest = std::min(nearest, glm::length(ray.Near - light));
+    farthest = std::max(farthest, glm::length(ray.Near - light));
+    for (const MirrorRay& other : rays)
+      spread = other.Hit ? std::max(spread, glm::length(ray.Near - other.Near)) : spread;
+  }
+  const double reflectance = centre.Hit ? fresnel(centre.CosIncidence, view.RefractiveIndex) : 0.0;
+  if (!anyHit || nearest > r + spread)
+    return 0.0;
+  if (allHit && farthest < r - spread)
+    return reflectance;
+  if (depth == 0)
+    return centre.Hit && glm::length(centre.Near - light) <= r ? reflectance : 0.0;
+  double sum = 0;
+  for (const auto& quarter : { glm::dvec2(0, 0), glm::dvec2(1, 0), glm::dvec2(0, 1), glm::dvec2(1, 1) })
+    sum += 0.25 * adaptiveHighlight(volume, camera, view, x + quarter.x * 0.5 * size, y + quarter.y * 0.5 * size,
+      0.5 * size, depth - 1, tFrom);
+  return sum;
+}
+
+// A pixel's highlight: SpecularSamples x SpecularSamples sub-rays, or in
+// converged mode the adaptive subdivision.
+double pixelHighlight(const Volume& volume, const Camera& camera, const View& view, int px, int py)
+{
+  if (!view.Converged)
+    return highlightCoverage(volume, camera, view, px, py, view.SpecularSamples);
+  // Rays within the pixel meet the surface near its centre's: search from a little before.
+  const double tCentre = volume.entry(camera.Eye, camera.direction(px + 0.5, py + 0.5));
+  return adaptiveHighlight(volume, camera, view, px, py, 1.0, view.ConvergedHighlightDepth,
+    tCentre < 0 ? 0.0 : tCentre - 2 * volume.minSpacing());
+}
+
+// Calls shade(pixel) for every pixel, interleaved over the machine's cores
+// (pixels are independent; each writes only its own outputs).
+template <typename Shade>
+void forEachPixel(std::size_t pixels, Shade&& shade)
+{
+  const std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> workers;
+  for (std::size_t t = 0; t < threads; ++t)
+    workers.emplace_back([&, t] {
+      for (std::size_t pixel = t; pixel < pixels; pixel += threads)
+        shade(pixel);
+    });
+  for (std::thread& worker : workers)
+    worker.join();
+}
+
+// Every pixel's highlight.
+std::vector<double> highlights(const Volume& volume, const View& view)
+{
+  const Camera camera(view);
+  std::vector<double> result(static_cast<std::size_t>(view.Width) * view.Height, 0.0);
+  forEachPixel(result.size(), [&](std::size_t pixel) {
+    result[pixel] = pixelHighlight(volume, camera, view, static_cast<int>(pixel % view.Width), static_cast<int>(pixel / view.Width));
+  });
+  return result;
+}
+
+// The exact voxel-by-voxel segments of the refracted ray from `origin` to tExit.
+struct Segment
+{
+  double T0, T1;
+  int Voxel;
+};
+
+std::vector<Segment> viewSegments(const Volume& volume, const dvec3& origin, const dvec3& inward, double tExit)
+{
+  const Scene& scene = volume.S;
+  std::vector<Segment> segments;
+  int c[3];
+  volume.voxel(origin, c);
+  double t = 0;
+  while (t < tExit)
+  {
+    // The nearest cell boundary ahead and its axis.
+    double next = tExit;
+    int axis = -1;
+    for (int a = 0; a < 3; ++a)
+    {
+      if (inward[a] == 0)
+        continue;
+      const double boundary = scene.Origin[a] + (c[a] + (inward[a] > 0 ? 0.5 : -0.5)) * scene.Spacing[a];
+      const double tb = (boundary - origin[a]) / inward[a];
+      if (tb < next)
+      {
+        next = tb;
+        axis = a;
+      }
+    }
+    next = std::max(next, t);
+    const bool inside = c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < scene.Dimensions[0] &&
+      c[1] < scene.Dimensions[1] && c[2] < scene.Dimensions[2];
+    if (next > t && inside)
+      segments.push_back({ t, next, static_cast<int>(volume.index(c[0], c[1], c[2])) });
+    if (axis < 0)
+      break;
+    c[axis] += inward[axis] > 0 ? 1 : -1;
+    t = next;
+  }
+  return segments;
+}
+
+// What the view ray samples: a domain once at its segment's middle (a new
+// crossing only where the previous segment was not the same domain), the
+// body in `substeps` equal pieces of each segment.
+struct Sample
+{
+  dvec3 Middle;
+  double Length;
+  int Voxel;
+  int Domain; // -1 for the body
+  double Tau = 0, G = 0; // the light, where computed ahead (converged mode)
+};
+
+std::vector<Sample> viewSamples(const Volume& volume, const std::vector<Segment>& segments, const dvec3& origin,
+  const dvec3& inward, int substeps)
+{
+  std::vector<Sample> samples;
+  int lastDomain = -1;
+  for (const Segment& segment : segments)
+  {
+    const int domain = volume.DomainId[static_cast<std::size_t>(segment.Voxel)];
+    if (domain >= 0)
+    {
+      if (domain != lastDomain)
+        samples.push_back({ origin + 0.5 * (segment.T0 + segment.T1) * inward, segment.T1 - segment.T0, segment.Voxel, domain });
+      lastDomain = domain;
+      continue;
+    }
+    lastDomain = -1;
+    const double length = (segment.T1 - segment.T0) / substeps;
+    for (int q = 0; q < substeps; ++q)
+      samples.push_back({ origin + (segment.T0 + (q + 0.5) * length) * inward, length, segment.Voxel, -1 });
+  }
+  return samples;
+}
+
+// --- The pixel ---
+
+struct PixelResult
+{
+  std::array<double, 3> XYZ{};
+  double Dominant = 0;
+};
+
+// What a render shares over its pixels.
+struct Setup
+{
+  const Volume& V;
+  const View& ViewSettings;
+  const std::vector<Band>& Bands;
+  dvec3 Light;
+  double ApexDistance2;
+  int Substeps;
+};
+
+// The light of a sample: computed ahead in converged mode; in the literal
+// mode marched again for every wavelength, as the paper does.
+void sampleLight(const Setup& s, const Sample& sample, double& tau, double& g)
+{
+  if (s.ViewSettings.Converged)
+  {
+    tau = sample.Tau;
+    g = sample.G;
+    return;
+  }
+  lightAt(s.V, sample.Middle, s.Light, s.ApexDistance2, s.ViewSettings.RefractiveIndex, tau, g);
+}
+
+// Bragg-Snell (eq. 4, 9) at a domain crossing: the box band averaged over this bin.
+double diffracted(const Setup& s, const Sample& sample, const Band& band, double rayleigh, double tauView, double& lambdaB)
+{
+  const auto& lattice = s.V.S.Domains[static_cast<std::size_t>(sample.Domain)];
+  const dvec3 normal(lattice[0], lattice[1], lattice[2]);
+  const double mu = s.ViewSettings.RefractiveIndex, width = s.ViewSettings.BraggBandwidth;
+  const double sinGlancing = std::fabs(glm::dot(glm::normalize(s.Light - sample.Middle), normal));
+  lambdaB = 2 * lattice[3] * std::sqrt(std::max(mu * mu - (1 - sinGlancing * sinGlancing), 0.0));
+  const double lo = std::max(band.Lambda - 0.5 * band.Width, lambdaB * (1 - 0.5 * width));
+  const double hi = std::min(band.Lambda + 0.5 * band.Width, lambdaB * (1 + 0.5 * width));
+  const double b = std::max(hi - lo, 0.0) / band.Width;
+  double tau, g;
+  sampleLight(s, sample, tau, g);
+  return s.ViewSettings.DiffractionGain * b * g * std::exp(-(tau * rayleigh + tauView)) / Pi;
+}
+
+// Every wavelength separately (the paper's cost): the body's single
+// scattering (eq. 8, phase 1/(4 pi), T_V at each sample's middle) and the
+// domains' diffraction; the pixel's XYZ and its dominant Bragg wavelength.
+PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, double transmitted, double highlight, double lightRadiance)
+{
+  PixelResult pixel;
+  std::vector<double> crossingY, crossingLambda;
+  for (const Band& band : s.Bands)
+  {
+    const double rayleigh = std::pow(550.0 / band.Lambda, 4.0);
+    double radiance = 0, tauView = 0;
+    std::size_t crossing = 0;
+    for (const Sample& sample : samples)
+    {
+      if (sample.Domain >= 0)
+      {
+        double lambdaB;
+        const double value = diffracted(s, sample, band, rayleigh, tauView, lambdaB);
+        radiance += value;
+        if (crossingY.size() <= crossing)
+        {
+          crossingY.push_back(0);
+          crossingLambda.push_back(lambdaB);
+        }
+        crossingY[crossing++] += value * band.D65 * band.Y * band.Width;
+        continue;
+      }
+      const double mus = s.V.Scattering[static_cast<std::size_t>(sample.Voxel)] * rayleigh;
+      if (mus <= 0)
+        continue;
+      double tau, g;
+      sampleLight(s, sample, tau, g);
+      radiance += g * std::exp(-tau * rayleigh) * mus / (4 * Pi) * sample.Length * std::exp(-(tauView + 0.5 * mus * sample.Length));
+      tauView += mus * sample.Length;
+    }
+    const double total = (transmitted * radiance + highlight * lightRadiance) * band.D65;
+    pixel.XYZ[0] += total * band.X * band.Width;
+    pixel.XYZ[1] += total * band.Y * band.Width;
+    pixel.XYZ[2] += total * band.Z * band.Width;
+  }
+  // The dominant Bragg wavelength: the crossing whose light has the most luminance.
+  const auto brightest = std::max_element(crossingY.begin(), crossingY.end());
+  if (brightest != crossingY.end() && *brightest > 0)
+    pixel.Dominant = crossingLambda[static_cast<std::size_t>(brightest - crossingY.begin())];
+  return pixel;
+}
+
+// Where the refracted ray from `origin` leaves the opal: fine steps, then bisection.
+double viewExit(const Volume& volume, const dvec3& origin, const dvec3& inward)
+{
+  const double h = volume.minSpacing();
+  const double tBox = volume.box(origin, inward)[1];
+  for (double t = 0; t < tBox; t += 0.02 * h)
+  {
+    if (volume.distance(origin + t * inward) > 0)
+      return volume.bisect(origin, inward, std::max(0.0, t - 0.02 * h), t, false);
+  }
+  return tBox;
+}
+
+// One render with `substeps` body samples per voxel segment.
+Image renderOnce(const Setup& s, const std::vector<double>& highlight)
+{
+  const View& view = s.ViewSettings;
+  const Volume& volume = s.V;
+  const Camera camera(view);
+  const double lightRadiance = s.ApexDistance2 / (Pi * view.LightRadius * view.LightRadius);
   Image image;
   const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
   image.XYZ.assign(3 * pixels, 0.0);
   image.Dominant.assign(pixels, 0.0);
   image.Hit.assign(pixels, 0);
   image.CosIncidence.assign(pixels, 0.0);
-  image.Highlight.assign(pixels, 0.0);
-  for (int py = 0; py < view.Height; ++py)
+  image.Highlight = highlight;
+  image.ViewSubsteps = s.Substeps;
+  forEachPixel(pixels, [&](std::size_t pixel) {
+    const dvec3 d = camera.direction(static_cast<double>(pixel % view.Width) + 0.5, static_cast<double>(pixel / view.Width) + 0.5);
+    const double tHit = volume.entry(camera.Eye, d);
+    if (tHit < 0)
+      return;
+    image.Hit[pixel] = 1;
+    const dvec3 hit = camera.Eye + tHit * d;
+    const dvec3 n = volume.normal(hit);
+    image.CosIncidence[pixel] = -glm::dot(d, n);
+    const double transmitted = 1 - fresnel(-glm::dot(d, n), view.RefractiveIndex);
+    // The refracted ray, from just inside the surface to where it leaves.
+    const dvec3 inward = glm::refract(d, n, 1.0 / view.RefractiveIndex);
+    const dvec3 origin = hit - 1e-4 * volume.minSpacing() * n;
+    std::vector<Sample> samples =
+      viewSamples(volume, viewSegments(volume, origin, inward, viewExit(volume, origin, inward)), origin, inward, s.Substeps);
+    if (view.Converged)
+      for (Sample& sample : samples)
+        lightExact(volume, sample.Middle, s.Light, s.ApexDistance2, view.RefractiveIndex, sample.Tau, sample.G);
+    const PixelResult result = shadePixel(s, samples, transmitted, highlight[pixel], lightRadiance);
+    std::copy(result.XYZ.begin(), result.XYZ.end(), image.XYZ.begin() + static_cast<std::ptrdiff_t>(3 * pixel));
+    image.Dominant[pixel] = result.Dominant;
+  });
+  return image;
+}
+
+// The largest change of any pixel's XYZ component between two renders,
+// relative to the pixel (or 5% of the mean luminance, where darker).
+double largestChange(const Image& a, const Image& b)
+{
+  double meanY = 0;
+  for (std::size_t p = 0; p < b.Hit.size(); ++p)
+    meanY += b.XYZ[3 * p + 1] / static_cast<double>(b.Hit.size());
+  double change = 0;
+  for (std::size_t i = 0; i < b.XYZ.size(); ++i)
+    change = std::max(change, std::fabs(a.XYZ[i] - b.XYZ[i]) / std::max(std::fabs(b.XYZ[i]), 0.05 * meanY));
+  return change;
+}
+} // namespace
+
+Image render(const Scene& scene, const View& view, const std::string& cieDirectory)
+{
+  const Volume volume(scene);
+  const std::vector<Band> bands = wavelengthBands(view, cieDirectory);
+  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
+  Setup setup{ volume, view, bands, light, apexDistanceSquared(volume, light), 1 };
+  const std::vector<double> highlight = highlights(volume, view);
+  Image image = renderOnce(setup, highlight);
+  // Converged mode: the body's samples doubled until no pixel changes.
+  for (setup.Substeps = 2; view.Converged; setup.Substeps *= 2)
   {
-    for (int px = 0; px < view.Width; ++px)
-    {
-      const std::size_t pixel = static_cast<std::size_t>(py) * view.Width + px;
-      const dvec3 d = direction(px + 0.5, py + 0.5);
-      const double tHit = volume.entry(eye, d);
-      if (tHit < 0)
-        continue;
-      image.Hit[pixel] = 1;
-      const dvec3 hit = eye + tHit * d;
-      const dvec3 n = volume.normal(hit);
-      const double transmitted = 1 - fresnel(-glm::dot(d, n), mu);
-      image.CosIncidence[pixel] = -glm::dot(d, n);
-
-      // The highlight: the light's mirror image, over n x n sub-rays of the pixel.
-      double highlight = 0;
-      const int s = view.SpecularSamples;
-      for (int sy = 0; sy < s; ++sy)
-        for (int sx = 0; sx < s; ++sx)
-        {
-          const dvec3 sd = direction(px + (sx + 0.5) / s, py + (sy + 0.5) / s);
-          const double st = volume.entry(eye, sd);
-          if (st < 0)
-            continue;
-          const dvec3 sp = eye + st * sd;
-          const dvec3 sn = volume.normal(sp);
-          const dvec3 mirrored = glm::reflect(sd, sn);
-          const double along = glm::dot(light - sp, mirrored);
-          if (-glm::dot(sd, sn) > 0 && along > 0 && glm::length(sp + along * mirrored - light) <= view.LightRadius)
-            highlight += fresnel(-glm::dot(sd, sn), mu) / (s * s);
-        }
-
-      image.Highlight[pixel] = highlight;
-
-      // The refracted ray and where it leaves the opal.
-      const dvec3 inward = glm::refract(d, n, 1.0 / mu);
-      const dvec3 origin = hit - 1e-4 * h * n;
-      double tExit = volume.box(origin, inward)[1];
-      for (double t = 0; t < tExit; t += 0.02 * h)
-      {
-        if (volume.distance(origin + t * inward) > 0)
-        {
-          tExit = volume.bisect(origin, inward, std::max(0.0, t - 0.02 * h), t, false);
-          break;
-        }
-      }
-
-      // Voxel-by-voxel segments of the refracted ray (the same for every wavelength).
-      struct Segment
-      {
-        double T0, T1;
-        int Voxel;
-      };
-      std::vector<Segment> segments;
-      {
-        int c[3];
-        volume.voxel(origin, c);
-        double t = 0;
-        while (t < tExit)
-        {
-          double next = tExit;
-          for (int a = 0; a < 3; ++a)
-          {
-            if (inward[a] == 0)
-              continue;
-            const double boundary = scene.Origin[a] + (c[a] + (inward[a] > 0 ? 0.5 : -0.5)) * scene.Spacing[a];
-            next = std::min(next, (boundary - origin[a]) / inward[a]);
-          }
-          next = std::max(next, t);
-          const bool inside = c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < scene.Dimensions[0] &&
-            c[1] < scene.Dimensions[1] && c[2] < scene.Dimensions[2];
-          if (next > t && inside)
-            segments.push_back({ t, next, static_cast<int>(volume.index(c[0], c[1], c[2])) });
-          if (next >= tExit)
-            break;
-          // Step into the neighbour across the nearest boundary.
-          int axis = 0;
-          double best = 1e300;
-          for (int a = 0; a < 3; ++a)
-          {
-            if (inward[a] == 0)
-              continue;
-            const double boundary = scene.Origin[a] + (c[a] + (inward[a] > 0 ? 0.5 : -0.5)) * scene.Spacing[a];
-            const double tb = (boundary - origin[a]) / inward[a];
-            if (tb < best)
-            {
-              best = tb;
-              axis = a;
-            }
-          }
-          c[axis] += inward[axis] > 0 ? 1 : -1;
-          t = next;
-        }
-      }
-
-      // Every wavelength separately (the paper's cost).
-      std::vector<double> crossingY, crossingLambda;
-      for (const Band& band : bands)
-      {
-        const double rayleigh = std::pow(550.0 / band.Lambda, 4.0);
-        double radiance = 0, tauView = 0;
-        int lastDomain = -1, crossing = 0;
-        for (const Segment& segment : segments)
-        {
-          const double length = segment.T1 - segment.T0;
-          const dvec3 middle = origin + 0.5 * (segment.T0 + segment.T1) * inward;
-          const int domain = scene.DomainId[static_cast<std::size_t>(segment.Voxel)];
-          if (domain >= 0)
-          {
-            if (domain != lastDomain)
-            {
-              // Bragg-Snell (eq. 4, 9): the box band averaged over this bin.
-              const auto& lattice = scene.Domains[static_cast<std::size_t>(domain)];
-              const dvec3 normal(lattice[0], lattice[1], lattice[2]);
-              const double sinGlancing = std::fabs(glm::dot(glm::normalize(light - middle), normal));
-              const double lambdaB = 2 * lattice[3] * std::sqrt(std::max(mu * mu - (1 - sinGlancing * sinGlancing), 0.0));
-              const double lo = std::max(band.Lambda - 0.5 * band.Width, lambdaB * (1 - 0.5 * view.BraggBandwidth));
-              const double hi = std::min(band.Lambda + 0.5 * band.Width, lambdaB * (1 + 0.5 * view.BraggBandwidth));
-              const double b = std::max(hi - lo, 0.0) / band.Width;
-              double tau, g;
-              lightAt(volume, middle, light, apexDistance2, mu, tau, g);
-              const double value = view.DiffractionGain * b * g * std::exp(-(tau * rayleigh + tauView)) / Pi;
-              radiance += value;
-              if (crossingY.size() <= static_cast<std::size_t>(crossing))
-              {
-                crossingY.push_back(0);
-                crossingLambda.push_back(lambdaB);
-              }
-              crossingY[static_cast<std::size_t>(crossing)] += value * band.D65 * band.Y * band.Width;
-              ++crossing;
-              lastDomain = domain;
-            }
-            continue;
-          }
-          lastDomain = -1;
-          const double mus = scene.Scattering[static_cast<std::size_t>(segment.Voxel)] * rayleigh;
-          if (mus <= 0)
-            continue;
-          // Rayleigh single scattering (eq. 8), phase 1/(4 pi), T_V at the midpoint.
-          double tau, g;
-          lightAt(volume, middle, light, apexDistance2, mu, tau, g);
-          radiance += g * std::exp(-tau * rayleigh) * mus / (4 * Pi) * length * std::exp(-(tauView + 0.5 * mus * length));
-          tauView += mus * length;
-        }
-        const double total = (transmitted * radiance + highlight * lightRadiance) * band.D65;
-        image.XYZ[3 * pixel] += total * band.X * band.Width;
-        image.XYZ[3 * pixel + 1] += total * band.Y * band.Width;
-        image.XYZ[3 * pixel + 2] += total * band.Z * band.Width;
-      }
-      // The dominant Bragg wavelength: the crossing whose light has the most luminance.
-      const auto brightest = std::max_element(crossingY.begin(), crossingY.end());
-      if (brightest != crossingY.end() && *brightest > 0)
-      {
-        image.Dominant[pixel] = crossingLambda[static_cast<std::size_t>(brightest - crossingY.begin())];
-      }
-    }
+    if (setup.Substeps > view.MaxViewSubsteps)
+      throw std::runtime_error("the reference did not converge within " + std::to_string(view.MaxViewSubsteps) + " view sub-steps");
+    Image refined = renderOnce(setup, highlight);
+    const double change = largestChange(image, refined);
+    image = std::move(refined);
+    if (change < view.ConvergenceTolerance)
+      break;
   }
   return image;
 }

@@ -8,10 +8,13 @@
 // 1/pi on diffraction, domains counted once per crossing, the box band
 // averaged over each wavelength bin.
 //
-// Straightforward rather than clever: single-threaded, the same sampling and
-// voxel lookups as the product (voxel-by-voxel steps, nearest-voxel
-// coefficients, trilinear SurfaceDistance), and no code shared with the
-// product: only the CIE tables (data files).
+// Straightforward rather than clever: pixels spread over threads, no code shared with
+// the product, only the CIE tables (data files). Two modes: literal (the
+// paper's sampling: one sample per voxel segment of the view ray, a march
+// towards the light in voxel-length steps with nearest-voxel coefficients,
+// for every wavelength) and converged (View::Converged: the light path's
+// optical depth exact, the view path refined until the image stops
+// changing), the oracle the product is held to.
 #pragma once
 
 #include <array>
@@ -45,6 +48,15 @@ struct View
   double DiffractionGain = 4;
   double LambdaMin = 380, LambdaMax = 780, LambdaStep = 10;
   int SpecularSamples = 4;
+  // Converged mode: the light integrated exactly (every voxel cell of its
+  // path, the smooth surface found on it), the view path's body samples
+  // doubled per voxel segment until no pixel changes by more than
+  // ConvergenceTolerance, the highlight's coverage of each pixel by adaptive
+  // subdivision, ConvergedHighlightDepth levels (1/256 of a pixel) deep.
+  bool Converged = false;
+  double ConvergenceTolerance = 2e-3;
+  int MaxViewSubsteps = 64;
+  int ConvergedHighlightDepth = 8;
 };
 
 struct Image
@@ -54,6 +66,7 @@ struct Image
   std::vector<std::uint8_t> Hit; // 1 where the ray meets the opal
   std::vector<double> CosIncidence; // cosine of the primary ray's incidence angle (0 where missed)
   std::vector<double> Highlight;    // the light's Fresnel highlight: the fraction of sub-rays, times F
+  int ViewSubsteps = 1;             // body samples per voxel segment (converged mode: where it converged)
 };
 
 // Renders with the CIE tables read from `cieDirectory` (the product's data files).

@@ -39,7 +39,7 @@ bool RenderSession::sweepLightLayers(Progress& progress)
   auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
   std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
   const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
-  const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassEnterFromAbove);
+  const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassMarchQueued);
   const int layersPerSubmit =
     static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
   for (int top = layers - 1; top >= 0; top -= layersPerSubmit)

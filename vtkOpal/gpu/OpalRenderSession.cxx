@@ -4,6 +4,7 @@
 #include "OpalMemory.h"
 #include "OpalOptics.h"
 #include "OpalRenderSessionState.h"
+#include "OpalSkinCells.h"
 #include "OpalVulkanError.h"
 
 #include <algorithm>
@@ -30,7 +31,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
-  for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassEnterFromAbove })
+  for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
     this->LightPasses[mode] = std::make_unique<ComputePipeline>(
       *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode });
@@ -81,8 +82,10 @@ void RenderSession::setVolume(const RenderVolume& volume)
     }
     return buffer;
   };
-  uploaded->Scattering = deviceLocal(voxels * 4, "ScatteringCoefficient volume", volume.ScatteringCoefficient);
-  uploaded->DomainId = deviceLocal(voxels * 4, "DomainId volume", volume.DomainId);
+  // The medium reaches the smooth surface: skin cells filled from inside.
+  const SkinExtendedFields skin = extendIntoSkin(volume);
+  uploaded->Scattering = deviceLocal(voxels * 4, "ScatteringCoefficient volume", skin.ScatteringCoefficient.data());
+  uploaded->DomainId = deviceLocal(voxels * 4, "DomainId volume", skin.DomainId.data());
   uploaded->SurfaceDistance = deviceLocal(voxels * 4, "SurfaceDistance volume", volume.SurfaceDistance);
   uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
   uploaded->EntryVoxels = deviceLocal(voxels * sizeof(std::uint32_t), "light entry voxels");
