@@ -70,15 +70,13 @@ float discCoverage(float d, float cellArea)
 }
 
 // The Fresnel reflectance averaged over n x n sub-rays of the pixel, whose
-// mirror rays sweep `pixelArea` near the light (0: unknown), `spread` across.
-// n is SpecularSamples, or more where a sub-ray's cell would be wider than
-// half the light's radius (a light image smaller than the sub-rays' spacing,
-// as at small image sizes), up to 64.
-float supersampledHighlight(vec2 pixel, float tFrom, float pixelArea, float spread)
+// mirror rays sweep `pixelArea` near the light (0: unknown); y is 1 where
+// the light's image covers the pixel only in part (its edge crosses it).
+vec2 supersampledHighlight(vec2 pixel, float tFrom, float pixelArea, int n)
 {
-  int n = clamp(int(ceil(2.0 * spread / P.lightRadius)), P.specularSamples, max(P.specularSamples, 64));
   float cellArea = pixelArea / float(n * n);
   float sum = 0.0;
+  float least = 1.0, most = 0.0;
   for (int sy = 0; sy < n; ++sy)
   {
     for (int sx = 0; sx < n; ++sx)
@@ -86,13 +84,29 @@ float supersampledHighlight(vec2 pixel, float tFrom, float pixelArea, float spre
       vec2 sub = pixel - 0.5 + (vec2(sx, sy) + 0.5) / float(n);
       float cosI;
       vec4 near = mirrorRayNearLight(sub, P.eye, tFrom, cosI);
-      if (near.w > 0.0)
-      {
-        sum += discCoverage(distance(near.xyz, P.light), cellArea) * fresnelReflectance(cosI, P.refractiveIndex);
-      }
+      float covered = near.w > 0.0 ? discCoverage(distance(near.xyz, P.light), cellArea) : 0.0;
+      least = min(least, covered);
+      most = max(most, covered);
+      sum += covered * fresnelReflectance(cosI, P.refractiveIndex);
     }
   }
-  return sum / float(n * n);
+  return vec2(sum / float(n * n), most > 0.0 && least < 1.0 ? 1.0 : 0.0);
+}
+
+// The highlight's share of the pixel: n x n sub-rays, n SpecularSamples or
+// more where a sub-ray's cell would be wider than half the light's radius (a
+// light image smaller than the sub-rays' spacing, as at small image sizes);
+// where the image's edge crosses the pixel, again with four times n per axis
+// (up to 64), so edge pixels converge like the rest.
+float pixelHighlight(vec2 pixel, float tFrom, vec2 reach)
+{
+  int n = clamp(int(ceil(2.0 * reach.x / P.lightRadius)), P.specularSamples, max(P.specularSamples, 64));
+  vec2 highlight = supersampledHighlight(pixel, tFrom, reach.y, n);
+  if (highlight.y > 0.0 && 4 * n <= 64)
+  {
+    highlight = supersampledHighlight(pixel, tFrom, reach.y, 4 * n);
+  }
+  return highlight.x;
 }
 
 // Where the mirror rays of the pixel and its right and lower neighbours
@@ -138,7 +152,7 @@ void shade(ivec2 local, int pixelIndex)
   }
   vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
   float tFrom = pixelColour[pixelIndex].depth - 4.0 * P.smallestSpacing;
-  float highlight = supersampledHighlight(pixel, tFrom, reach.y, reach.x) * P.lightRadiance;
+  float highlight = pixelHighlight(pixel, tFrom, reach) * P.lightRadiance;
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < P.wavelengthCount; ++l)
   {

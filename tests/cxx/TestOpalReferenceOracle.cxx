@@ -201,7 +201,8 @@ void checkSmoothField(const std::string& cie)
   auto volume = buildVolume(6, true);
   const std::vector<Case> cases{ { "light above" },
     { "light low beside the opal (per-voxel march, a terminator)", { 30.0, 12.0, 5.0 } },
-    { "light to the side (oblique sweep, steep sides)", { 40.0, 45.0, -20.0 } },
+    { "light to the side (the steepest sweep, steep sides)", { 18.0, 60.0, -14.0 } },
+    { "light far to the side (per-voxel march)", { 40.0, 45.0, -20.0 } },
     { "highlight (0.4 degree view of the apex)", { 0, 60, 0 }, 0.4 } };
   for (const Case& c : cases)
   {

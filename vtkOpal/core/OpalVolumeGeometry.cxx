@@ -68,8 +68,8 @@ bool VolumeGeometry::lightAboveGrid(const glm::dvec3& light) const
   {
     const glm::dvec3 p((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y, (corner & 4) ? high.z : low.z);
     const glm::dvec3 d = light - p;
-    if (std::fabs(d.x) / d.y * this->Spacing.y > 2 * this->Spacing.x ||
-      std::fabs(d.z) / d.y * this->Spacing.y > 2 * this->Spacing.z)
+    if (std::fabs(d.x) / d.y * this->Spacing.y > 0.5 * this->Spacing.x ||
+      std::fabs(d.z) / d.y * this->Spacing.y > 0.5 * this->Spacing.z)
     {
       return false;
     }
