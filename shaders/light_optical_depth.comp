@@ -119,6 +119,12 @@ vec2 continuedFromInside(vec3 p, vec3 direction)
     return vec2(-mus * back, entryGeometry(p, surfacePoint, direction));
   }
   vec3 q = p - (surfaceDistance(p) + 0.01 * P.smallestSpacing) * surfaceNormal(p);
+  if (!insideGrid(voxelOf(q)) || surfaceDistance(q) > 0.0)
+  {
+    // Beside the grid's faces the field's continuation has no nearest point to offer.
+    float r = distance(P.light, p);
+    return vec2(0.0, P.apexDistanceSquared / (r * r));
+  }
   vec3 towardLight = normalize(P.light - q);
   float tau = 0.0;
   float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau);

@@ -4,7 +4,11 @@
 // an index-matched boundary (RefractiveIndex 1, Illuminant none), light and
 // eye 60 mm above, per pixel at 450, 550 and 650 nm. The product sees the
 // shape through its voxel grid (SurfaceDistance sampled every 0.2 mm, its
-// zero read trilinearly), the tracer exactly.
+// zero read trilinearly), the tracer exactly: away from the silhouette they
+// agree per pixel; the silhouette's pixels, whose rays graze the dome where
+// it meets the base (below the grid's first layer of centres), see chords
+// that the sampled surface shortens, so there the mean is held (measured -1.3, -1.7 and -2.0%; tolerance 3%),
+// not each pixel (up to -47%).
 #include "OpalHalfEllipsoid.h"
 #include "OpalPathTracer.h"
 #include "OpalRenderScenes.h"
@@ -60,6 +64,8 @@ struct Agreement
   double ProductMean = 0, TracerMean = 0; // over the pixels both see the opal in
   double RimMean = 0, RimTracerMean = 0;  // over those with a neighbour that misses
   double WorstSigma = 0;                  // the largest |difference| / standard error away from the rim
+  double WorstInner = 0;                  // the largest relative difference away from the rim
+  double WorstRim = 0;
   int Pixels = 0, RimPixels = 0, HitMismatches = 0;
 };
 
@@ -99,10 +105,12 @@ Agreement compareAt(const opal::RenderImage& image, const opaltracer::Image& tra
         a.RimMean += product;
         a.RimTracerMean += tracer;
         ++a.RimPixels;
+        a.WorstRim = std::max(a.WorstRim, std::fabs(product / tracer - 1));
         continue;
       }
       const double sigma = traced.StandardError[p * Wavelengths.size() + w];
-      a.WorstSigma = std::max(a.WorstSigma, std::fabs(product - tracer) / std::max(sigma, 1e-3 * tracer));
+      a.WorstSigma = std::max(a.WorstSigma, std::fabs(product - tracer) / sigma);
+      a.WorstInner = std::max(a.WorstInner, std::fabs(product / tracer - 1));
     }
   return a;
 }
@@ -128,9 +136,13 @@ int TestOpalPathTracer(int, char*[])
   {
     const Agreement a = compareAt(image, traced, w, 64, 48);
     const double mean = a.ProductMean / a.TracerMean - 1, rim = a.RimMean / a.RimTracerMean - 1;
+    OPAL_CHECK(a.HitMismatches == 0, "the product and the tracer see the opal in the same pixels");
+    OPAL_CHECK(std::fabs(mean) < 0.005, std::to_string(Wavelengths[w]) + " nm: mean radiance within 0.5% of the tracer's");
+    OPAL_CHECK(a.WorstInner < 0.01, "away from the silhouette every pixel within 1% of the tracer");
+    OPAL_CHECK(std::fabs(rim) < 0.03, "the silhouette's pixels within 3% of the tracer's on average");
     std::cout << Wavelengths[w] << " nm: mean radiance " << 100 * mean << "% against the tracer over " << a.Pixels
               << " pixels; rim (" << a.RimPixels << " pixels) " << 100 * rim << "%; worst inner pixel "
-              << a.WorstSigma << " standard errors; " << a.HitMismatches << " pixels hit by one only" << std::endl;
+              << a.WorstSigma << " standard errors, " << 100 * a.WorstInner << "%; worst rim pixel " << 100 * a.WorstRim << "%; " << a.HitMismatches << " pixels hit by one only" << std::endl;
   }
   return opaltest::finish("TestOpalPathTracer");
 }
