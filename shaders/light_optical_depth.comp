@@ -103,26 +103,30 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout float tau)
 
 // An outside voxel whose path to the light misses the opal: values
 // continued from the inside, so that reads between it and inside voxels
-// stay close to the inside's. Where the opal lies behind it (away from the
-// light), linearly across the surface there: the optical depth negative in
-// proportion to the distance, the Fresnel transmission of that surface
-// point. Beside the shadow line, where nothing lies behind, the light of the
-// nearest point just inside (unattenuated light there would brighten the
-// terminator).
-vec2 continuedFromInside(vec3 p, vec3 direction)
+// stay close to the inside's. Where the surface below it faces the light,
+// linearly across that surface (d / cos_L back along the path): the optical
+// depth negative in proportion to the distance, the Fresnel transmission at
+// cos_L. Beside the shadow line (cos_L small), the light of the nearest
+// point just inside (unattenuated light there would brighten the
+// terminator). From the voxel's own distance and the field's slope along the
+// path: no search, which a CPU driver would pay for every skin voxel.
+vec2 continuedFromInside(vec3 p, vec3 direction, float d)
 {
-  float back = traceSurfaceEntry(p, -direction, 0.0, 2.0 * skinDepth());
-  if (back >= 0.0)
+  // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
+  float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
+  float r = distance(P.light, p);
+  if (cosL > 0.25)
   {
-    vec3 surfacePoint = p - back * direction;
-    float mus = scatteringIn(voxelOf(surfacePoint - 0.5 * P.smallestSpacing * direction));
-    return vec2(-mus * back, entryGeometry(p, surfacePoint, direction));
+    float back = d / cosL;
+    float mus = scatteringIn(voxelOf(p - (back + 0.5 * P.smallestSpacing) * direction));
+    float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - back * direction) : r;
+    float transmission = 1.0 - fresnelReflectance(cosL, P.refractiveIndex);
+    return vec2(-mus * back, transmission * P.apexDistanceSquared / (falloff * falloff));
   }
-  vec3 q = p - (surfaceDistance(p) + 0.01 * P.smallestSpacing) * surfaceNormal(p);
+  vec3 q = p - (d + 0.01 * P.smallestSpacing) * surfaceNormal(p);
   if (!insideGrid(voxelOf(q)) || surfaceDistance(q) > 0.0)
   {
     // Beside the grid's faces the field's continuation has no nearest point to offer.
-    float r = distance(P.light, p);
     return vec2(0.0, P.apexDistanceSquared / (r * r));
   }
   vec3 towardLight = normalize(P.light - q);
@@ -147,7 +151,7 @@ vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, bool startsIn
   {
     if (!inside)
     {
-      t = traceSurfaceEntry(p, direction, t, tEnd);
+      t = traceSurfaceEntry(p, direction, t, tEnd, 0.5 * P.smallestSpacing);
       if (t < 0.0) break;
     }
     lightEntry = walkInside(p, direction, t, tEnd, tau);
@@ -156,7 +160,7 @@ vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, bool startsIn
   }
   if (lightEntry < 0.0)
   {
-    return continuedFromInside(p, direction);
+    return continuedFromInside(p, direction, surfaceDistance(p));
   }
   return vec2(tau, entryGeometry(p, p + lightEntry * direction, direction));
 }

@@ -29,7 +29,7 @@ vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
   vec2 box = gridBoxHits(eye, d);
   cosI = 0.0;
   if (box.x > box.y) return vec4(0.0);
-  float t = traceSurfaceEntry(eye, d, max(box.x, tFrom), box.y);
+  float t = traceSurfaceEntry(eye, d, max(box.x, tFrom), box.y, 0.05 * P.smallestSpacing);
   if (t < 0.0) return vec4(0.0);
   vec3 hit = eye + t * d;
   return mirrorPointNearLight(hit, d, surfaceNormal(hit), cosI);

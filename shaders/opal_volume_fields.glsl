@@ -93,10 +93,10 @@ float bisectSurface(vec3 origin, vec3 direction, float outsideT, float insideT)
 }
 
 // First zero of SurfaceDistance along the ray in [tStart, tEnd] going from
-// outside (positive) to inside: sphere tracing, then bisection. -1 if none.
-float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
+// outside (positive) to inside: sphere tracing with steps of at least
+// minStep, then bisection. -1 if none.
+float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd, float minStep)
 {
-  float h = P.smallestSpacing;
   float t = tStart;
   float previous = t;
   for (int i = 0; i < 1024 && t <= tEnd; ++i)
@@ -107,7 +107,7 @@ float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd)
       return bisectSurface(origin, direction, previous, t);
     }
     previous = t;
-    t += max(0.9 * d, 0.05 * h);
+    t += max(0.9 * d, minStep);
   }
   return -1.0;
 }

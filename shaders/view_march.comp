@@ -281,7 +281,7 @@ void main()
   vec3 direction = primaryDirection(pixel);
   float mu = P.refractiveIndex;
   vec2 box = gridBoxHits(eye, direction);
-  float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y) : -1.0;
+  float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y, 0.05 * P.smallestSpacing) : -1.0;
   if (tHit < 0.0)
   {
     writeMiss(pixelIndex);
