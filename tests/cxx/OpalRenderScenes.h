@@ -41,8 +41,13 @@ inline int noDeviceReturnCode()
 }
 
 // Whether this machine has a Vulkan device; says why not if it has none.
+// Every Vulkan test asks first, so this also turns the validation layer on
+// for each render of the test process (OPAL_VULKAN_VALIDATION): the tests'
+// checks that it stayed silent hold however the test is run, not only under
+// ctest's environment.
 inline bool vulkanDeviceAvailable()
 {
+  setenv("OPAL_VULKAN_VALIDATION", "1", 1);
   try
   {
     opal::VulkanContext probe;
