@@ -195,9 +195,9 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   int above = min(c.y + 1, P.gridDimensions.y - 1);
   int nearZ = voxelIndex(ivec3(c0.x, above, c0.y)), farZ = voxelIndex(ivec3(c0.x, above, c1.y));
   int nearZNext = voxelIndex(ivec3(c1.x, above, c0.y)), farZNext = voxelIndex(ivec3(c1.x, above, c1.y));
-  bool skin = c.y == P.gridDimensions.y - 1 || surfaceDistanceField[index] > 0.0 ||
-    max(max(surfaceDistanceField[nearZ], surfaceDistanceField[nearZNext]),
-      max(surfaceDistanceField[farZ], surfaceDistanceField[farZNext])) > 0.0;
+  bool skin = c.y == P.gridDimensions.y - 1 || voxelSurfaceDistance(index) > 0.0 ||
+    max(max(voxelSurfaceDistance(nearZ), voxelSurfaceDistance(nearZNext)),
+      max(voxelSurfaceDistance(farZ), voxelSurfaceDistance(farZNext))) > 0.0;
   if (skin)
   {
     queueVoxel(index, c.y);
@@ -241,7 +241,7 @@ void main()
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
   // A voxel centre: its own SurfaceDistance, no interpolation needed.
-  float d = surfaceDistanceField[index];
+  float d = voxelSurfaceDistance(index);
   if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
   {
     // Outside beyond the skin: nothing inside reads it; unattenuated light.

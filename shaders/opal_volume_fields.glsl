@@ -4,7 +4,10 @@
 
 layout(std430, set = 0, binding = ScatteringBinding) readonly buffer ScatteringField { float scatteringField[]; };
 layout(std430, set = 0, binding = DomainIdBinding) readonly buffer DomainIdField { int domainIdField[]; };
-layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { float surfaceDistanceField[]; };
+// SurfaceDistance of each voxel and of its +x neighbour (the last voxel of a
+// row repeats its own): a trilinear read takes four loads instead of eight,
+// and surface tracing is most of what a pixel reads.
+layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { vec2 surfaceDistancePairs[]; };
 
 int voxelIndex(ivec3 c)
 {
@@ -27,23 +30,27 @@ vec3 voxelCentre(ivec3 c)
   return P.gridOrigin + vec3(c) * P.gridSpacing;
 }
 
-// Trilinear interpolation of a float field over voxel centres, clamped.
-// (A macro: GLSL cannot pass a buffer's array to a function.)
-#define OPAL_TRILINEAR(FIELD, position, result)                                          \
-  {                                                                                    \
-    vec3 g_ = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(0.0),     \
-      vec3(P.gridDimensions - 1));                                                       \
-    ivec3 c0_ = clamp(ivec3(floor(g_)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));  \
-    ivec3 c1_ = min(c0_ + 1, P.gridDimensions - 1);                                      \
-    vec3 f_ = clamp(g_ - vec3(c0_), 0.0, 1.0);                                         \
-    int sy_ = P.gridDimensions.x, sz_ = P.gridDimensions.x * P.gridDimensions.y;                         \
-    int y0_ = c0_.y * sy_, y1_ = c1_.y * sy_, z0_ = c0_.z * sz_, z1_ = c1_.z * sz_;    \
-    float x00_ = mix(FIELD[c0_.x + y0_ + z0_], FIELD[c1_.x + y0_ + z0_], f_.x);        \
-    float x10_ = mix(FIELD[c0_.x + y1_ + z0_], FIELD[c1_.x + y1_ + z0_], f_.x);        \
-    float x01_ = mix(FIELD[c0_.x + y0_ + z1_], FIELD[c1_.x + y0_ + z1_], f_.x);        \
-    float x11_ = mix(FIELD[c0_.x + y1_ + z1_], FIELD[c1_.x + y1_ + z1_], f_.x);        \
-    result = mix(mix(x00_, x10_, f_.y), mix(x01_, x11_, f_.y), f_.z);                  \
-  }
+// A voxel's own SurfaceDistance (no interpolation at a centre).
+float voxelSurfaceDistance(int index)
+{
+  return surfaceDistancePairs[index].x;
+}
+
+// SurfaceDistance trilinear over voxel centres, clamped.
+float trilinearSurfaceDistance(vec3 position)
+{
+  vec3 g = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
+  ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
+  ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
+  vec3 f = clamp(g - vec3(c0), 0.0, 1.0);
+  int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
+  vec2 p00 = surfaceDistancePairs[c0.x + c0.y * sy + c0.z * sz];
+  vec2 p10 = surfaceDistancePairs[c0.x + c1.y * sy + c0.z * sz];
+  vec2 p01 = surfaceDistancePairs[c0.x + c0.y * sy + c1.z * sz];
+  vec2 p11 = surfaceDistancePairs[c0.x + c1.y * sy + c1.z * sz];
+  return mix(mix(mix(p00.x, p00.y, f.x), mix(p10.x, p10.y, f.x), f.y),
+    mix(mix(p01.x, p01.y, f.x), mix(p11.x, p11.y, f.x), f.y), f.z);
+}
 
 // SurfaceDistance, continued linearly beyond the outermost voxel centres (the
 // opal touches the grid's top and sides; a clamped field there would flatten
@@ -51,9 +58,7 @@ vec3 voxelCentre(ivec3 c)
 float surfaceDistance(vec3 p)
 {
   vec3 nearest = clamp(p, P.gridOrigin, P.gridOrigin + vec3(P.gridDimensions - 1) * P.gridSpacing);
-  float d;
-  OPAL_TRILINEAR(surfaceDistanceField, nearest, d);
-  return d + distance(p, nearest);
+  return trilinearSurfaceDistance(nearest) + distance(p, nearest);
 }
 
 // Outward unit normal of the smooth surface: the gradient of SurfaceDistance.

@@ -16,6 +16,25 @@ namespace opal
 
 using namespace sessiondetail;
 
+namespace
+{
+// SurfaceDistance as the shaders read it (SurfaceDistanceBinding): each
+// voxel's value and its +x neighbour's, the last voxel of a row repeating its
+// own, so that a trilinear read takes four loads instead of eight.
+std::vector<float> surfaceDistancePairs(const RenderVolume& volume)
+{
+  const std::size_t voxels = volume.voxelCount();
+  const auto rowLength = static_cast<std::size_t>(volume.Dimensions[0]);
+  std::vector<float> pairs(2 * voxels);
+  for (std::size_t i = 0; i < voxels; ++i)
+  {
+    pairs[2 * i] = volume.SurfaceDistance[i];
+    pairs[2 * i + 1] = volume.SurfaceDistance[(i + 1) % rowLength == 0 ? i : i + 1];
+  }
+  return pairs;
+}
+} // namespace
+
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
 {
   return this->Light == other.Light && this->RefractiveIndex == other.RefractiveIndex &&
@@ -86,7 +105,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const SkinExtendedFields skin = extendIntoSkin(volume);
   uploaded->Scattering = deviceLocal(voxels * 4, "ScatteringCoefficient volume", skin.ScatteringCoefficient.data());
   uploaded->DomainId = deviceLocal(voxels * 4, "DomainId volume", skin.DomainId.data());
-  uploaded->SurfaceDistance = deviceLocal(voxels * 4, "SurfaceDistance volume", volume.SurfaceDistance);
+  uploaded->SurfaceDistance =
+    deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
   uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
   uploaded->EntryVoxels = deviceLocal(voxels * sizeof(std::uint32_t), "light entry voxels");
   // The host resets the light pass's queues before every sweep.
