@@ -57,7 +57,7 @@ void storeLight(int index, vec2 light)
 
 float scatteringIn(ivec3 cell)
 {
-  return insideGrid(cell) ? scatteringField[voxelIndex(cell)] : 0.0;
+  return insideGrid(cell) ? voxelCells[voxelIndex(cell)].scattering : 0.0;
 }
 
 // The skin: outside voxel centres nearer the surface than a cell's diagonal
@@ -207,7 +207,7 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   LightFieldPair nearPair = lightField[nearZ], farPair = lightField[farZ];
   vec2 lightQ = mix(mix(nearPair.voxel, nearPair.nextVoxel, f.x), mix(farPair.voxel, farPair.nextVoxel, f.x), f.y);
   // Two half-segments, each with the scattering of the voxel it lies in.
-  float segment = 0.5 * step * (scatteringField[index] + scatteringIn(voxelOf(p + 0.75 * step * direction)));
+  float segment = 0.5 * step * (voxelCells[index].scattering + scatteringIn(voxelOf(p + 0.75 * step * direction)));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
   float rq = distance(P.light, q), rp = distance(P.light, p);
   storeLight(index, vec2(lightQ.x + segment, P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)));

@@ -35,8 +35,8 @@ using ivec3 = glm::ivec3;
 // the ones it uses).
 OPAL_CONSTANT int ParametersBinding = 0;       // uniform RenderParameterBlock
 OPAL_CONSTANT int WavelengthTableBinding = 1;  // WavelengthBinRecord per wavelength
-OPAL_CONSTANT int ScatteringBinding = 2;       // float per voxel: ScatteringCoefficient, 1/mm at 550 nm
-OPAL_CONSTANT int DomainIdBinding = 3;         // int per voxel: DomainId
+OPAL_CONSTANT int VoxelCellBinding = 2;        // VoxelCell per voxel: ScatteringCoefficient and DomainId
+OPAL_CONSTANT int HighlightPixelsBinding = 3;  // uint per pixel: the pixels queued for the highlight
 OPAL_CONSTANT int SurfaceDistanceBinding = 4;  // vec2 per voxel: its SurfaceDistance (mm, negative inside) and its +x neighbour's
 OPAL_CONSTANT int LightFieldBinding = 5;       // LightFieldPair per voxel
 OPAL_CONSTANT int DomainTableBinding = 6;      // DomainRecord per domain
@@ -49,8 +49,7 @@ OPAL_CONSTANT int LightEntryQueuesBinding = 12; // DispatchQueue per layer of th
 OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
 OPAL_CONSTANT int PixelMirrorBinding = 14;     // PixelMirror per pixel
 OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue: the pixels queued for the highlight
-OPAL_CONSTANT int HighlightPixelsBinding = 16; // uint per pixel: the queued pixels
-OPAL_CONSTANT int BindingCount = 17;
+OPAL_CONSTANT int BindingCount = 16;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -103,6 +102,14 @@ struct OPAL_ALIGNED WavelengthBinRecord
   float rayleighScale;
   float illuminant;
   OPAL_ALIGNED vec3 colourMatching;   // x-bar, y-bar, z-bar
+};
+
+// A voxel's piecewise-constant fields (the skin filled, docs/design.md §3.3),
+// read together: the view march's walk takes one load per voxel, not two.
+struct VoxelCell
+{
+  float scattering; // ScatteringCoefficient, 1/mm at 550 nm
+  int domainId;     // -1 or an index into the domain table
 };
 
 // The light field (docs/design.md §3.3) of a voxel and of its +x neighbour
@@ -193,7 +200,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 16 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 16 && sizeof(VoxelCell) == 8 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

@@ -2,8 +2,7 @@
 // values (scattering coefficient, domain id), trilinear for the smooth ones
 // (surface distance, light optical depth and geometry), clamped at the edges.
 
-layout(std430, set = 0, binding = ScatteringBinding) readonly buffer ScatteringField { float scatteringField[]; };
-layout(std430, set = 0, binding = DomainIdBinding) readonly buffer DomainIdField { int domainIdField[]; };
+layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells { VoxelCell voxelCells[]; };
 // SurfaceDistance of each voxel and of its +x neighbour (the last voxel of a
 // row repeats its own): a trilinear read takes four loads instead of eight,
 // and surface tracing is most of what a pixel reads.

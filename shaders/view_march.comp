@@ -203,8 +203,9 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
     if (segment > 0.0 && insideGrid(state.walk.cell))
     {
       int v = voxelIndex(state.walk.cell);
-      int domain = domainIdField[v];
-      float mus = scatteringField[v];
+      VoxelCell cell = voxelCells[v];
+      int domain = cell.domainId;
+      float mus = cell.scattering;
       if (domain >= 0 && domain != state.lastDomain)
       {
         crossingPoint[count] = origin + (state.t + 0.5 * segment) * inward;

@@ -103,8 +103,12 @@ void RenderSession::setVolume(const RenderVolume& volume)
   };
   // The medium reaches the smooth surface: skin cells filled from inside.
   const SkinExtendedFields skin = extendIntoSkin(volume);
-  uploaded->Scattering = deviceLocal(voxels * 4, "ScatteringCoefficient volume", skin.ScatteringCoefficient.data());
-  uploaded->DomainId = deviceLocal(voxels * 4, "DomainId volume", skin.DomainId.data());
+  std::vector<gpu::VoxelCell> cells(voxels);
+  for (std::size_t i = 0; i < voxels; ++i)
+  {
+    cells[i] = gpu::VoxelCell{ skin.ScatteringCoefficient[i], skin.DomainId[i] };
+  }
+  uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
   uploaded->SurfaceDistance =
     deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
   uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
@@ -362,8 +366,7 @@ void RenderSession::bindBuffers()
   std::vector<const VulkanBuffer*> buffers(gpu::BindingCount, nullptr);
   buffers[gpu::ParametersBinding] = b.Parameters.get();
   buffers[gpu::WavelengthTableBinding] = b.WavelengthTable.get();
-  buffers[gpu::ScatteringBinding] = v.Scattering.get();
-  buffers[gpu::DomainIdBinding] = v.DomainId.get();
+  buffers[gpu::VoxelCellBinding] = v.Cells.get();
   buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
   buffers[gpu::LightFieldBinding] = v.LightField.get();
   buffers[gpu::LightEntryQueuesBinding] = v.EntryQueues.get();

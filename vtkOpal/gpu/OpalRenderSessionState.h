@@ -28,9 +28,9 @@ constexpr int MarchTileSize = 64;                  // pixels per tile side: one 
 constexpr std::int64_t MarchPixelsPerSubmit = 1 << 17;
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
 constexpr std::int64_t LightSweepVoxelsPerSubmit = 1 << 20;
-// On the device per voxel: two fields of 4 bytes, SurfaceDistance's pair (8),
+// On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8),
 // the light field's pair and a place in the light pass's entry queue.
-constexpr std::uint64_t DeviceBytesPerVoxel = 2 * 4 + 8 + sizeof(gpu::LightFieldPair) + 4;
+constexpr std::uint64_t DeviceBytesPerVoxel = sizeof(gpu::VoxelCell) + 8 + sizeof(gpu::LightFieldPair) + 4;
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
   sizeof(gpu::ColourRange) <= PushConstantBytes);
 
@@ -62,7 +62,7 @@ struct RenderSession::DeviceVolume
 {
   RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
   VolumeGeometry Geometry;
-  std::unique_ptr<VulkanBuffer> Scattering, DomainId, SurfaceDistance, DomainTable;
+  std::unique_ptr<VulkanBuffer> Cells, SurfaceDistance, DomainTable;
   std::unique_ptr<VulkanBuffer> LightField;
   std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
 };
