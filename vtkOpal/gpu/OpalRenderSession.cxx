@@ -3,6 +3,7 @@
 #include "OpalEmbeddedShaders.h"
 #include "OpalMemory.h"
 #include "OpalOptics.h"
+#include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
 #include "OpalSkinCells.h"
 #include "OpalVulkanError.h"
@@ -18,6 +19,19 @@ using namespace sessiondetail;
 
 namespace
 {
+// Calls f(i) for every voxel index i, the z-slices spread over the threads.
+template <typename Function>
+void forEachVoxel(const RenderVolume& volume, Function&& f)
+{
+  const auto slice = static_cast<std::size_t>(volume.Dimensions[0]) * static_cast<std::size_t>(volume.Dimensions[1]);
+  parallelFor(0, volume.Dimensions[2], [&](int kBegin, int kEnd) {
+    for (std::size_t i = static_cast<std::size_t>(kBegin) * slice; i < static_cast<std::size_t>(kEnd) * slice; ++i)
+    {
+      f(i);
+    }
+  });
+}
+
 // SurfaceDistance as the shaders read it (SurfaceDistanceBinding): each
 // voxel's value and its +x neighbour's, the last voxel of a row repeating its
 // own, so that a trilinear read takes four loads instead of eight.
@@ -26,11 +40,10 @@ std::vector<float> surfaceDistancePairs(const RenderVolume& volume)
   const std::size_t voxels = volume.voxelCount();
   const auto rowLength = static_cast<std::size_t>(volume.Dimensions[0]);
   std::vector<float> pairs(2 * voxels);
-  for (std::size_t i = 0; i < voxels; ++i)
-  {
+  forEachVoxel(volume, [&](std::size_t i) {
     pairs[2 * i] = volume.SurfaceDistance[i];
     pairs[2 * i + 1] = volume.SurfaceDistance[(i + 1) % rowLength == 0 ? i : i + 1];
-  }
+  });
   return pairs;
 }
 } // namespace
@@ -104,10 +117,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   // The medium reaches the smooth surface: skin cells filled from inside.
   const SkinExtendedFields skin = extendIntoSkin(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
-  for (std::size_t i = 0; i < voxels; ++i)
-  {
-    cells[i] = gpu::VoxelCell{ skin.ScatteringCoefficient[i], skin.DomainId[i] };
-  }
+  forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ skin.ScatteringCoefficient[i], skin.DomainId[i] }; });
   uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
   uploaded->SurfaceDistance =
     deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
