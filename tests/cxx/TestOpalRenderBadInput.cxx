@@ -1,7 +1,8 @@
 // Bad input to the render filter: each invalid parameter fails the request
 // with a message naming it; a light inside the opal, a volume without the
 // opal's arrays and a device too small for the volume get clear messages; the
-// filter works again once the input is fixed. Run with no Vulkan driver
+// filter works again once the input is fixed; input arrays with NaN, Inf,
+// negative or out-of-range values fail naming the array. Run with no Vulkan driver
 // (VK_ICD_FILENAMES pointing nowhere, argument "no-device") it must say
 // "No Vulkan device" and fail the request.
 #include "OpalRenderParameters.h"
@@ -17,11 +18,65 @@
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
 
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
 using BadCase = opaltest::BadCase<vtkOpalSpectralRender>;
+
+namespace
+{
+// A bad value in one input array: what to break and the name the message must give.
+struct BadArray
+{
+  std::string Description;
+  std::function<void(vtkImageData*)> Break;
+  std::string Expected;
+};
+
+// Sets one value of a point array (the voxel near the volume's centre) or of a field array.
+std::function<void(vtkImageData*)> setValue(const char* name, double value, bool field = false)
+{
+  return [name, value, field](vtkImageData* volume) {
+    vtkDataArray* array = field ? volume->GetFieldData()->GetArray(name) : volume->GetPointData()->GetArray(name);
+    array->SetComponent(field ? 0 : array->GetNumberOfTuples() / 2, 0, value);
+  };
+}
+
+// Each bad array fails the request with a message naming it; the good volume renders again.
+void checkBadArrays(vtkImageData* good, opaltest::MessageRecorder* recorder, vtkOpalSpectralRender* render)
+{
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<BadArray> cases = {
+    { "NaN scattering coefficient", setValue("ScatteringCoefficient", nan), "ScatteringCoefficient" },
+    { "negative scattering coefficient", setValue("ScatteringCoefficient", -1.0), "ScatteringCoefficient" },
+    { "infinite surface distance", setValue("SurfaceDistance", inf), "SurfaceDistance" },
+    { "NaN surface distance", setValue("SurfaceDistance", nan), "SurfaceDistance" },
+    { "DomainId 1e9", setValue("DomainId", 1e9), "DomainId" },
+    { "NaN domain normal", setValue("DomainNormal", nan, true), "DomainNormal" },
+    { "zero domain diameter", setValue("DomainParticleDiameter", 0.0, true), "DomainParticleDiameter" },
+  };
+  for (const BadArray& bad : cases)
+  {
+    vtkNew<vtkImageData> volume;
+    volume->DeepCopy(good);
+    bad.Break(volume);
+    render->SetInputData(volume);
+    recorder->clear();
+    OPAL_CHECK(render->GetExecutive()->Update() == 0, bad.Description + ": the request fails");
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, bad.Expected), bad.Description + ": the message names " +
+        bad.Expected + (recorder->Errors.empty() ? std::string(" (no message)") : " (got: " + recorder->Errors.front() + ")"));
+  }
+  render->SetInputData(good);
+  recorder->clear();
+  OPAL_CHECK(render->GetExecutive()->Update() == 1 && recorder->Errors.empty(), "the good volume renders again");
+}
+} // namespace
 
 int TestOpalRenderBadInput(int argc, char* argv[])
 {
@@ -96,5 +151,9 @@ int TestOpalRenderBadInput(int argc, char* argv[])
     OPAL_CHECK(otherRecorder->anyContains(otherRecorder->Errors, "ScatteringCoefficient"),
       "the message names the missing array");
   }
+  source->Update();
+  vtkNew<vtkImageData> good;
+  good->DeepCopy(source->GetOutput());
+  checkBadArrays(good, recorder, render);
   return opaltest::finish("TestOpalRenderBadInput");
 }

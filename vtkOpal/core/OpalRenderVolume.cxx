@@ -3,6 +3,8 @@
 #include "OpalDomainLayout.h"
 #include "OpalOptics.h"
 
+#include <cmath>
+
 namespace opal
 {
 
@@ -33,20 +35,33 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
   return table;
 }
 
-std::string validate(const RenderVolume& volume)
+namespace
 {
-  for (std::size_t a = 0; a < 3; ++a)
+// The first voxel whose ScatteringCoefficient is not a finite value >= 0, or
+// whose SurfaceDistance is not finite, named; empty if none.
+std::string checkVoxelValues(const RenderVolume& volume)
+{
+  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
   {
-    if (volume.Dimensions[a] < 1 || !(volume.Spacing[a] > 0))
+    const float mus = volume.ScatteringCoefficient[i], distance = volume.SurfaceDistance[i];
+    if (!std::isfinite(mus) || mus < 0.0f)
     {
-      return "The input volume needs positive dimensions and spacing.";
+      return "ScatteringCoefficient " + std::to_string(mus) + " at voxel " + std::to_string(i) +
+        " is not a finite value >= 0 (1/mm).";
+    }
+    if (!std::isfinite(distance))
+    {
+      return "SurfaceDistance at voxel " + std::to_string(i) + " is not finite.";
     }
   }
-  if (!volume.ScatteringCoefficient || !volume.DomainId || !volume.SurfaceDistance)
-  {
-    return "The input volume lacks ScatteringCoefficient, DomainId or SurfaceDistance.";
-  }
-  const std::int64_t domains = static_cast<std::int64_t>(volume.Domains.size());
+  return {};
+}
+
+// Every DomainId -1 or within the table, every domain a finite unit-ish
+// normal and a positive finite plane spacing; empty if so.
+std::string checkDomains(const RenderVolume& volume)
+{
+  const auto domains = static_cast<std::int64_t>(volume.Domains.size());
   for (std::size_t i = 0; i < volume.voxelCount(); ++i)
   {
     if (volume.DomainId[i] < -1 || volume.DomainId[i] >= domains)
@@ -55,7 +70,37 @@ std::string validate(const RenderVolume& volume)
         " is outside the domain table (" + std::to_string(domains) + " domains).";
     }
   }
+  for (std::size_t d = 0; d < volume.Domains.size(); ++d)
+  {
+    const auto& n = volume.Domains[d].LatticeNormal;
+    const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const float spacing = volume.Domains[d].PlaneSpacing;
+    if (!std::isfinite(length) || !(length > 0.5f && length < 2.0f) || !std::isfinite(spacing) || !(spacing > 0.0f))
+    {
+      return "Domain " + std::to_string(d) + " of the domain table needs a finite unit DomainNormal and a positive "
+        "DomainParticleDiameter.";
+    }
+  }
   return {};
+}
+} // namespace
+
+std::string validate(const RenderVolume& volume)
+{
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    if (volume.Dimensions[a] < 1 || !(volume.Spacing[a] > 0) || !std::isfinite(volume.Spacing[a]) ||
+      !std::isfinite(volume.Origin[a]))
+    {
+      return "The input volume needs positive dimensions and a finite origin and positive spacing.";
+    }
+  }
+  if (!volume.ScatteringCoefficient || !volume.DomainId || !volume.SurfaceDistance)
+  {
+    return "The input volume lacks ScatteringCoefficient, DomainId or SurfaceDistance.";
+  }
+  const std::string values = checkVoxelValues(volume);
+  return values.empty() ? checkDomains(volume) : values;
 }
 
 } // namespace opal

@@ -43,8 +43,10 @@ RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDi
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 
 // Empty if the render can read the volume, else one sentence naming what is
-// wrong: dimensions and spacing positive, the three fields present, every
-// DomainId -1 or within the domain table.
+// wrong: dimensions and spacing positive, origin finite, the three fields
+// present, ScatteringCoefficient finite and >= 0, SurfaceDistance finite,
+// every DomainId -1 or within the domain table, every domain a finite unit
+// normal and a positive plane spacing.
 std::string validate(const RenderVolume& volume);
 
 } // namespace opal
