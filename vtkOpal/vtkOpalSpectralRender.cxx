@@ -131,19 +131,25 @@ int vtkOpalSpectralRender::RequestInformation(
 {
   const opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0));
   const std::string error = opal::validate(p);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (!error.empty())
   {
-    vtkErrorMacro(<< error);
+    if (error != this->ReportedError || this->GetMTime() != this->ReportedErrorTime)
+    {
+      vtkErrorMacro(<< error);
+      this->ReportedError = error;
+      this->ReportedErrorTime = this->GetMTime();
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->AnnouncedExtent, 6);
     return 0;
   }
+  this->ReportedError.clear();
   // VTK image rows run bottom to top; ImageRegion counts from the top.
   opal::RenderImage frame;
   frame.ImageSize = p.ImageSize;
   frame.Region = opal::renderedRegion(p);
-  int wholeExtent[6];
-  vtkOpalRenderOutput::ExtentOf(frame, wholeExtent);
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
+  vtkOpalRenderOutput::ExtentOf(frame, this->AnnouncedExtent);
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), this->AnnouncedExtent, 6);
   const double spacing[3] = { 1, 1, 1 };
   const double origin[3] = { 0, 0, 0 };
   outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
@@ -227,6 +233,10 @@ int vtkOpalSpectralRender::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
+  if (!this->ReportedError.empty())
+  {
+    return 0; // the information request failed and said why (ParaView asks for data regardless)
+  }
   if (!input)
   {
     vtkErrorMacro("The input is not image data; connect an Opal Volume.");

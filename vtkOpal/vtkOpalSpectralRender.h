@@ -36,6 +36,7 @@
 #include "vtkOpalModule.h" // for export macro
 
 #include <memory>
+#include <string>
 
 namespace opal
 {
@@ -211,4 +212,14 @@ private:
   vtkDataObject* UploadedVolume = nullptr; // identity and version of the volume on the device
   vtkMTimeType UploadedVolumeTime = 0;
   int ValidationMessages = 0;
+  // The image's extent as the last good RequestInformation announced it
+  // (empty before one): a failed request announces it again, so that no
+  // consumer keeps an extent the filter never had (the input's, copied by
+  // the executive) once the failure is fixed.
+  int AnnouncedExtent[6] = { 0, -1, 0, -1, 0, -1 };
+  // The settings' error last reported and the filter's modification time
+  // then: ParaView asks for the information more than once per change, and
+  // one bad setting is reported once.
+  std::string ReportedError;
+  vtkMTimeType ReportedErrorTime = 0;
 };
