@@ -40,4 +40,8 @@ struct RenderImage
   RenderTimings Timings;
 };
 
+// The first output array holding a NaN or an infinity, by name; empty if
+// every value is finite. A render must never hand such an image on.
+std::string nonFiniteArray(const RenderImage& image);
+
 } // namespace opal

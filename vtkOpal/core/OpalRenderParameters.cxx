@@ -74,9 +74,9 @@ std::string cameraError(const RenderParameters& p)
   {
     m << "ViewAngle must lie in (0, 179) degrees, got " << p.ViewAngle << ".";
   }
-  else if (!(p.LightRadius > 0))
+  else if (!(p.LightRadius > 0 && p.LightRadius <= 1000))
   {
-    m << "LightRadius must be positive, got " << p.LightRadius << " mm.";
+    m << "LightRadius must lie in (0, 1000] mm, got " << p.LightRadius << " mm.";
   }
   else if (!finite3(p.ModelRotation) || !finite3(p.PresetRotation))
   {
@@ -96,6 +96,11 @@ std::string spectrumError(const RenderParameters& p)
   else if (!(p.WavelengthStep > 0))
   {
     m << "WavelengthStep must be positive, got " << p.WavelengthStep << " nm.";
+  }
+  else if (!(p.WavelengthStep >= 0.01 && p.WavelengthStep <= 800))
+  {
+    // Bounded before the count, which could not be held beyond these.
+    m << "WavelengthStep must lie in [0.01, 800] nm, got " << p.WavelengthStep << " nm.";
   }
   else if (wavelengthCount(p) > MaxWavelengths)
   {
@@ -124,9 +129,10 @@ std::string opticsError(const RenderParameters& p)
   {
     m << "BraggBandwidth must lie in (0, 1), got " << p.BraggBandwidth << ".";
   }
-  else if (!(p.DiffractionGain >= 0 && std::isfinite(p.DiffractionGain)))
+  else if (!(p.DiffractionGain >= 0 && p.DiffractionGain <= 1000))
   {
-    m << "DiffractionGain must be finite and not negative, got " << p.DiffractionGain << ".";
+    // The paper's is 4; beyond 1000 the radiance leaves float's range.
+    m << "DiffractionGain must lie in [0, 1000], got " << p.DiffractionGain << ".";
   }
   else if (p.BraggOrders < 1 || p.BraggOrders > 8)
   {

@@ -197,6 +197,12 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
   frame.Image.Timings = kept;
   frame.Image.Timings.Readback = secondsSince(readStart);
   frame.Ran.Readback = true;
+  const std::string nonFinite = nonFiniteArray(frame.Image);
+  if (!nonFinite.empty())
+  {
+    throw std::runtime_error("The render produced a NaN or an infinity in " + nonFinite +
+      "; no image is given. Check the volume's arrays and the optics settings.");
+  }
   frame.Status = FrameStatus::Completed;
   progress.report(1.0);
   return frame;
