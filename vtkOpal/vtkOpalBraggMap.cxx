@@ -42,6 +42,42 @@ int vtkOpalBraggMap::FillInputPortInformation(int, vtkInformation* info)
 
 namespace
 {
+// Empty if the domain arrays have their components (DomainId 1, Normal 3,
+// ParticleDiameter 1) and, at every element of a domain, a finite non-zero
+// Normal and a positive finite ParticleDiameter; else a sentence naming the
+// array and the element.
+std::string checkDomainValues(vtkDataSetAttributes* attributes)
+{
+  vtkDataArray* ids = attributes->GetArray("DomainId");
+  vtkDataArray* normals = attributes->GetArray("Normal");
+  vtkDataArray* diameters = attributes->GetArray("ParticleDiameter");
+  if (ids->GetNumberOfComponents() != 1 || normals->GetNumberOfComponents() != 3 ||
+    diameters->GetNumberOfComponents() != 1)
+  {
+    return "The arrays DomainId, Normal and ParticleDiameter need 1, 3 and 1 components.";
+  }
+  for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
+  {
+    if (!(ids->GetComponent(i, 0) >= 0))
+    {
+      continue;
+    }
+    double n[3];
+    normals->GetTuple(i, n);
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double diameter = diameters->GetComponent(i, 0);
+    if (!std::isfinite(length) || !(length > 0))
+    {
+      return "Normal at element " + std::to_string(i) + " of a domain is not a finite non-zero vector.";
+    }
+    if (!std::isfinite(diameter) || !(diameter > 0))
+    {
+      return "ParticleDiameter at element " + std::to_string(i) + " of a domain is not a positive finite size.";
+    }
+  }
+  return {};
+}
+
 // Empty if the input carries the domain arrays (on its points for the volume,
 // on its cells for the domain polygons) and the light lies outside the opal.
 std::string checkInput(vtkDataSet* input, vtkDataSetAttributes* attributes, bool onPoints, const double light[3])
@@ -53,6 +89,11 @@ std::string checkInput(vtkDataSet* input, vtkDataSetAttributes* attributes, bool
       return std::string("The input lacks the ") + (onPoints ? "point" : "cell") + " array " + name +
         "; connect an Opal Volume or its domain polygons.";
     }
+  }
+  const std::string values = checkDomainValues(attributes);
+  if (!values.empty())
+  {
+    return values;
   }
   if (vtkImageData* image = vtkImageData::SafeDownCast(input))
   {

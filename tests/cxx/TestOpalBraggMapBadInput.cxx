@@ -1,12 +1,45 @@
 // Bad input to the Bragg map: data without the opal's arrays gets an error
-// naming the missing array; a light inside the opal is refused by name; the
-// filter works again once fixed.
+// naming the missing array; a light inside the opal is refused by name; a
+// domain's NaN or zero Normal, NaN or negative ParticleDiameter and a
+// one-component Normal are refused naming the array; the filter works again
+// once fixed.
 #include "OpalTestHarness.h"
 #include "OpalTestVolumes.h"
 #include "vtkOpalBraggMap.h"
 
+#include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
+
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace
+{
+// One bad value at the first domain voxel of a copy of the volume: the map must fail naming `expected`.
+void checkBadDomainValue(vtkImageData* good, const std::string& what,
+  const std::function<void(vtkImageData*, vtkIdType)>& spoil, const std::string& expected)
+{
+  vtkNew<vtkImageData> volume;
+  volume->DeepCopy(good);
+  vtkDataArray* ids = volume->GetPointData()->GetArray("DomainId");
+  vtkIdType domainVoxel = 0;
+  while (domainVoxel < ids->GetNumberOfTuples() && ids->GetComponent(domainVoxel, 0) < 0)
+    ++domainVoxel;
+  spoil(volume, domainVoxel);
+  vtkNew<vtkOpalBraggMap> map;
+  map->SetInputData(volume);
+  vtkNew<opaltest::MessageRecorder> recorder;
+  recorder->watch(map);
+  OPAL_CHECK(map->GetExecutive()->Update() == 0, what + ": the request fails");
+  OPAL_CHECK(recorder->anyContains(recorder->Errors, expected), what + ": the message names " + expected);
+}
+} // namespace
 #include "vtkOutputWindow.h"
 #include "vtkRTAnalyticSource.h"
 
@@ -34,6 +67,27 @@ int TestOpalBraggMapBadInput(int, char*[])
     recorder->clear();
     map->SetLightPosition(0, 60, 0);
     OPAL_CHECK(map->GetExecutive()->Update() == 1 && recorder->Errors.empty(), "the filter recovers once fixed");
+    vtkNew<vtkImageData> good;
+    good->DeepCopy(source->GetOutput());
+    auto setNormal = [](double x) {
+      return [x](vtkImageData* v, vtkIdType i) { v->GetPointData()->GetArray("Normal")->SetComponent(i, 0, x);
+        v->GetPointData()->GetArray("Normal")->SetComponent(i, 1, x);
+        v->GetPointData()->GetArray("Normal")->SetComponent(i, 2, x); };
+    };
+    auto setDiameter = [](double d) {
+      return [d](vtkImageData* v, vtkIdType i) { v->GetPointData()->GetArray("ParticleDiameter")->SetComponent(i, 0, d); };
+    };
+    checkBadDomainValue(good, "NaN normal", setNormal(NAN), "Normal");
+    checkBadDomainValue(good, "zero normal", setNormal(0.0), "Normal");
+    checkBadDomainValue(good, "NaN particle diameter", setDiameter(NAN), "ParticleDiameter");
+    checkBadDomainValue(good, "negative particle diameter", setDiameter(-5.0), "ParticleDiameter");
+    checkBadDomainValue(good, "one-component normal", [](vtkImageData* v, vtkIdType) {
+      vtkNew<vtkFloatArray> flat;
+      flat->SetName("Normal");
+      flat->SetNumberOfTuples(v->GetNumberOfPoints());
+      flat->FillValue(1.0f);
+      v->GetPointData()->AddArray(flat);
+    }, "Normal");
   }
   return opaltest::finish("TestOpalBraggMapBadInput");
 }
