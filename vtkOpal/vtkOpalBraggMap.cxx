@@ -1,6 +1,7 @@
 #include "vtkOpalBraggMap.h"
 
 #include "OpalBraggMap.h"
+#include "OpalMessages.h"
 #include "OpalParallel.h"
 
 #include "vtkCell.h"
@@ -173,11 +174,14 @@ int vtkOpalBraggMap::RequestData(
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
   output->ShallowCopy(input);
-  if (!((this->RefractiveIndex == 0 || this->RefractiveIndex >= 1) && std::isfinite(this->RefractiveIndex)) ||
-    this->BraggOrder < 1 || !(this->MosaicSpread >= 0))
+  if (this->RefractiveIndex != 0 && !opal::refractiveIndexError(this->RefractiveIndex).empty())
   {
-    vtkErrorMacro("RefractiveIndex must be 0 (the volume's) or at least 1, BraggOrder at least 1 and MosaicSpread "
-                  "not negative.");
+    vtkErrorMacro(<< opal::refractiveIndexError(this->RefractiveIndex) << " (0: the volume's)");
+    return 0;
+  }
+  if (this->BraggOrder < 1 || !(this->MosaicSpread >= 0 && this->MosaicSpread <= 90))
+  {
+    vtkErrorMacro("BraggOrder must be at least 1 and MosaicSpread lie in [0, 90] degrees.");
     return 0;
   }
   // The volume carries the domains on its points, the layout on its cells.

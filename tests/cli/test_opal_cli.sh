@@ -49,6 +49,14 @@ expect_one_line "three vertex values" "--domain-vertex-range" "$render" --domain
 expect_one_line "nothing to write" "nothing to write" "$render" "${small[@]}"
 expect_one_line "opal-volume bad dimensions" "Dimensions" "$volume" --dimensions 0 20 50 -o x.vti
 expect_one_line "width beyond an int" "--width" "$render" --width 99999999999 -o x.png
+# Enough digits to tell the value from the bound; one refractive-index rule for volume and render.
+expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --scattering-volume-fraction 0.7400001 -o x.vti
+expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti
+expect_one_line "render's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$render" "${small[@]}" --refractive-index 5 -o x.png
+# Settings bounded where they overflowed.
+expect_one_line "infinite light radius" "LightRadius" "$render" "${small[@]}" --light-radius inf -o x.png
+expect_one_line "wavelength step 1e-7" "WavelengthStep" "$render" "${small[@]}" --wavelength-step 1e-7 -o x.png
+expect_one_line "diffraction gain 1e300" "DiffractionGain" "$render" "${small[@]}" --diffraction-gain 1e300 -o x.png
 [[ $status_of_last == 2 ]] || fail "a bad argument exits 2 (got $status_of_last)"
 expect_one_line "memory limit not a number" "OPAL_VULKAN_MEMORY_LIMIT_MB" env OPAL_VULKAN_MEMORY_LIMIT_MB=abc "$render" "${small[@]}" -o x.png
 [[ ! -e x.png && ! -e x.vti ]] || fail "bad arguments write nothing"

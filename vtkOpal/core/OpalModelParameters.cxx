@@ -1,5 +1,6 @@
 #include "OpalModelParameters.h"
 
+#include "OpalMessages.h"
 #include "OpalPresets.h"
 
 #include <cmath>
@@ -27,7 +28,7 @@ namespace
 template <typename T>
 std::string rangeError(const char* name, const std::array<T, 2>& range)
 {
-  std::ostringstream message;
+  std::ostringstream message = messageStream();
   if (range[0] > range[1])
   {
     message << name << " has min " << range[0] << " > max " << range[1] << ".";
@@ -41,7 +42,7 @@ std::string positiveRangeError(const char* name, const std::array<T, 2>& range)
   std::string error = rangeError(name, range);
   if (error.empty() && !(range[0] > 0))
   {
-    std::ostringstream message;
+    std::ostringstream message = messageStream();
     message << name << " must be positive, got min " << range[0] << ".";
     error = message.str();
   }
@@ -53,7 +54,7 @@ std::string withinRangeError(const char* name, const std::array<double, 2>& rang
   std::string error = rangeError(name, range);
   if (error.empty() && !(range[0] >= lo && range[1] <= hi))
   {
-    std::ostringstream message;
+    std::ostringstream message = messageStream();
     message << name << " must lie within [" << lo << ", " << hi << "], got [" << range[0] << ", "
             << range[1] << "].";
     error = message.str();
@@ -86,7 +87,7 @@ std::string finiteError(const ModelParameters& p)
     {
       if (!std::isfinite(value))
       {
-        std::ostringstream message;
+        std::ostringstream message = messageStream();
         message << name << " must be a finite number, got " << value << ".";
         return message.str();
       }
@@ -110,7 +111,6 @@ std::string magnitudeError(const ModelParameters& p)
     { "ScatteringDiameterRange", { p.ScatteringDiameterRange.begin(), p.ScatteringDiameterRange.end() }, 1e-3, 1e5, "nm" },
     { "DomainDiameterRange", { p.DomainDiameterRange.begin(), p.DomainDiameterRange.end() }, 1e-3, 1e5, "nm" },
     { "DomainRadiusRange", { p.DomainRadiusRange.begin(), p.DomainRadiusRange.end() }, 1e-6, 1e4, "mm" },
-    { "RefractiveIndex", { p.RefractiveIndex }, 1.0, 10.0, "" },
   };
   for (const auto& magnitude : magnitudes)
   {
@@ -118,7 +118,7 @@ std::string magnitudeError(const ModelParameters& p)
     {
       if (std::fabs(value) > magnitude.Hi || (value > 0 && value < magnitude.Lo))
       {
-        std::ostringstream message;
+        std::ostringstream message = messageStream();
         message << magnitude.Name << " must lie within [" << magnitude.Lo << ", " << magnitude.Hi << "] "
                 << magnitude.Unit << ", got " << value << ".";
         return message.str();
@@ -132,7 +132,7 @@ std::string magnitudeError(const ModelParameters& p)
 std::string shapeError(const ModelParameters& p)
 {
   static const char* axis = "xyz";
-  std::ostringstream message;
+  std::ostringstream message = messageStream();
   for (int a = 0; a < 3; ++a)
   {
     if (p.Dimensions[a] < 1)
@@ -195,7 +195,7 @@ std::string rangesError(const ModelParameters& p)
 
 std::string scalarsError(const ModelParameters& p)
 {
-  std::ostringstream message;
+  std::ostringstream message = messageStream();
   if (!(p.ScatteringVolumeFraction > 0 && p.ScatteringVolumeFraction <= MaxVolumeFraction))
   {
     message << "ScatteringVolumeFraction must lie in (0, " << MaxVolumeFraction << "], got "
@@ -205,9 +205,9 @@ std::string scalarsError(const ModelParameters& p)
   {
     message << "DomainCount must not be negative, got " << p.DomainCount << ".";
   }
-  else if (!(p.RefractiveIndex >= 1))
+  else if (!refractiveIndexError(p.RefractiveIndex).empty())
   {
-    message << "RefractiveIndex must be at least 1 (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
+    message << refractiveIndexError(p.RefractiveIndex);
   }
   else if (p.MaxPlacementAttempts < 1)
   {

@@ -1,5 +1,6 @@
 #include "OpalRenderParameters.h"
 
+#include "OpalMessages.h"
 #include "OpalSpectralSampling.h"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ bool finite3(const std::array<double, 3>& v)
 
 std::string imageError(const RenderParameters& p)
 {
-  std::ostringstream m;
+  std::ostringstream m = messageStream();
   if (p.ImageSize[0] < 1 || p.ImageSize[1] < 1 || p.ImageSize[0] > 16384 || p.ImageSize[1] > 16384)
   {
     m << "ImageSize must be 1-16384 pixels each way, got " << p.ImageSize[0] << " x " << p.ImageSize[1] << ".";
@@ -57,7 +58,7 @@ std::string imageError(const RenderParameters& p)
 
 std::string cameraError(const RenderParameters& p)
 {
-  std::ostringstream m;
+  std::ostringstream m = messageStream();
   if (!finite3(p.EyePosition) || !finite3(p.FocalPoint) || !finite3(p.LightPosition) || !finite3(p.ViewUp))
   {
     m << "EyePosition, FocalPoint, LightPosition and ViewUp must be finite.";
@@ -87,7 +88,7 @@ std::string cameraError(const RenderParameters& p)
 
 std::string spectrumError(const RenderParameters& p)
 {
-  std::ostringstream m;
+  std::ostringstream m = messageStream();
   if (!(p.WavelengthRange[0] >= 200 && p.WavelengthRange[1] <= 1000 && p.WavelengthRange[0] <= p.WavelengthRange[1]))
   {
     m << "WavelengthRange must be min <= max within [200, 1000] nm, got [" << p.WavelengthRange[0] << ", "
@@ -120,10 +121,10 @@ std::string spectrumError(const RenderParameters& p)
 
 std::string opticsError(const RenderParameters& p)
 {
-  std::ostringstream m;
-  if (!(p.RefractiveIndex >= 1 && p.RefractiveIndex < 4))
+  std::ostringstream m = messageStream();
+  if (!refractiveIndexError(p.RefractiveIndex).empty())
   {
-    m << "RefractiveIndex must lie in [1, 4) (1: an index-matched boundary), got " << p.RefractiveIndex << ".";
+    m << refractiveIndexError(p.RefractiveIndex);
   }
   else if (!(p.BraggBandwidth > 0 && p.BraggBandwidth < 1))
   {
@@ -147,7 +148,7 @@ std::string opticsError(const RenderParameters& p)
 
 std::string samplingError(const RenderParameters& p)
 {
-  std::ostringstream m;
+  std::ostringstream m = messageStream();
   if (!(p.Exposure >= 0 && std::isfinite(p.Exposure)))
   {
     m << "Exposure must be 0 (automatic) or positive, got " << p.Exposure << ".";
