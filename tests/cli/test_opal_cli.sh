@@ -53,6 +53,9 @@ expect_one_line "width beyond an int" "--width" "$render" --width 99999999999 -o
 expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --scattering-volume-fraction 0.7400001 -o x.vti
 expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti
 expect_one_line "render's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$render" "${small[@]}" --refractive-index 5 -o x.png
+# Counts bounded where they hung or ran out of memory.
+expect_one_line "two billion domains" "DomainCount" "$volume" --domain-count 2000000000 -o x.vti
+expect_one_line "two billion vertices" "DomainVertexRange" "$volume" --domain-vertex-range 3 2000000000 -o x.vti
 # Settings bounded where they overflowed.
 expect_one_line "infinite light radius" "LightRadius" "$render" "${small[@]}" --light-radius inf -o x.png
 expect_one_line "wavelength step 1e-7" "WavelengthStep" "$render" "${small[@]}" --wavelength-step 1e-7 -o x.png

@@ -190,6 +190,13 @@ std::string rangesError(const ModelParameters& p)
   {
     return "DomainVertexRange needs at least 3 vertices, got " + std::to_string(p.DomainVertexRange[0]) + ".";
   }
+  if (p.DomainVertexRange[1] > MaxDomainVertices)
+  {
+    // Each vertex is redrawn until the polygon's angles pass: beyond this the
+    // draws run for ever rather than fail.
+    return "DomainVertexRange allows at most " + std::to_string(MaxDomainVertices) + " vertices, got " +
+      std::to_string(p.DomainVertexRange[1]) + ".";
+  }
   return {};
 }
 
@@ -201,17 +208,19 @@ std::string scalarsError(const ModelParameters& p)
     message << "ScatteringVolumeFraction must lie in (0, " << MaxVolumeFraction << "], got "
             << p.ScatteringVolumeFraction << ".";
   }
-  else if (p.DomainCount < 0)
+  else if (p.DomainCount < 0 || p.DomainCount > MaxDomainCount)
   {
-    message << "DomainCount must not be negative, got " << p.DomainCount << ".";
+    // The paper places 250; each domain is rasterised and tested against the
+    // others, so counts in the billions would run for hours.
+    message << "DomainCount must lie in [0, " << MaxDomainCount << "], got " << p.DomainCount << ".";
   }
   else if (!refractiveIndexError(p.RefractiveIndex).empty())
   {
     message << refractiveIndexError(p.RefractiveIndex);
   }
-  else if (p.MaxPlacementAttempts < 1)
+  else if (p.MaxPlacementAttempts < 1 || p.MaxPlacementAttempts > 100000)
   {
-    message << "MaxPlacementAttempts must be at least 1, got " << p.MaxPlacementAttempts << ".";
+    message << "MaxPlacementAttempts must lie in [1, 100000], got " << p.MaxPlacementAttempts << ".";
   }
   return message.str();
 }

@@ -36,6 +36,10 @@ struct ModelParameters
 
 // The largest silica volume fraction: close packing of equal spheres.
 constexpr double MaxVolumeFraction = 0.74;
+// Upper bounds that keep the domain placement finite in time (the paper: 250
+// domains of 5-10 vertices).
+constexpr int MaxDomainCount = 100000;
+constexpr int MaxDomainVertices = 64;
 
 // Empty if the parameters are valid, else one sentence naming the parameter.
 std::string validate(const ModelParameters& parameters);
