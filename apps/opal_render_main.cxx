@@ -72,6 +72,17 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
     return true;
   });
   deviceName = session.context().deviceName();
+  // With OPAL_VULKAN_VALIDATION set, what the validation layer said is shown, and fails the run.
+  const std::vector<std::string> messages = session.context().validationMessages();
+  for (const std::string& message : messages)
+  {
+    std::cerr << "opal-render: validation layer: " << message << std::endl;
+  }
+  if (!messages.empty())
+  {
+    throw std::runtime_error("the Vulkan validation layer reported " + std::to_string(messages.size()) +
+      " message(s); nothing is written");
+  }
   return std::move(frame.Image);
 }
 
