@@ -1,12 +1,38 @@
 // Writes a file under a temporary name in the same folder and renames it into
-// place, so an earlier file is never replaced by a partial one.
+// place, so an earlier file is never replaced by a partial one; and a set of
+// files replaced all or none.
 #pragma once
 
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 // Calls write(temporaryPath); on success renames it to path. Returns an empty
 // string on success, else the reason; the temporary file never survives.
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write);
+
+// The outputs of one run, replaced all or none: each is written atomically;
+// unless commit() is called, the ones already replaced get their earlier
+// contents back (kept as hard links, or copies, beside them) and new ones are
+// removed.
+class FileSetTransaction
+{
+public:
+  explicit FileSetTransaction(const std::vector<std::filesystem::path>& targets);
+  ~FileSetTransaction();
+  FileSetTransaction(const FileSetTransaction&) = delete;
+  FileSetTransaction& operator=(const FileSetTransaction&) = delete;
+
+  // Keeps what was written: the earlier contents are dropped.
+  void commit();
+
+private:
+  struct Target
+  {
+    std::filesystem::path Path, Backup; // Backup empty where no earlier file existed
+  };
+  std::vector<Target> Targets;
+  bool Committed = false;
+};

@@ -2,6 +2,8 @@
 // compute, writing PNG (sRGB) and/or OpenEXR (linear) images. The VTK
 // pipeline is not loaded: OpalCore builds the volume and a RenderSession
 // renders it; the image and .vti writers are modules loaded when used.
+#include "OpalAtomicFile.h"
+#include "OpalCliFiles.h"
 #include "OpalCliSupport.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
@@ -33,12 +35,16 @@ struct Outputs
 void addOutputOptions(CLI::App& app, Outputs& outputs)
 {
   app.add_option("-o,--output", outputs.Images,
-       "Image file(s); the format follows the extension: .png sRGB 8-bit, .exr linear float")
+       "Image file(s); the format follows the extension: .png (.tif, .jpg) sRGB 8-bit, .exr linear float")
+    ->check(fileExtension({ ".png", ".exr", ".tif", ".tiff", ".jpg", ".jpeg" }))
     ->group("Output");
   app.add_flag("--exr-spectral-channels", outputs.SpectralChannels, "Also write one EXR channel per wavelength")
     ->group("Output");
-  app.add_option("--save-volume", outputs.Volume, "Also write the volume as .vti")->group("Output");
+  app.add_option("--save-volume", outputs.Volume, "Also write the volume as .vti")
+    ->check(fileExtension({ ".vti" }))
+    ->group("Output");
   app.add_option("--save-image", outputs.ImageData, "Also write the image with all its arrays as .vti")
+    ->check(fileExtension({ ".vti" }))
     ->group("Output");
 }
 
@@ -86,10 +92,20 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   return std::move(frame.Image);
 }
 
-// Writes every output; false (with one line on stderr) at the first failure.
+// Writes every output, all or none: false (with one line on stderr) at the
+// first failure, the files already replaced then restored.
 bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const std::string& deviceName,
   const OpalModelOptions& model, std::vector<std::string>& written)
 {
+  std::vector<std::filesystem::path> targets(outputs.Images.begin(), outputs.Images.end());
+  for (const std::string& path : { outputs.ImageData, outputs.Volume })
+  {
+    if (!path.empty())
+    {
+      targets.emplace_back(path);
+    }
+  }
+  FileSetTransaction transaction(targets);
   auto record = [&](const std::string& path, const std::string& error) {
     if (!error.empty())
     {
@@ -111,8 +127,13 @@ bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const 
   {
     return false;
   }
-  return outputs.Volume.empty() ||
-    record(outputs.Volume, opal::vtiOutputModule().WriteVolume(model.parameters(), model.presetIndex(), outputs.Volume));
+  if (!outputs.Volume.empty() &&
+    !record(outputs.Volume, opal::vtiOutputModule().WriteVolume(model.parameters(), model.presetIndex(), outputs.Volume)))
+  {
+    return false;
+  }
+  transaction.commit();
+  return true;
 }
 
 void printSummary(const std::string& preset, const opal::RenderImage& image, const std::string& deviceName,

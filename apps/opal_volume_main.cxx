@@ -1,7 +1,8 @@
 // opal-volume: builds the opal volume and writes it as a .vti file, with a
 // one-screen summary of what was built.
-#include "OpalVtkSupport.h"
+#include "OpalCliFiles.h"
 #include "OpalModelOptions.h"
+#include "OpalVtkSupport.h"
 #include "OpalModelParameters.h"
 #include "vtkOpalSource.h"
 
@@ -26,7 +27,7 @@ int main(int argc, char** argv)
   OpalModelOptions model;
   model.addTo(app);
   std::string output = "opal.vti";
-  app.add_option("-o,--output", output, "Output .vti file")->capture_default_str();
+  app.add_option("-o,--output", output, "Output .vti file")->check(fileExtension({ ".vti" }))->capture_default_str();
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what()); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {

@@ -81,6 +81,22 @@ grep -q "could not write keep.exr" bad.err || fail "a full disk says so: $(cat b
 cmp -s ok.exr keep.exr || fail "the earlier keep.exr is untouched by the failed write"
 ls -a | grep -q partial && fail "no partial file after a full disk"
 
+# The outputs of one run are all or none: the third cannot be written, so
+# the first two keep their earlier contents, and no earlier copy is left over.
+cp ok.png set.png
+cp ok.exr set.exr
+"$render" "${small[@]}" --light-position 0 40 5 -o set.png -o set.exr -o no/such/folder/set.png >/dev/null 2>bad.err &&
+  fail "an output set with an unwritable member fails"
+cmp -s ok.png set.png && cmp -s ok.exr set.exr || fail "a failed output set replaces none of its files"
+"$render" "${small[@]}" --light-position 0 40 5 -o set.png -o set.exr >/dev/null 2>&1 || fail "a good output set is written"
+cmp -s ok.png set.png && fail "a good output set replaces its files"
+ls -a | grep -q -e partial -e earlier && fail "no partial or earlier copies are left behind"
+# A name whose extension is not the option's format is refused before any work.
+expect_one_line "--save-image as .png" "--save-image" "$render" "${small[@]}" --save-image img.png
+expect_one_line "an unknown image extension" "b.xyz" "$render" "${small[@]}" -o a.png -o b.xyz
+expect_one_line "opal-volume to .png" "--output" "$volume" --dimensions 40 20 50 -o vol.png
+[[ ! -e img.png && ! -e a.png && ! -e vol.png ]] || fail "refused names write nothing"
+
 "$render" --help >/dev/null || fail "--help exits 0"
 echo "test_opal_cli: $failures failure(s)"
 [[ $failures == 0 ]]
