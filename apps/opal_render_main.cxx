@@ -61,6 +61,10 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   {
     throw std::runtime_error("the volume could not be built");
   }
+  if (const std::string small = opal::smallShapeWarning(model); !small.empty())
+  {
+    std::cerr << "opal-render: " << small << std::endl;
+  }
   if (volume->Layout.placedCount() < volume->Layout.requestedCount())
   {
     std::cerr << "opal-render: DomainCount: only " << volume->Layout.placedCount() << " of "

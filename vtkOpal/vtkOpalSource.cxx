@@ -223,6 +223,10 @@ std::optional<opal::DomainLayout> vtkOpalSource::BuildLayout(const opal::ModelPa
   {
     return std::nullopt;
   }
+  if (const std::string small = opal::smallShapeWarning(parameters); !small.empty())
+  {
+    vtkWarningMacro(<< small);
+  }
   if (layout.placedCount() < layout.requestedCount())
   {
     vtkWarningMacro("DomainCount: only " << layout.placedCount() << " of " << layout.requestedCount()

@@ -91,5 +91,14 @@ int TestOpalBadInput(int, char*[])
   OPAL_CHECK(recorder->anyContains(recorder->Warnings, "DomainCount"), "the warning names DomainCount");
   const double placed = crowded->GetOutput()->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0);
   OPAL_CHECK(placed > 0 && placed < 400, "DomainsPlaced says how many fit: " + std::to_string(placed));
+
+  // A shape smaller than two voxels: it builds, with a warning naming SemiAxes.
+  auto tiny = opaltest::makeSmallSource();
+  tiny->SetSemiAxes(1e-6, 1e-6, 1e-6);
+  tiny->SetDomainCount(0);
+  recorder->clear();
+  recorder->watch(tiny);
+  OPAL_CHECK(tiny->GetExecutive()->Update() == 1, "a tiny opal still builds");
+  OPAL_CHECK(recorder->anyContains(recorder->Warnings, "SemiAxes"), "a tiny opal warns naming SemiAxes");
   return opaltest::finish("TestOpalBadInput");
 }

@@ -239,4 +239,21 @@ std::string validate(const ModelParameters& p)
   return {};
 }
 
+std::string smallShapeWarning(const ModelParameters& p)
+{
+  static const char* axes[3] = { "x", "y", "z" };
+  for (std::size_t a = 0; a < 3; ++a)
+  {
+    const double spacing = p.PhysicalSize[a] / p.Dimensions[a];
+    if (p.SemiAxes[a] < 2 * spacing)
+    {
+      std::ostringstream message = messageStream();
+      message << "SemiAxes " << p.SemiAxes[a] << " mm spans fewer than two voxels (" << spacing << " mm) along "
+              << axes[a] << ": the opal is (nearly) empty; use larger SemiAxes or more voxels.";
+      return message.str();
+    }
+  }
+  return {};
+}
+
 } // namespace opal

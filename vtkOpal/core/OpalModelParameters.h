@@ -44,4 +44,9 @@ constexpr int MaxDomainVertices = 64;
 // Empty if the parameters are valid, else one sentence naming the parameter.
 std::string validate(const ModelParameters& parameters);
 
+// Empty unless the shape spans fewer than two voxels along some axis (the
+// opal would be empty or a few voxels: valid, but surely not meant); then a
+// warning naming SemiAxes.
+std::string smallShapeWarning(const ModelParameters& parameters);
+
 } // namespace opal
