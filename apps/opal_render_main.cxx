@@ -180,7 +180,8 @@ int main(int argc, char** argv)
   opal::RenderParameters parameters = render.parameters(model.presetName(), model.refractiveIndex());
   parameters.WriteSpectrum = outputs.SpectralChannels || !outputs.ImageData.empty();
   // Bad parameters cost one line and exit status 2, before any work.
-  for (const std::string& error : { opal::validate(model.parameters()), opal::validate(parameters) })
+  for (const std::string& error :
+    { opal::validate(model.parameters()), opal::volumeMemoryError(model.parameters()), opal::validate(parameters) })
   {
     if (!error.empty())
     {

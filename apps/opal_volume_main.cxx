@@ -2,8 +2,9 @@
 // one-screen summary of what was built.
 #include "OpalCliFiles.h"
 #include "OpalModelOptions.h"
-#include "OpalVtkSupport.h"
 #include "OpalModelParameters.h"
+#include "OpalVolumeBuild.h"
+#include "OpalVtkSupport.h"
 #include "vtkOpalSource.h"
 
 #include "vtkDataArray.h"
@@ -41,10 +42,14 @@ int main(int argc, char** argv)
   vtkNew<vtkOpalSource> source;
   source->SetModelParameters(model.parameters());
   source->SetPreset(model.presetIndex());
-  if (const std::string error = opal::validate(source->GetModelParameters()); !error.empty())
+  for (const std::string& error :
+    { opal::validate(source->GetModelParameters()), opal::volumeMemoryError(source->GetModelParameters()) })
   {
-    std::cerr << "opal-volume: " << error << std::endl;
-    return 2;
+    if (!error.empty())
+    {
+      std::cerr << "opal-volume: " << error << std::endl;
+      return 2;
+    }
   }
   ProgressBar bar("volume");
   showProgress(source, bar);

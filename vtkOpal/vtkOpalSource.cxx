@@ -1,7 +1,7 @@
 #include "vtkOpalSource.h"
 
 #include "OpalDomainLayout.h"
-#include "OpalMemory.h"
+#include "OpalVolumeBuild.h"
 #include "OpalModelParameters.h"
 #include "OpalOptics.h"
 #include "OpalParallel.h"
@@ -116,23 +116,9 @@ std::string vtkOpalSource::Validate() const
       opal::presetNameList() + " (0-" + std::to_string(opal::presets().size()) + ").";
   }
   const opal::ModelParameters parameters = this->GetModelParameters();
-  std::string error = opal::validate(parameters);
-  if (error.empty())
-  {
-    // Refuse what cannot fit in this machine's memory, before any work.
-    const std::uint64_t voxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
-      static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
-    const std::uint64_t needed = voxels * opal::VolumeBytesPerVoxel;
-    const std::uint64_t available = opal::physicalMemoryBytes();
-    if (available > 0 && needed > available)
-    {
-      error = "Dimensions " + std::to_string(parameters.Dimensions[0]) + " x " +
-        std::to_string(parameters.Dimensions[1]) + " x " + std::to_string(parameters.Dimensions[2]) +
-        " need about " + opal::formatBytes(needed) + " for the volume's arrays, more than this machine's " +
-        opal::formatBytes(available) + " of memory.";
-    }
-  }
-  return error;
+  const std::string error = opal::validate(parameters);
+  // Refuse what cannot fit in this machine's memory, before any work.
+  return error.empty() ? opal::volumeMemoryError(parameters) : error;
 }
 
 int vtkOpalSource::FillOutputPortInformation(int port, vtkInformation* info)

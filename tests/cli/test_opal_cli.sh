@@ -53,6 +53,10 @@ expect_one_line "width beyond an int" "--width" "$render" --width 99999999999 -o
 expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --scattering-volume-fraction 0.7400001 -o x.vti
 expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti
 expect_one_line "render's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$render" "${small[@]}" --refractive-index 5 -o x.png
+# A volume beyond this machine's memory: refused before any work, one line, exit 2.
+expect_one_line "opal-volume beyond memory" "memory" "$volume" --dimensions 4000 4000 4000 -o x.vti
+[[ $status_of_last == 2 ]] || fail "a volume beyond memory exits 2 (got $status_of_last)"
+expect_one_line "opal-render beyond memory" "memory" "$render" --dimensions 4000 4000 4000 -o x.png
 # Counts bounded where they hung or ran out of memory.
 expect_one_line "two billion domains" "DomainCount" "$volume" --domain-count 2000000000 -o x.vti
 expect_one_line "two billion vertices" "DomainVertexRange" "$volume" --domain-vertex-range 3 2000000000 -o x.vti

@@ -1,5 +1,6 @@
 #include "OpalVolumeBuild.h"
 
+#include "OpalMemory.h"
 #include "OpalParallel.h"
 
 #include <algorithm>
@@ -44,6 +45,21 @@ RenderVolume BuiltVolume::renderVolume() const
   volume.SurfaceDistance = this->SurfaceDistance.data();
   volume.Domains = renderDomains(this->Layout);
   return volume;
+}
+
+std::string volumeMemoryError(const ModelParameters& parameters)
+{
+  const std::uint64_t voxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
+    static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
+  const std::uint64_t needed = voxels * VolumeBytesPerVoxel;
+  const std::uint64_t available = physicalMemoryBytes();
+  if (available == 0 || needed <= available)
+  {
+    return {};
+  }
+  return "Dimensions " + std::to_string(parameters.Dimensions[0]) + " x " + std::to_string(parameters.Dimensions[1]) +
+    " x " + std::to_string(parameters.Dimensions[2]) + " need about " + formatBytes(needed) +
+    " for the volume's arrays, more than this machine's " + formatBytes(available) + " of memory.";
 }
 
 std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const std::function<bool(double)>& progress)

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace opal
@@ -29,6 +30,10 @@ struct BuiltVolume
   // The render's view of it (pointers into this object's arrays).
   RenderVolume renderVolume() const;
 };
+
+// Empty if the volume's arrays fit in this machine's memory, else the
+// sentence refusing it with the estimate (checked before any work).
+std::string volumeMemoryError(const ModelParameters& parameters);
 
 // Builds the volume of valid parameters; progress(fraction) may return false
 // to abort, and then the result is empty.
