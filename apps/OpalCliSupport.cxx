@@ -1,5 +1,6 @@
 #include "OpalCliSupport.h"
 
+#include <algorithm>
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -42,10 +43,16 @@ void ProgressBar::show(double fraction)
     return;
   }
   constexpr int Width = 40;
-  const int filled = static_cast<int>(fraction * Width + 0.5);
+  const int percent = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100 + 0.5);
+  if (percent == this->ShownPercent && fraction < 1.0)
+  {
+    return;
+  }
+  this->ShownPercent = percent;
+  const int filled = percent * Width / 100;
   std::fprintf(stderr, "\r%-10s [%s%s] %3d%%", this->Label.c_str(),
     std::string(static_cast<std::size_t>(filled), '#').c_str(),
-    std::string(static_cast<std::size_t>(Width - filled), ' ').c_str(), static_cast<int>(fraction * 100 + 0.5));
+    std::string(static_cast<std::size_t>(Width - filled), ' ').c_str(), percent);
   if (fraction >= 1.0)
   {
     std::fprintf(stderr, "\n");

@@ -29,4 +29,5 @@ private:
   std::string Label;
   bool Visible;
   bool Finished = false;
+  int ShownPercent = -1; // redrawn only when the percentage changes
 };
