@@ -39,6 +39,16 @@ bool finite3(const std::array<double, 3>& v)
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// Positions within a kilometre: the scene is millimetres, and the device
+// squares distances in float.
+constexpr double MaxSceneDistance = 1e6;
+
+bool withinReach(const std::array<double, 3>& v)
+{
+  return std::fabs(v[0]) <= MaxSceneDistance && std::fabs(v[1]) <= MaxSceneDistance &&
+    std::fabs(v[2]) <= MaxSceneDistance;
+}
+
 std::string imageError(const RenderParameters& p)
 {
   std::ostringstream m = messageStream();
@@ -63,6 +73,11 @@ std::string cameraError(const RenderParameters& p)
   {
     m << "EyePosition, FocalPoint, LightPosition and ViewUp must be finite.";
   }
+  else if (!withinReach(p.EyePosition) || !withinReach(p.FocalPoint) || !withinReach(p.LightPosition))
+  {
+    // Squared distances beyond this leave float's range on the device.
+    m << "EyePosition, FocalPoint and LightPosition must lie within " << MaxSceneDistance << " mm of the origin.";
+  }
   else if (p.EyePosition == p.FocalPoint)
   {
     m << "FocalPoint must differ from EyePosition.";
@@ -75,9 +90,9 @@ std::string cameraError(const RenderParameters& p)
   {
     m << "ViewAngle must lie in (0, 179) degrees, got " << p.ViewAngle << ".";
   }
-  else if (!(p.LightRadius > 0 && p.LightRadius <= 1000))
+  else if (!(p.LightRadius >= 1e-6 && p.LightRadius <= 1000))
   {
-    m << "LightRadius must lie in (0, 1000] mm, got " << p.LightRadius << " mm.";
+    m << "LightRadius must lie in [1e-6, 1000] mm, got " << p.LightRadius << " mm.";
   }
   else if (!finite3(p.ModelRotation) || !finite3(p.PresetRotation))
   {
