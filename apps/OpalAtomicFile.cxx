@@ -98,3 +98,19 @@ FileSetTransaction::~FileSetTransaction()
     }
   }
 }
+
+SignalsHeld::SignalsHeld()
+{
+  sigset_t ending;
+  sigemptyset(&ending);
+  for (int signal : { SIGINT, SIGTERM, SIGHUP, SIGQUIT })
+  {
+    sigaddset(&ending, signal);
+  }
+  sigprocmask(SIG_BLOCK, &ending, &this->Previous);
+}
+
+SignalsHeld::~SignalsHeld()
+{
+  sigprocmask(SIG_SETMASK, &this->Previous, nullptr);
+}

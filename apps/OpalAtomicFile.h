@@ -3,6 +3,7 @@
 // files replaced all or none.
 #pragma once
 
+#include <csignal>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -12,6 +13,22 @@
 // string on success, else the reason; the temporary file never survives.
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write);
+
+// Holds back the signals that end a program (SIGINT, SIGTERM, SIGHUP,
+// SIGQUIT) while files are written: one arriving then is delivered when the
+// holder ends, after the files are all written or all restored, so neither
+// a partial file nor a mixed set is left behind.
+class SignalsHeld
+{
+public:
+  SignalsHeld();
+  ~SignalsHeld();
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+private:
+  sigset_t Previous;
+};
 
 // The outputs of one run, replaced all or none: each is written atomically;
 // unless commit() is called, the ones already replaced get their earlier

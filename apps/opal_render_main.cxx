@@ -109,6 +109,7 @@ bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const 
       targets.emplace_back(path);
     }
   }
+  const SignalsHeld held; // released after the transaction below has committed or restored
   FileSetTransaction transaction(targets);
   auto record = [&](const std::string& path, const std::string& error) {
     if (!error.empty())

@@ -1,5 +1,6 @@
 // opal-volume: builds the opal volume and writes it as a .vti file, with a
 // one-screen summary of what was built.
+#include "OpalAtomicFile.h"
 #include "OpalCliFiles.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
@@ -69,7 +70,11 @@ int main(int argc, char** argv)
     ++counts[static_cast<std::size_t>(types->GetComponent(i, 0)) % 3];
   }
   const int placed = static_cast<int>(volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
-  const std::string error = writeImageDataFile(output, volume);
+  std::string error;
+  {
+    const SignalsHeld held; // a signal while writing is delivered once the file is whole or gone
+    error = writeImageDataFile(output, volume);
+  }
   if (!error.empty())
   {
     std::cerr << "opal-volume: " << error << std::endl;

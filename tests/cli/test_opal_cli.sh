@@ -95,6 +95,20 @@ cmp -s ok.png set.png && cmp -s ok.exr set.exr || fail "a failed output set repl
 "$render" "${small[@]}" --light-position 0 40 5 -o set.png -o set.exr >/dev/null 2>&1 || fail "a good output set is written"
 cmp -s ok.png set.png && fail "a good output set replaces its files"
 ls -a | grep -q -e partial -e earlier && fail "no partial or earlier copies are left behind"
+# A signal at any moment (here SIGTERM after 0.2-1.4 s, through the volume,
+# the render and the writing) leaves the set all old or all new, and no
+# partial or earlier copy: signals are held while files are written.
+for delay in 0.2 0.5 0.8 1.1 1.4; do
+  cp ok.png sig.png && cp ok.exr sig.exr && echo old >sig.vti
+  "$render" "${small[@]}" --light-position 0 40 5 -o sig.png -o sig.exr --save-image sig.vti >/dev/null 2>&1 &
+  sleep "$delay"; kill -TERM $! 2>/dev/null; wait $! 2>/dev/null
+  replaced=0
+  cmp -s ok.png sig.png || replaced=$((replaced + 1))
+  cmp -s ok.exr sig.exr || replaced=$((replaced + 1))
+  [[ $(cat sig.vti 2>/dev/null) == old ]] || replaced=$((replaced + 1))
+  [[ $replaced == 0 || $replaced == 3 ]] || fail "a signal after ${delay} s left a mixed set ($replaced of 3 replaced)"
+  ls -a | grep -q -e partial -e earlier && fail "a signal after ${delay} s left a partial or earlier copy"
+done
 # A name whose extension is not the option's format is refused before any work.
 expect_one_line "--save-image as .png" "--save-image" "$render" "${small[@]}" --save-image img.png
 expect_one_line "an unknown image extension" "b.xyz" "$render" "${small[@]}" -o a.png -o b.xyz
