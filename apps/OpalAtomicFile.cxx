@@ -3,21 +3,65 @@
 #include <system_error>
 #include <unistd.h>
 
+namespace
+{
+// Longest file name most file systems take (NAME_MAX).
+constexpr std::size_t MaxNameBytes = 255;
+
+// A hidden name beside path with `tag` and `ending`, shortened to a fixed
+// form where the target's own name is near the length limit.
+std::filesystem::path besideName(const std::filesystem::path& path, const std::string& tag, const std::string& ending)
+{
+  const std::string pid = std::to_string(::getpid());
+  std::string name = "." + path.stem().string() + "." + tag + "-" + pid + ending;
+  if (name.size() > MaxNameBytes)
+  {
+    name = ".opal-" + tag + "-" + pid + ending;
+  }
+  std::filesystem::path beside = path;
+  beside.replace_filename(name);
+  return beside;
+}
+
+// A name beside path for its earlier contents.
+std::filesystem::path backupName(const std::filesystem::path& path)
+{
+  return besideName(path, "earlier", path.extension().string());
+}
+} // namespace
+
+std::filesystem::path resolvedTarget(const std::filesystem::path& path)
+{
+  std::error_code error;
+  const std::filesystem::path resolved =
+    std::filesystem::is_symlink(path, error) ? std::filesystem::weakly_canonical(path, error) : path;
+  return error ? path : resolved;
+}
+
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write)
 {
+  // As cp does: through a symbolic link to the file it names, keeping an
+  // existing file's permissions, and refusing one we may not write.
+  const std::filesystem::path target = resolvedTarget(path);
+  std::error_code error;
+  const bool exists = std::filesystem::exists(target, error);
+  if (exists && ::access(target.c_str(), W_OK) != 0)
+  {
+    return "could not write " + path.string() + ": permission denied";
+  }
   // Keep the extension last: writers pick the format from it.
-  std::filesystem::path temporary = path;
-  temporary.replace_filename(
-    "." + path.stem().string() + ".partial-" + std::to_string(::getpid()) + path.extension().string());
+  const std::filesystem::path temporary = besideName(target, "partial", target.extension().string());
   if (!write(temporary.string()))
   {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
+    std::filesystem::remove(temporary, error);
     return "could not write " + path.string();
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
+  if (exists)
+  {
+    std::filesystem::permissions(temporary, std::filesystem::status(target, error).permissions(), error);
+  }
+  std::filesystem::rename(temporary, target, error);
   if (error)
   {
     std::error_code ignored;
@@ -27,21 +71,11 @@ std::string writeFileAtomically(
   return {};
 }
 
-namespace
-{
-// A name beside path for its earlier contents.
-std::filesystem::path backupName(const std::filesystem::path& path)
-{
-  std::filesystem::path backup = path;
-  backup.replace_filename("." + path.filename().string() + ".earlier-" + std::to_string(::getpid()));
-  return backup;
-}
-} // namespace
-
 FileSetTransaction::FileSetTransaction(const std::vector<std::filesystem::path>& targets)
 {
-  for (const std::filesystem::path& path : targets)
+  for (const std::filesystem::path& named : targets)
   {
+    const std::filesystem::path path = resolvedTarget(named); // written through links, as cp does
     Target target{ path, {} };
     std::error_code error;
     if (std::filesystem::is_regular_file(path, error))

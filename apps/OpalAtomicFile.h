@@ -9,7 +9,12 @@
 #include <string>
 #include <vector>
 
-// Calls write(temporaryPath); on success renames it to path. Returns an empty
+// The file a path names: a symbolic link's target, the path itself otherwise.
+std::filesystem::path resolvedTarget(const std::filesystem::path& path);
+
+// Calls write(temporaryPath); on success renames it to path: to the file a
+// symbolic link there names, keeping an existing file's permissions, and
+// refusing one this process may not write, as cp does. Returns an empty
 // string on success, else the reason; the temporary file never survives.
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write);

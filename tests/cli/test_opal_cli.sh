@@ -109,6 +109,21 @@ for delay in 0.2 0.5 0.8 1.1 1.4; do
   [[ $replaced == 0 || $replaced == 3 ]] || fail "a signal after ${delay} s left a mixed set ($replaced of 3 replaced)"
   ls -a | grep -q -e partial -e earlier && fail "a signal after ${delay} s left a partial or earlier copy"
 done
+# The target path's edge cases, as cp treats them: a symbolic link is written
+# through (the link stays), an existing file keeps its permissions, a name
+# near the 255-byte limit works.
+cp ok.png real.png && ln -sf real.png link.png
+"$render" "${small[@]}" --light-position 0 40 5 -o link.png >/dev/null 2>&1 || fail "writing through a link works"
+[[ -L link.png ]] || fail "the symbolic link stays a link"
+cmp -s ok.png real.png && fail "the file the link names is replaced"
+cp ok.png private.png && chmod 600 private.png
+"$render" "${small[@]}" --light-position 0 40 5 -o private.png >/dev/null 2>&1 || fail "replacing a private file works"
+[[ $(stat -c %a private.png) == 600 ]] || fail "a replaced file keeps its permissions (got $(stat -c %a private.png))"
+long=$(printf 'n%.0s' {1..246}).png
+"$render" "${small[@]}" -o "$long" >/dev/null 2>bad.err || fail "a 250-byte name works: $(cat bad.err)"
+[[ -s $long ]] || fail "the 250-byte name is written"
+rm -f "$long"
+ls -a | grep -q -e partial -e earlier && fail "no partial or earlier copies after the path cases"
 # A name whose extension is not the option's format is refused before any work.
 expect_one_line "--save-image as .png" "--save-image" "$render" "${small[@]}" --save-image img.png
 expect_one_line "an unknown image extension" "b.xyz" "$render" "${small[@]}" -o a.png -o b.xyz
