@@ -1,5 +1,9 @@
 #include "OpalAtomicFile.h"
 
+#include <algorithm>
+#include <cctype>
+#include <fcntl.h>
+#include <fstream>
 #include <system_error>
 #include <unistd.h>
 
@@ -28,6 +32,48 @@ std::filesystem::path backupName(const std::filesystem::path& path)
 {
   return besideName(path, "earlier", path.extension().string());
 }
+
+// The bytes a complete file of this extension ends with (PNG's IEND chunk,
+// JPEG's end-of-image marker, VTK XML's closing tag before its newline), or
+// none for formats whose writer reports a short write itself (EXR, TIFF).
+std::string expectedEnding(const std::filesystem::path& path)
+{
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".png")
+  {
+    return std::string("\0\0\0\0IEND\xAE\x42\x60\x82", 12);
+  }
+  if (extension == ".jpg" || extension == ".jpeg")
+  {
+    return "\xFF\xD9";
+  }
+  return extension == ".vti" ? "</VTKFile>" : "";
+}
+
+// Whether the file was written whole and reached the disk: flushed (fsync
+// reports a full disk that buffered writes hid) and ending as its format
+// must. Writers (libpng, VTK's XML writer) report success for a file cut
+// short by a full disk or a file-size limit.
+bool writtenWhole(const std::filesystem::path& file)
+{
+  const int descriptor = ::open(file.c_str(), O_RDONLY);
+  const bool flushed = descriptor >= 0 && ::fsync(descriptor) == 0;
+  if (descriptor >= 0)
+  {
+    ::close(descriptor);
+  }
+  std::string ending = expectedEnding(file);
+  if (!flushed || ending.empty())
+  {
+    return flushed;
+  }
+  std::ifstream stream(file, std::ios::binary);
+  std::string tail(ending.size() + 2, '\0');
+  stream.seekg(-static_cast<std::streamoff>(tail.size()), std::ios::end);
+  stream.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  return stream.gcount() == static_cast<std::streamsize>(tail.size()) && tail.find(ending) != std::string::npos;
+}
 } // namespace
 
 std::filesystem::path resolvedTarget(const std::filesystem::path& path)
@@ -52,10 +98,10 @@ std::string writeFileAtomically(
   }
   // Keep the extension last: writers pick the format from it.
   const std::filesystem::path temporary = besideName(target, "partial", target.extension().string());
-  if (!write(temporary.string()))
+  if (!write(temporary.string()) || !writtenWhole(temporary))
   {
     std::filesystem::remove(temporary, error);
-    return "could not write " + path.string();
+    return "could not write " + path.string() + " (the disk is full, or the file would be too large)";
   }
   if (exists)
   {

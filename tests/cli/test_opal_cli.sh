@@ -130,6 +130,20 @@ expect_one_line "an unknown image extension" "b.xyz" "$render" "${small[@]}" -o 
 expect_one_line "opal-volume to .png" "--output" "$volume" --dimensions 40 20 50 -o vol.png
 [[ ! -e img.png && ! -e a.png && ! -e vol.png ]] || fail "refused names write nothing"
 
+# A full disk for every format and for a set: the earlier files kept (the
+# whole set), no partial file. The 256 x 192 image is larger than the limit.
+cp ok.png full.png && cp ok.exr full.exr && echo old >full.vti
+for output in "-o full.png" "-o full.exr" "--save-image full.vti" "-o full.png -o full.exr --save-image full.vti"; do
+  ( ulimit -f 8; "$render" --dimensions 40 20 50 --domain-count 30 --width 256 --height 192 $output >/dev/null 2>bad.err ) &&
+    fail "a full disk fails $output"
+  grep -q "could not write" bad.err || fail "a full disk says so for $output: $(cat bad.err)"
+  cmp -s ok.png full.png && cmp -s ok.exr full.exr && [[ $(cat full.vti) == old ]] ||
+    fail "a full disk leaves the earlier files for $output"
+  ls -a | grep -q -e partial -e earlier && fail "no partial or earlier copy after a full disk for $output"
+done
+( ulimit -f 8; "$volume" --dimensions 80 40 100 -o full.vti >/dev/null 2>bad.err ) && fail "a full disk fails opal-volume"
+[[ $(cat full.vti) == old ]] || fail "a full disk leaves opal-volume's earlier file"
+
 "$render" --help >/dev/null || fail "--help exits 0"
 echo "test_opal_cli: $failures failure(s)"
 [[ $failures == 0 ]]
