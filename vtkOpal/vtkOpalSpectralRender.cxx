@@ -15,6 +15,9 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <mutex>
+#include <set>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
@@ -24,8 +27,42 @@ namespace
 using vtkOpalArrayCopy::copy;
 } // namespace
 
+namespace
+{
+// Every render filter alive, so their Vulkan sessions can be ended at exit
+// before the Vulkan layers and driver tear down their own state: ParaView
+// deletes its filters only in its libraries' static destruction, after the
+// validation layer's, and the buffers' destruction then crashed in it.
+// Never destroyed (deliberately): filters outlive static destruction.
+std::mutex& filtersLock()
+{
+  static auto* lock = new std::mutex;
+  return *lock;
+}
+
+std::set<vtkOpalSpectralRender*>& liveFilters()
+{
+  static auto* filters = new std::set<vtkOpalSpectralRender*>;
+  return *filters;
+}
+} // namespace
+
+void vtkOpalSpectralRender::EndAllSessions()
+{
+  std::lock_guard<std::mutex> guard(filtersLock());
+  for (vtkOpalSpectralRender* filter : liveFilters())
+  {
+    filter->RenderSession.reset();
+    filter->UploadedVolume = nullptr;
+  }
+}
+
 vtkOpalSpectralRender::vtkOpalSpectralRender()
 {
+  {
+    std::lock_guard<std::mutex> guard(filtersLock());
+    liveFilters().insert(this);
+  }
   this->SetRenderParameters(opal::RenderParameters());
   // The volume's image size and refractive index unless set.
   this->ImageSize[0] = this->ImageSize[1] = 0;
@@ -34,7 +71,11 @@ vtkOpalSpectralRender::vtkOpalSpectralRender()
   this->DeviceMemoryLimit = 0;
 }
 
-vtkOpalSpectralRender::~vtkOpalSpectralRender() = default;
+vtkOpalSpectralRender::~vtkOpalSpectralRender()
+{
+  std::lock_guard<std::mutex> guard(filtersLock());
+  liveFilters().erase(this);
+}
 
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
 {
@@ -199,6 +240,9 @@ opal::RenderSession& vtkOpalSpectralRender::Session()
     options.DeviceIndex = this->DeviceIndex;
     options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
     this->RenderSession = std::make_unique<opal::RenderSession>(options);
+    // Registered once the Vulkan libraries are loaded, so it runs before their exit handlers.
+    static const bool endAtExit = std::atexit(&vtkOpalSpectralRender::EndAllSessions) == 0;
+    (void)endAtExit;
     this->SessionDeviceIndex = this->DeviceIndex;
     this->SessionMemoryLimit = this->DeviceMemoryLimit;
   }
@@ -262,7 +306,15 @@ int vtkOpalSpectralRender::RequestData(
       this->UpdateProgress(fraction);
       return !this->GetAbortExecute();
     });
-    this->ValidationMessages = static_cast<int>(this->Session().context().validationMessages().size());
+    const std::vector<std::string> messages = this->Session().context().validationMessages();
+    this->ValidationMessages = static_cast<int>(messages.size());
+    if (!messages.empty())
+    {
+      // With OPAL_VULKAN_VALIDATION set, what the layer says is a bug: shown, and the request fails.
+      vtkErrorMacro("The Vulkan validation layer reported " << messages.size() << " message(s); the first: "
+                                                            << messages.front());
+      return 0;
+    }
     if (frame.Status == opal::FrameStatus::Aborted)
     {
       output->Initialize();
