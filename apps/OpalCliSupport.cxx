@@ -7,9 +7,35 @@
 #include <unistd.h>
 #include <utility>
 
-std::string oneLineFailure(const std::string& program, const std::string& what)
+namespace
 {
-  return program + ": " + what + " (see --help)\n";
+// What a number of the option's type may be, for a value that did not
+// convert ("Could not convert: --seed = -1"); empty if that is not the error.
+std::string allowedNumbers(const CLI::App* app, const std::string& what)
+{
+  const std::string prefix = "Could not convert: ";
+  const std::size_t equals = what.find(" = ");
+  if (!app || what.rfind(prefix, 0) != 0 || equals == std::string::npos)
+  {
+    return {};
+  }
+  const CLI::Option* option = app->get_option_no_throw(what.substr(prefix.size(), equals - prefix.size()));
+  const std::string type = option ? option->get_type_name() : "";
+  if (type.rfind("UINT", 0) == 0)
+  {
+    return ": a whole number from 0 to 18446744073709551615";
+  }
+  if (type.rfind("INT", 0) == 0)
+  {
+    return ": a whole number from -2147483648 to 2147483647";
+  }
+  return type.rfind("FLOAT", 0) == 0 ? ": a number" : "";
+}
+} // namespace
+
+std::string oneLineFailure(const std::string& program, const std::string& what, const CLI::App* app)
+{
+  return program + ": " + what + allowedNumbers(app, what) + " (see --help)\n";
 }
 
 int parseArguments(CLI::App& app, int argc, char** argv)

@@ -4,13 +4,14 @@
 
 #include <string>
 
-// CLI11's failure message as one line: "program: what went wrong (see --help)".
-std::string oneLineFailure(const std::string& program, const std::string& what);
-
 namespace CLI
 {
 class App;
 }
+
+// CLI11's failure message as one line: "program: what went wrong (see --help)",
+// with the numbers allowed where a value did not convert (app: to find the option's type).
+std::string oneLineFailure(const std::string& program, const std::string& what, const CLI::App* app = nullptr);
 
 // Parses the arguments; returns -1 to go on, else the exit status: 0 after
 // --help, 2 (with one line on stderr) for any bad argument, whatever CLI11's

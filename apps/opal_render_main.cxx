@@ -168,7 +168,7 @@ int main(int argc, char** argv)
   render.addTo(app);
   Outputs outputs;
   addOutputOptions(app, outputs);
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-render", e.what()); });
+  app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-render", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {
     return status;

@@ -30,7 +30,7 @@ int main(int argc, char** argv)
   model.addTo(app);
   std::string output = "opal.vti";
   app.add_option("-o,--output", output, "Output .vti file")->check(fileExtension({ ".vti" }))->capture_default_str();
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what()); });
+  app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {
     return status;

@@ -48,7 +48,8 @@ expect_one_line "volume fraction 0.9" "ScatteringVolumeFraction" "$render" "${sm
 expect_one_line "three vertex values" "--domain-vertex-range" "$render" --domain-vertex-range 3 4 5 -o x.png
 expect_one_line "nothing to write" "nothing to write" "$render" "${small[@]}"
 expect_one_line "opal-volume bad dimensions" "Dimensions" "$volume" --dimensions 0 20 50 -o x.vti
-expect_one_line "width beyond an int" "--width" "$render" --width 99999999999 -o x.png
+expect_one_line "width beyond an int" "from -2147483648 to 2147483647" "$render" --width 99999999999 -o x.png
+expect_one_line "negative seed" "from 0 to 18446744073709551615" "$render" --seed -1 -o x.png
 # Enough digits to tell the value from the bound; one refractive-index rule for volume and render.
 expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --scattering-volume-fraction 0.7400001 -o x.vti
 expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti
