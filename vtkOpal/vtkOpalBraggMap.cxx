@@ -7,6 +7,7 @@
 #include "vtkCell.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkDataArrayRange.h"
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
@@ -232,6 +233,13 @@ int vtkOpalBraggMap::RequestData(
       }
     });
     this->UpdateProgress(static_cast<double>(end) / count);
+  }
+  const auto wavelengths = vtk::DataArrayValueRange<1>(arrays.Wavelength.GetPointer());
+  if (!std::all_of(wavelengths.begin(), wavelengths.end(), [](float v) { return std::isfinite(v); }))
+  {
+    vtkErrorMacro("The Bragg map produced a NaN or an infinity in BraggWavelength; check LightPosition, "
+                  "EyePosition and the domain arrays.");
+    return 0;
   }
   vtkDataSetAttributes* out = onPoints ? static_cast<vtkDataSetAttributes*>(output->GetPointData()) : output->GetCellData();
   out->AddArray(arrays.Wavelength);
