@@ -3,6 +3,9 @@
 #include "OpalCliArrays.h"
 #include "OpalPresets.h"
 
+#include <cmath>
+#include <cstdlib>
+
 void OpalRenderOptions::addTo(CLI::App& app)
 {
   opal::RenderParameters& p = this->Parameters;
@@ -17,7 +20,15 @@ void OpalRenderOptions::addTo(CLI::App& app)
   app.add_option("--view-angle", p.ViewAngle, "Vertical view angle in degrees")->capture_default_str()->group(group);
   addArrayOption(app, "--light-position", p.LightPosition, "D65 point light position in mm (0 60 0)", group);
   app.add_option("--light-radius", p.LightRadius, "Radius of the light's sphere in mm")->capture_default_str()->group(group);
-  app.add_option("--rotate-x", p.ModelRotation[0], "Turn the stone about x by degrees, after the preset's placement (fig13: 5)")->group(group);
+  // ModelRotation's first component by another name: checked here, so a refusal names the flag given.
+  app.add_option("--rotate-x", p.ModelRotation[0], "Turn the stone about x by degrees, after the preset's placement (fig13: 5)")
+    ->check(CLI::Validator(
+      [](std::string& value) {
+        const double number = std::strtod(value.c_str(), nullptr); // a non-number is CLI11's to refuse
+        return std::isfinite(number) ? std::string() : std::string("must be finite");
+      },
+      "DEGREES"))
+    ->group(group);
   addArrayOption(app, "--model-rotation", p.ModelRotation, "Turn the stone about x, y, z by degrees, after the preset's placement", group);
   addArrayOption(app, "--wavelength-range", p.WavelengthRange, "Wavelengths MIN MAX in nm (380 780)", group);
   app.add_option("--wavelength-step", p.WavelengthStep, "Wavelength step in nm")->capture_default_str()->group(group);

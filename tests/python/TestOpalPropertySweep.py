@@ -1,15 +1,16 @@
 """pvpython: every numeric property of the three proxies (OpalVolume,
 OpalSpectralRender, OpalBraggMap), found by listing them, set to NaN, +Inf,
 -1, the largest double, the smallest denormal and 0, one at a time on a small
-volume: the request is refused (the filter's error; the logger's stderr is
-quiet here, since every refusal is expected) or its outputs are finite. Never
+volume: the request is refused with an error naming the property (observed
+on the filter, so it is not printed) or its outputs are finite. Never
 a crash of the process (the test would not finish) nor a NaN or an infinity
 in a point array (issue #16)."""
 import numpy
 from paraview import servermanager as sm
 from paraview.simple import Delete, LoadPlugin
+from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkLogger
+from vtkmodules.vtkCommonCore import VTK_STRING, vtkLogger
 
 import opal_test_config as config
 from opal_test_support import check, finish
@@ -46,6 +47,21 @@ def non_finite_array(proxy):
     return None
 
 
+def observe_errors(proxy):
+    """The error messages the proxy's filter reports from now on."""
+    messages = []
+
+    @calldata_type(VTK_STRING)
+    def record(caller, event, message):
+        messages.append(message)
+
+    proxy.GetClientSideObject().AddObserver("ErrorEvent", record)
+    return messages
+
+
+refusals = []
+
+
 def sweep(make, label):
     probe = make()
     properties = numeric_properties(probe)
@@ -59,7 +75,14 @@ def sweep(make, label):
             except Exception:
                 Delete(proxy)  # refused by the property itself
                 continue
+            errors = observe_errors(proxy)
             proxy.UpdatePipeline()
+            if errors:
+                refusals.append(f"{label}.{name}")
+                check(any(name in message for message in errors),
+                      f"{label}.{name} = {value}: the refusal names {name} (got: {errors[0][-160:]!r})")
+                Delete(proxy)
+                continue
             bad = non_finite_array(proxy)
             check(bad is None, f"{label}.{name} = {value}: refused or finite (non-finite {bad})")
             Delete(proxy)
@@ -69,4 +92,6 @@ volume = OpalVolume(**SMALL)  # noqa: F821 (from the plugin)
 sweep(lambda: OpalVolume(**SMALL), "OpalVolume")  # noqa: F821
 sweep(lambda: OpalSpectralRender(Input=volume, ImageSize=[16, 12]), "OpalSpectralRender")  # noqa: F821
 sweep(lambda: OpalBraggMap(Input=volume), "OpalBraggMap")  # noqa: F821
+check(len(refusals) > 50, f"many hostile values are refused by the filters themselves ({len(refusals)})")
+print(f"{len(refusals)} refusals, each naming its property")
 finish("TestOpalPropertySweep")
