@@ -140,13 +140,13 @@ vec2 continuedFromInside(vec3 p, vec3 direction, float d)
 // enters where the stretch nearest the light leaves it (L_in). An outside
 // p behind the opal thus gets the light through it, one beside it the
 // continuation above.
-vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, bool startsInside)
+vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP)
 {
   float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
   float tau = 0.0;
   float lightEntry = -1.0;
   float t = 0.0;
-  bool inside = startsInside;
+  bool inside = surfaceDistanceAtP <= 0.0;
   for (int stretch = 0; stretch < 64 && t < tEnd; ++stretch)
   {
     if (!inside)
@@ -160,7 +160,7 @@ vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, bool startsIn
   }
   if (lightEntry < 0.0)
   {
-    return continuedFromInside(p, direction, surfaceDistance(p));
+    return continuedFromInside(p, direction, surfaceDistanceAtP);
   }
   return vec2(tau, entryGeometry(p, p + lightEntry * direction, direction));
 }
@@ -253,5 +253,5 @@ void main()
     sweepFromLayerAbove(index, c, p, direction);
     return;
   }
-  storeLight(index, lightAlongPath(p, direction, distanceToLight, d <= 0.0));
+  storeLight(index, lightAlongPath(p, direction, distanceToLight, d));
 }

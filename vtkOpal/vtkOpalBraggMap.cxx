@@ -175,9 +175,9 @@ int vtkOpalBraggMap::RequestData(
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0]);
   vtkDataSet* output = vtkDataSet::GetData(outputVector);
   output->ShallowCopy(input);
-  if (this->RefractiveIndex != 0 && !opal::refractiveIndexError(this->RefractiveIndex).empty())
+  if (const std::string index = opal::refractiveIndexError(this->RefractiveIndex); this->RefractiveIndex != 0 && !index.empty())
   {
-    vtkErrorMacro(<< opal::refractiveIndexError(this->RefractiveIndex) << " (0: the volume's)");
+    vtkErrorMacro(<< index << " (0: the volume's)");
     return 0;
   }
   if (this->BraggOrder < 1 || !(this->MosaicSpread >= 0 && this->MosaicSpread <= 90))

@@ -413,29 +413,6 @@ double apexDistanceSquared(const Volume& volume, const dvec3& light)
   return glm::dot(light - apex, light - apex);
 }
 
-// The light's Fresnel highlight at a pixel: over s x s sub-rays, the
-// fraction whose mirror ray meets the light's sphere, each weighted by F.
-double highlightCoverage(const Volume& volume, const Camera& camera, const View& view, int px, int py, int s)
-{
-  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
-  double highlight = 0;
-  for (int sy = 0; sy < s; ++sy)
-    for (int sx = 0; sx < s; ++sx)
-    {
-      const dvec3 sd = camera.direction(px + (sx + 0.5) / s, py + (sy + 0.5) / s);
-      const double st = volume.entry(camera.Eye, sd);
-      if (st < 0)
-        continue;
-      const dvec3 sp = camera.Eye + st * sd;
-      const dvec3 sn = volume.normal(sp);
-      const dvec3 mirrored = glm::reflect(sd, sn);
-      const double along = glm::dot(light - sp, mirrored);
-      if (-glm::dot(sd, sn) > 0 && along > 0 && glm::length(sp + along * mirrored - light) <= view.LightRadius)
-        highlight += fresnel(-glm::dot(sd, sn), view.RefractiveIndex) / (s * s);
-    }
-  return highlight;
-}
-
 // The mirror image of the primary ray through image point (x, y): where it
 // passes closest to the light, and the cosine of incidence.
 struct MirrorRay
@@ -457,6 +434,22 @@ MirrorRay mirrorRay(const Volume& volume, const Camera& camera, const dvec3& lig
   ray.Near = p + std::max(glm::dot(light - p, mirrored), 0.0) * mirrored;
   ray.CosIncidence = -glm::dot(d, n);
   return ray;
+}
+
+// The light's Fresnel highlight at a pixel: over s x s sub-rays, the
+// fraction whose mirror ray meets the light's sphere, each weighted by F.
+double highlightCoverage(const Volume& volume, const Camera& camera, const View& view, int px, int py, int s)
+{
+  const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
+  double highlight = 0;
+  for (int sy = 0; sy < s; ++sy)
+    for (int sx = 0; sx < s; ++sx)
+    {
+      const MirrorRay ray = mirrorRay(volume, camera, light, px + (sx + 0.5) / s, py + (sy + 0.5) / s, 0.0);
+      if (ray.Hit && glm::length(ray.Near - light) <= view.LightRadius)
+        highlight += fresnel(ray.CosIncidence, view.RefractiveIndex) / (s * s);
+    }
+  return highlight;
 }
 
 // The highlight over the image square [x, x + size]^2, as a share of it

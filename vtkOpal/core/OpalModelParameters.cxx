@@ -214,9 +214,9 @@ std::string scalarsError(const ModelParameters& p)
     // others, so counts in the billions would run for hours.
     message << "DomainCount must lie in [0, " << MaxDomainCount << "], got " << p.DomainCount << ".";
   }
-  else if (!refractiveIndexError(p.RefractiveIndex).empty())
+  else if (const std::string index = refractiveIndexError(p.RefractiveIndex); !index.empty())
   {
-    message << refractiveIndexError(p.RefractiveIndex);
+    message << index;
   }
   else if (p.MaxPlacementAttempts < 1 || p.MaxPlacementAttempts > 100000)
   {
@@ -228,15 +228,7 @@ std::string scalarsError(const ModelParameters& p)
 
 std::string validate(const ModelParameters& p)
 {
-  for (auto check : { finiteError, magnitudeError, shapeError, rangesError, scalarsError })
-  {
-    const std::string error = check(p);
-    if (!error.empty())
-    {
-      return error;
-    }
-  }
-  return {};
+  return firstError(p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError });
 }
 
 std::string smallShapeWarning(const ModelParameters& p)

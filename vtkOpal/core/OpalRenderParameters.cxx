@@ -137,9 +137,9 @@ std::string spectrumError(const RenderParameters& p)
 std::string opticsError(const RenderParameters& p)
 {
   std::ostringstream m = messageStream();
-  if (!refractiveIndexError(p.RefractiveIndex).empty())
+  if (const std::string index = refractiveIndexError(p.RefractiveIndex); !index.empty())
   {
-    m << refractiveIndexError(p.RefractiveIndex);
+    m << index;
   }
   else if (!(p.BraggBandwidth > 0 && p.BraggBandwidth < 1))
   {
@@ -190,15 +190,7 @@ std::string samplingError(const RenderParameters& p)
 
 std::string validate(const RenderParameters& p)
 {
-  for (auto check : { imageError, cameraError, spectrumError, opticsError, samplingError })
-  {
-    const std::string error = check(p);
-    if (!error.empty())
-    {
-      return error;
-    }
-  }
-  return {};
+  return firstError(p, { imageError, cameraError, spectrumError, opticsError, samplingError });
 }
 
 } // namespace opal

@@ -34,14 +34,12 @@ std::int64_t deepestInsideNeighbour(const RenderVolume& volume, int i, int j, in
 }
 } // namespace
 
-SkinExtendedFields extendIntoSkin(const RenderVolume& volume)
+std::vector<SkinCell> skinCells(const RenderVolume& volume)
 {
-  const std::size_t voxels = volume.voxelCount();
-  SkinExtendedFields fields{ std::vector<float>(volume.ScatteringCoefficient, volume.ScatteringCoefficient + voxels),
-    std::vector<std::int32_t>(volume.DomainId, volume.DomainId + voxels) };
   const auto& s = volume.Spacing;
   const auto diagonal = static_cast<float>(std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
   const auto& n = volume.Dimensions;
+  std::vector<std::vector<SkinCell>> perSlice(static_cast<std::size_t>(n[2]));
   parallelFor(0, n[2], [&](int kBegin, int kEnd) {
     for (int k = kBegin; k < kEnd; ++k)
       for (int j = 0; j < n[1]; ++j)
@@ -53,13 +51,15 @@ SkinExtendedFields extendIntoSkin(const RenderVolume& volume)
             continue;
           const std::int64_t source = deepestInsideNeighbour(volume, i, j, k);
           if (source >= 0)
-          {
-            fields.ScatteringCoefficient[static_cast<std::size_t>(index)] = volume.ScatteringCoefficient[source];
-            fields.DomainId[static_cast<std::size_t>(index)] = volume.DomainId[source];
-          }
+            perSlice[static_cast<std::size_t>(k)].push_back({ index, source });
         }
   });
-  return fields;
+  std::vector<SkinCell> cells;
+  for (const auto& slice : perSlice)
+  {
+    cells.insert(cells.end(), slice.begin(), slice.end());
+  }
+  return cells;
 }
 
 } // namespace opal

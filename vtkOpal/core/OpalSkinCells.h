@@ -16,18 +16,20 @@
 namespace opal
 {
 
-struct SkinExtendedFields
+// A skin cell and the inside voxel whose coefficients it takes.
+struct SkinCell
 {
-  std::vector<float> ScatteringCoefficient;
-  std::vector<std::int32_t> DomainId;
+  std::int64_t Index;
+  std::int64_t Source;
 };
 
-// The volume's two coefficient fields with every skin cell filled: cells
-// within one cell diagonal outside the surface (the surface is the zero of
-// trilinear SurfaceDistance, which can run a little outside the exact
-// distance's), ScatteringCoefficient 0 and DomainId -1, and a neighbour with
-// SurfaceDistance <= 0; the neighbour with the smallest SurfaceDistance
-// wins (the first in z, y, x order on a tie).
-SkinExtendedFields extendIntoSkin(const RenderVolume& volume);
+// The volume's skin cells to fill: cells within one cell diagonal outside
+// the surface (the surface is the zero of trilinear SurfaceDistance, which
+// can run a little outside the exact distance's), ScatteringCoefficient 0 and
+// DomainId -1, with a neighbour of SurfaceDistance <= 0; the neighbour with
+// the smallest SurfaceDistance is the source (the first in z, y, x order on a
+// tie). Sources lie inside, so no source is itself a skin cell. Few: the
+// caller applies them to its copy of the fields.
+std::vector<SkinCell> skinCells(const RenderVolume& volume);
 
 } // namespace opal

@@ -115,9 +115,12 @@ void RenderSession::setVolume(const RenderVolume& volume)
     return buffer;
   };
   // The medium reaches the smooth surface: skin cells filled from inside.
-  const SkinExtendedFields skin = extendIntoSkin(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
-  forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ skin.ScatteringCoefficient[i], skin.DomainId[i] }; });
+  forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
+  for (const SkinCell& skin : skinCells(volume))
+  {
+    cells[static_cast<std::size_t>(skin.Index)] = cells[static_cast<std::size_t>(skin.Source)];
+  }
   uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
   uploaded->SurfaceDistance =
     deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
