@@ -50,6 +50,11 @@ void AddModelParameters(
     f, "DomainRotationRange", { p.DomainRotationRange[0], p.DomainRotationRange[1] });
   addArray<vtkDoubleArray>(
     f, "DomainDiameterRange", { p.DomainDiameterRange[0], p.DomainDiameterRange[1] });
+  addArray<vtkIntArray>(f, "DomainLayout", { static_cast<int>(p.DomainLayout) });
+  addArray<vtkIntArray>(f, "VoronoiCellCount", { p.VoronoiCellCount });
+  addArray<vtkDoubleArray>(f, "VoronoiWeightSpread", { p.VoronoiWeightSpread });
+  addArray<vtkDoubleArray>(f, "OrderedFraction", { p.OrderedFraction });
+  addArray<vtkDoubleArray>(f, "DiameterCorrelationLength", { p.DiameterCorrelationLength });
   addArray<vtkDoubleArray>(f, "RefractiveIndex", { p.RefractiveIndex });
   addArray<vtkIntArray>(f, "MaxPlacementAttempts", { p.MaxPlacementAttempts });
   addArray<vtkIntArray>(f, "Seed", { static_cast<int>(p.Seed) });

@@ -1,5 +1,6 @@
 #include "vtkOpalSource.h"
 
+#include "OpalCellBoundaries.h"
 #include "OpalDomainLayout.h"
 #include "OpalVolumeBuild.h"
 #include "OpalModelParameters.h"
@@ -25,12 +26,14 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpalArrayCopy.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <optional>
+#include <vector>
 
 vtkStandardNewMacro(vtkOpalSource);
 vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_IMAGE_SIZE, IntegerVector, 2);
@@ -81,6 +84,11 @@ opal::ModelParameters vtkOpalSource::GetModelParameters() const
   copy(this->DomainAngleRange, p.DomainAngleRange);
   copy(this->DomainRotationRange, p.DomainRotationRange);
   copy(this->DomainDiameterRange, p.DomainDiameterRange);
+  p.DomainLayout = static_cast<opal::DomainLayoutKind>(this->DomainLayout);
+  p.VoronoiCellCount = this->VoronoiCellCount;
+  p.VoronoiWeightSpread = this->VoronoiWeightSpread;
+  p.OrderedFraction = this->OrderedFraction;
+  p.DiameterCorrelationLength = this->DiameterCorrelationLength;
   p.RefractiveIndex = this->RefractiveIndex;
   p.MaxPlacementAttempts = this->MaxPlacementAttempts;
   p.Seed = static_cast<std::uint32_t>(this->Seed);
@@ -102,6 +110,11 @@ void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
   copy(p.DomainAngleRange, this->DomainAngleRange);
   copy(p.DomainRotationRange, this->DomainRotationRange);
   copy(p.DomainDiameterRange, this->DomainDiameterRange);
+  this->DomainLayout = static_cast<int>(p.DomainLayout);
+  this->VoronoiCellCount = p.VoronoiCellCount;
+  this->VoronoiWeightSpread = p.VoronoiWeightSpread;
+  this->OrderedFraction = p.OrderedFraction;
+  this->DiameterCorrelationLength = p.DiameterCorrelationLength;
   this->RefractiveIndex = p.RefractiveIndex;
   this->MaxPlacementAttempts = p.MaxPlacementAttempts;
   this->Seed = static_cast<int>(p.Seed);
@@ -166,15 +179,36 @@ vtkNew<ArrayT> makePointArray(const char* name, int components, vtkIdType tuples
   return array;
 }
 
+// The cell data of the domain geometry: each cell's domain's DomainId,
+// ParticleDiameter, Normal and BraggLambdaMax.
+void addDomainCellData(
+  vtkPolyData* output, const opal::DomainLayout& layout, const std::vector<int>& cellDomain, double refractiveIndex)
+{
+  const auto cells = static_cast<vtkIdType>(cellDomain.size());
+  auto ids = makePointArray<vtkIntArray>("DomainId", 1, cells);
+  auto diameters = makePointArray<vtkFloatArray>("ParticleDiameter", 1, cells);
+  auto normals = makePointArray<vtkFloatArray>("Normal", 3, cells);
+  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, cells);
+  for (vtkIdType c = 0; c < cells; ++c)
+  {
+    const opal::Domain& domain = layout.domains()[static_cast<std::size_t>(cellDomain[static_cast<std::size_t>(c)])];
+    ids->SetValue(c, domain.Id);
+    diameters->SetValue(c, static_cast<float>(domain.ParticleDiameter));
+    normals->SetTuple(c, domain.Normal.data());
+    lambdaMax->SetValue(c, static_cast<float>(opal::braggLambdaMax(domain.ParticleDiameter, refractiveIndex)));
+  }
+  output->GetCellData()->AddArray(ids);
+  output->GetCellData()->AddArray(diameters);
+  output->GetCellData()->AddArray(normals);
+  output->GetCellData()->AddArray(lambdaMax);
+}
+
+// The paper's layout: one polygon per domain.
 vtkNew<vtkPolyData> makeDomainPolygons(const opal::DomainLayout& layout, double refractiveIndex)
 {
   vtkNew<vtkPoints> points;
   vtkNew<vtkCellArray> polygons;
-  const auto domainCount = static_cast<vtkIdType>(layout.domains().size());
-  auto ids = makePointArray<vtkIntArray>("DomainId", 1, domainCount);
-  auto diameters = makePointArray<vtkFloatArray>("ParticleDiameter", 1, domainCount);
-  auto normals = makePointArray<vtkFloatArray>("Normal", 3, domainCount);
-  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, domainCount);
+  std::vector<int> cellDomain;
   for (const opal::Domain& domain : layout.domains())
   {
     polygons->InsertNextCell(static_cast<vtkIdType>(domain.Vertices.size()));
@@ -182,19 +216,37 @@ vtkNew<vtkPolyData> makeDomainPolygons(const opal::DomainLayout& layout, double 
     {
       polygons->InsertCellPoint(points->InsertNextPoint(vertex.data()));
     }
-    ids->SetValue(domain.Id, domain.Id);
-    diameters->SetValue(domain.Id, static_cast<float>(domain.ParticleDiameter));
-    normals->SetTuple(domain.Id, domain.Normal.data());
-    lambdaMax->SetValue(domain.Id,
-      static_cast<float>(opal::braggLambdaMax(domain.ParticleDiameter, refractiveIndex)));
+    cellDomain.push_back(domain.Id);
   }
   vtkNew<vtkPolyData> output;
   output->SetPoints(points);
   output->SetPolys(polygons);
-  output->GetCellData()->AddArray(ids);
-  output->GetCellData()->AddArray(diameters);
-  output->GetCellData()->AddArray(normals);
-  output->GetCellData()->AddArray(lambdaMax);
+  addDomainCellData(output, layout, cellDomain, refractiveIndex);
+  return output;
+}
+
+// The Voronoi layout: the voxel faces bounding each ordered cell.
+vtkNew<vtkPolyData> makeCellBoundaries(const opal::Grid& grid, const opal::DomainLayout& layout, double refractiveIndex)
+{
+  const opal::CellBoundaryMesh mesh = opal::orderedCellBoundaries(grid, layout);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.Points.size()));
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+  {
+    points->SetPoint(static_cast<vtkIdType>(p), mesh.Points[p].data());
+  }
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(static_cast<vtkIdType>(mesh.Faces.size()), 4 * static_cast<vtkIdType>(mesh.Faces.size()));
+  for (const std::array<int, 4>& face : mesh.Faces)
+  {
+    const vtkIdType ids[4] = { face[0], face[1], face[2], face[3] };
+    quads->InsertNextCell(4, ids);
+  }
+  vtkNew<vtkPolyData> output;
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  addDomainCellData(output, layout, mesh.FaceDomain, refractiveIndex);
   return output;
 }
 } // namespace
@@ -236,9 +288,10 @@ bool vtkOpalSource::FillVolume(
   auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
   auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
   auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
+  auto cellId = makePointArray<vtkIntArray>("CellId", 1, layout.hasCells() ? count : 0);
   const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0), normal->GetPointer(0),
     domainId->GetPointer(0), lambdaMax->GetPointer(0), lambdaMin->GetPointer(0), scattering->GetPointer(0),
-    distance->GetPointer(0) };
+    distance->GetPointer(0), layout.hasCells() ? cellId->GetPointer(0) : nullptr };
 
   // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
   const opal::VolumeFiller filler(parameters, layout);
@@ -265,6 +318,10 @@ bool vtkOpalSource::FillVolume(
          static_cast<vtkDataArray*>(distance) })
   {
     pointData->AddArray(array);
+  }
+  if (layout.hasCells())
+  {
+    pointData->AddArray(cellId);
   }
   return true;
 }
@@ -310,7 +367,8 @@ int vtkOpalSource::RequestData(
     : 0;
   if (piece == 0)
   {
-    polygons->ShallowCopy(makeDomainPolygons(*layout, parameters.RefractiveIndex));
+    polygons->ShallowCopy(layout->hasCells() ? makeCellBoundaries(grid, *layout, parameters.RefractiveIndex)
+                                             : makeDomainPolygons(*layout, parameters.RefractiveIndex));
   }
   else
   {
@@ -346,6 +404,11 @@ void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
      << this->DomainRotationRange[1] << "\n";
   os << indent << "DomainDiameterRange: " << this->DomainDiameterRange[0] << " "
      << this->DomainDiameterRange[1] << "\n";
+  os << indent << "DomainLayout: " << this->DomainLayout << "\n";
+  os << indent << "VoronoiCellCount: " << this->VoronoiCellCount << "\n";
+  os << indent << "VoronoiWeightSpread: " << this->VoronoiWeightSpread << "\n";
+  os << indent << "OrderedFraction: " << this->OrderedFraction << "\n";
+  os << indent << "DiameterCorrelationLength: " << this->DiameterCorrelationLength << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
   os << indent << "MaxPlacementAttempts: " << this->MaxPlacementAttempts << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -5,11 +5,13 @@
  * Output port 0 is a vtkImageData whose points are voxel centres, with the
  * point arrays VoxelType, ParticleDiameter, Normal, DomainId, BraggLambdaMax,
  * BraggLambdaMin, ScatteringCoefficient and SurfaceDistance (docs/design.md
- * §2.5), and the domain table as field data (DomainNormal, DomainParticleDiameter,
- * indexed by DomainId) for the render. Output port 1 is the diffraction-domain
- * layout as polygons, one cell per domain, with DomainId, ParticleDiameter,
- * Normal and BraggLambdaMax as cell data. Both carry the parameters used and
- * DomainsPlaced as field data.
+ * §2.5), CellId with the Voronoi layout, and the domain table as field data
+ * (DomainNormal, DomainParticleDiameter, indexed by DomainId) for the render.
+ * Output port 1 is the diffraction-domain layout as polygons with DomainId,
+ * ParticleDiameter, Normal and BraggLambdaMax as cell data: one polygon per
+ * domain (DomainLayout polygons), or the voxel faces bounding each ordered
+ * Voronoi cell (voronoi). Both carry the parameters used and DomainsPlaced as
+ * field data.
  *
  * The render settings the preset implies travel in port 0's information
  * (PRESET_IMAGE_SIZE, PRESET_ROTATION, REFRACTIVE_INDEX), so a
@@ -18,9 +20,11 @@
  * The source can produce any sub-extent; every value derives from the global
  * voxel index and the seed, so pieces agree exactly with the whole volume.
  *
- * Preset (fig10 ... fig17, or custom) sets the parameters the paper varies
- * between its figures; while a preset other than custom is chosen it takes
- * precedence over DomainDiameterRange.
+ * Preset (fig10 ... fig17, harlequin, pinfire, or custom) sets the parameters
+ * the paper varies between its figures; while a preset other than custom is
+ * chosen it takes precedence over DomainDiameterRange, and harlequin and
+ * pinfire over DomainLayout, VoronoiCellCount, VoronoiWeightSpread and
+ * OrderedFraction.
  */
 #pragma once
 
@@ -122,6 +126,38 @@ public:
   ///@}
 
   ///@{
+  /// Domain layout (docs/design.md §2.6): 0 the paper's polygons (default), 1
+  /// weighted Voronoi grains whose ordered cells are percolation clusters.
+  vtkSetMacro(DomainLayout, int);
+  vtkGetMacro(DomainLayout, int);
+  ///@}
+
+  ///@{
+  /// Voronoi sites in the opal. Default 1000.
+  vtkSetMacro(VoronoiCellCount, int);
+  vtkGetMacro(VoronoiCellCount, int);
+  ///@}
+
+  ///@{
+  /// Additive weights of the Voronoi sites, uniform in [0, spread] mm. Default 0.2.
+  vtkSetMacro(VoronoiWeightSpread, double);
+  vtkGetMacro(VoronoiWeightSpread, double);
+  ///@}
+
+  ///@{
+  /// Share of the Voronoi cells that are crystal domains, in [0, 1]. Default 0.3.
+  vtkSetMacro(OrderedFraction, double);
+  vtkGetMacro(OrderedFraction, double);
+  ///@}
+
+  ///@{
+  /// Correlation length in mm of the scattering diameters; 0 (default):
+  /// independent voxels, as the paper.
+  vtkSetMacro(DiameterCorrelationLength, double);
+  vtkGetMacro(DiameterCorrelationLength, double);
+  ///@}
+
+  ///@{
   /// Refractive index mu of opal. Default 1.45.
   vtkSetMacro(RefractiveIndex, double);
   vtkGetMacro(RefractiveIndex, double);
@@ -140,7 +176,8 @@ public:
   ///@}
 
   ///@{
-  /// 0 custom, 1 fig10, 2 fig11, 3 fig12 (default), 4 fig13, 5 fig15, 6 fig17.
+  /// 0 custom, 1 fig10, 2 fig11, 3 fig12 (default), 4 fig13, 5 fig15, 6 fig17,
+  /// 7 harlequin, 8 pinfire.
   vtkSetMacro(Preset, int);
   vtkGetMacro(Preset, int);
   /// Chooses the preset by name ("fig12", "custom"); false if the name is unknown.
@@ -181,6 +218,11 @@ protected:
   double DomainAngleRange[2];
   double DomainRotationRange[2];
   double DomainDiameterRange[2];
+  int DomainLayout;
+  int VoronoiCellCount;
+  double VoronoiWeightSpread;
+  double OrderedFraction;
+  double DiameterCorrelationLength;
   double RefractiveIndex;
   int MaxPlacementAttempts;
   int Seed;

@@ -9,8 +9,14 @@
 void OpalModelOptions::addTo(CLI::App& app)
 {
   opal::ModelParameters& p = this->Parameters;
-  app.add_option("--preset", this->Preset, "The paper's figure to reproduce: " + opal::presetNameList())
-    ->check(CLI::IsMember({ "custom", "fig10", "fig11", "fig12", "fig13", "fig15", "fig17" }))
+  std::vector<std::string> presetNames{ "custom" };
+  for (const opal::PresetSettings& preset : opal::presets())
+  {
+    presetNames.emplace_back(preset.Name);
+  }
+  app.add_option("--preset", this->Preset,
+       "The paper's figure to reproduce, or a Voronoi opal (harlequin, pinfire): " + opal::presetNameList())
+    ->check(CLI::IsMember(presetNames))
     ->capture_default_str()
     ->group("Model");
   addArrayOption(app, "--dimensions", p.Dimensions, "Voxels along x y z (160 80 200)", "Model");
@@ -36,6 +42,7 @@ void OpalModelOptions::addTo(CLI::App& app)
     "Tilt of the domain normal from +y MIN MAX in degrees (0 30)", "Model");
   this->DomainDiameterRangeOption = addArrayOption(app, "--domain-diameter-range",
     p.DomainDiameterRange, "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model");
+  this->addGrainOptions(app);
   app.add_option("--refractive-index", p.RefractiveIndex, "Refractive index of opal")
     ->capture_default_str()
     ->group("Model");
@@ -47,10 +54,45 @@ void OpalModelOptions::addTo(CLI::App& app)
     ->group("Model");
 }
 
+// The Voronoi layout and the diameter field (docs/design.md §2.6).
+void OpalModelOptions::addGrainOptions(CLI::App& app)
+{
+  opal::ModelParameters& p = this->Parameters;
+  this->keepIfGiven(addEnumOption(app, "--domain-layout", p.DomainLayout,
+                      { { "polygons", opal::DomainLayoutKind::Polygons }, { "voronoi", opal::DomainLayoutKind::Voronoi } },
+                      "Domains as the paper's polygons or as weighted Voronoi grains (polygons)", "Model"),
+    &opal::ModelParameters::DomainLayout);
+  this->keepIfGiven(app.add_option("--voronoi-cell-count", p.VoronoiCellCount, "Voronoi sites in the opal")
+                      ->capture_default_str()
+                      ->group("Model"),
+    &opal::ModelParameters::VoronoiCellCount);
+  this->keepIfGiven(app.add_option("--voronoi-weight-spread", p.VoronoiWeightSpread,
+                         "Additive weights of the Voronoi sites, uniform in [0, SPREAD] mm")
+                      ->capture_default_str()
+                      ->group("Model"),
+    &opal::ModelParameters::VoronoiWeightSpread);
+  this->keepIfGiven(app.add_option("--ordered-fraction", p.OrderedFraction,
+                         "Share of the Voronoi cells that are crystal domains, [0, 1]")
+                      ->capture_default_str()
+                      ->group("Model"),
+    &opal::ModelParameters::OrderedFraction);
+  app.add_option("--diameter-correlation-length", p.DiameterCorrelationLength,
+       "Correlation length of the scattering diameters in mm (0: independent voxels, the paper)")
+    ->capture_default_str()
+    ->group("Model");
+}
+
 opal::ModelParameters OpalModelOptions::parameters() const
 {
   opal::ModelParameters resolved = this->Parameters;
   resolved.applyPreset(this->presetIndex());
+  for (const auto& [option, keep] : this->GivenOverPreset)
+  {
+    if (option->count() > 0)
+    {
+      keep(resolved, this->Parameters);
+    }
+  }
   return resolved;
 }
 

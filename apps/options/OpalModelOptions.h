@@ -7,7 +7,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 class OpalModelOptions
 {
@@ -15,7 +18,8 @@ public:
   // Registers the flags on the app; values land in this object.
   void addTo(CLI::App& app);
 
-  // The parameters: the preset's, then every flag given explicitly.
+  // The parameters: the preset's, then every flag given explicitly (a flag
+  // wins over the preset's value).
   opal::ModelParameters parameters() const;
   // The preset to record: custom when --domain-diameter-range overrides it.
   int presetIndex() const;
@@ -24,7 +28,18 @@ public:
   double refractiveIndex() const { return this->Parameters.RefractiveIndex; }
 
 private:
+  void addGrainOptions(CLI::App& app);
+  // Registers a flag that a preset also sets: given explicitly, it wins.
+  template <typename T>
+  void keepIfGiven(CLI::Option* option, T opal::ModelParameters::*field)
+  {
+    this->GivenOverPreset.emplace_back(option,
+      [field](opal::ModelParameters& to, const opal::ModelParameters& from) { to.*field = from.*field; });
+  }
+
   opal::ModelParameters Parameters;
+  std::vector<std::pair<CLI::Option*, std::function<void(opal::ModelParameters&, const opal::ModelParameters&)>>>
+    GivenOverPreset;
   std::string Preset = "fig12";
   CLI::Option* DomainDiameterRangeOption = nullptr;
 };

@@ -70,6 +70,16 @@ glm::dmat3 domainRotation(double tilt, double spin)
 
 } // namespace
 
+std::array<double, 3> tiltedNormal(double tilt, double spin)
+{
+  glm::dvec3 normal = domainRotation(tilt, spin) * glm::dvec3(0, 1, 0);
+  if (normal.y < 0)
+  {
+    normal = -normal;
+  }
+  return { normal.x, normal.y, normal.z };
+}
+
 bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>& vertices,
   const std::array<double, 3>& normal, std::vector<std::array<int, 3>>& voxels)
 {
@@ -143,8 +153,12 @@ bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>
   return true;
 }
 
-DomainLayout DomainLayout::build(
-  const ModelParameters& p, const std::function<bool(double)>& progress)
+DomainLayout DomainLayout::build(const ModelParameters& p, const std::function<bool(double)>& progress)
+{
+  return p.DomainLayout == DomainLayoutKind::Voronoi ? buildVoronoi(p, progress) : buildPolygons(p, progress);
+}
+
+DomainLayout DomainLayout::buildPolygons(const ModelParameters& p, const std::function<bool(double)>& progress)
 {
   DomainLayout layout;
   layout.Requested = p.DomainCount;
@@ -180,18 +194,13 @@ DomainLayout DomainLayout::build(
         continue;
       }
       const glm::dmat3 rotation = domainRotation(tilt, spin);
-      glm::dvec3 normal = rotation * glm::dvec3(0, 1, 0);
-      if (normal.y < 0)
-      {
-        normal = -normal;
-      }
+      const std::array<double, 3> n = tiltedNormal(tilt, spin);
       vertices.clear();
       for (const glm::dvec2& local : polygon)
       {
         const glm::dvec3 world = rotation * glm::dvec3(local.x, 0, local.y);
         vertices.push_back({ world.x + centre[0], world.y + centre[1], world.z + centre[2] });
       }
-      const std::array<double, 3> n{ normal.x, normal.y, normal.z };
       if (!rasterisePolygon(grid, vertices, n, voxels) || voxels.empty())
       {
         continue;

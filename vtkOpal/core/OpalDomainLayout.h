@@ -1,7 +1,8 @@
-// The diffraction domains of the paper (§3.2): jittered regular polygons,
+// The diffraction domains: the paper's (§3.2) jittered regular polygons,
 // tilted, spun and moved into the opal, rasterised as one-voxel-thick naive
-// digital planes. The list depends only on the parameters and the seed, so
-// every process computes the same one.
+// digital planes; or the ordered cells of a weighted Voronoi tessellation
+// (docs/design.md §2.6). The list depends only on the parameters and the
+// seed, so every process computes the same one.
 #pragma once
 
 #include "OpalGrid.h"
@@ -19,7 +20,7 @@ namespace opal
 struct Domain
 {
   int Id = -1;
-  std::vector<std::array<double, 3>> Vertices; // world coordinates, mm
+  std::vector<std::array<double, 3>> Vertices; // world coordinates, mm (none for a Voronoi cell)
   std::array<double, 3> Normal{}; // FCC (111) lattice-plane normal, y >= 0
   double ParticleDiameter = 0;    // nm
 };
@@ -35,8 +36,10 @@ struct DomainVoxel
 class DomainLayout
 {
 public:
-  // Places the domains one after another. A domain that finds no free place
-  // within MaxPlacementAttempts is skipped (placedCount() tells how many made it).
+  // Polygons: places the domains one after another; a domain that finds no
+  // free place within MaxPlacementAttempts is skipped (placedCount() tells
+  // how many made it). Voronoi: the cells, their percolation and one domain
+  // per ordered cell.
   // progress(fraction) is called now and then; returning false aborts the build.
   static DomainLayout build(const ModelParameters& parameters,
     const std::function<bool(double)>& progress = nullptr);
@@ -53,9 +56,22 @@ public:
   // First diffraction voxel at or after the global index.
   std::vector<DomainVoxel>::const_iterator lowerBound(std::int64_t index) const;
 
+  // Voronoi: the cell of every voxel of the grid (x fastest, -1 outside the
+  // opal) and each cell's domain (-1: disordered). Empty for polygons.
+  bool hasCells() const { return !this->CellIds.empty(); }
+  const std::vector<std::int32_t>& cellIds() const { return this->CellIds; }
+  const std::vector<int>& cellDomains() const { return this->CellDomains; }
+  int cellCount() const { return static_cast<int>(this->CellDomains.size()); }
+
 private:
+  static DomainLayout buildPolygons(const ModelParameters& parameters, const std::function<bool(double)>& progress);
+  // Defined in OpalVoronoiLayout.cxx.
+  static DomainLayout buildVoronoi(const ModelParameters& parameters, const std::function<bool(double)>& progress);
+
   std::vector<Domain> Domains;
   std::vector<DomainVoxel> Voxels;
+  std::vector<std::int32_t> CellIds;
+  std::vector<int> CellDomains;
   int Requested = 0;
   bool Aborted = false;
 };
@@ -64,6 +80,10 @@ private:
 // closest to its normal, each column whose axis crosses the polygon gets the
 // one voxel containing the crossing. Exposed for tests. Returns false if a
 // crossing falls outside the grid.
+// The lattice-plane normal tilted from +y by `tilt` and spun about y by
+// `spin` (radians), turned to y >= 0 (step 3 of paper §3.2).
+std::array<double, 3> tiltedNormal(double tilt, double spin);
+
 bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>& vertices,
   const std::array<double, 3>& normal, std::vector<std::array<int, 3>>& voxels);
 

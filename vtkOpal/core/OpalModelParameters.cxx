@@ -19,6 +19,13 @@ bool ModelParameters::applyPreset(int presetIndex)
     return presetIndex == CustomPreset;
   }
   this->DomainDiameterRange = preset->DomainDiameterRange;
+  if (preset->Voronoi)
+  {
+    this->DomainLayout = DomainLayoutKind::Voronoi;
+    this->VoronoiCellCount = preset->Voronoi->CellCount;
+    this->VoronoiWeightSpread = preset->Voronoi->WeightSpread;
+    this->OrderedFraction = preset->Voronoi->OrderedFraction;
+  }
   return true;
 }
 
@@ -80,6 +87,9 @@ std::string finiteError(const ModelParameters& p)
     { "DomainRotationRange", { p.DomainRotationRange.begin(), p.DomainRotationRange.end() } },
     { "DomainDiameterRange", { p.DomainDiameterRange.begin(), p.DomainDiameterRange.end() } },
     { "RefractiveIndex", { p.RefractiveIndex } },
+    { "VoronoiWeightSpread", { p.VoronoiWeightSpread } },
+    { "OrderedFraction", { p.OrderedFraction } },
+    { "DiameterCorrelationLength", { p.DiameterCorrelationLength } },
   };
   for (const auto& [name, values] : reals)
   {
@@ -224,11 +234,40 @@ std::string scalarsError(const ModelParameters& p)
   }
   return message.str();
 }
+
+// The Voronoi layout's settings and the diameter field (docs/design.md §2.6).
+std::string grainsError(const ModelParameters& p)
+{
+  std::ostringstream message = messageStream();
+  if (p.DomainLayout != DomainLayoutKind::Polygons && p.DomainLayout != DomainLayoutKind::Voronoi)
+  {
+    message << "DomainLayout must be 0 (polygons) or 1 (voronoi), got " << static_cast<int>(p.DomainLayout) << ".";
+  }
+  else if (p.VoronoiCellCount < 1 || p.VoronoiCellCount > MaxVoronoiCellCount)
+  {
+    message << "VoronoiCellCount must lie in [1, " << MaxVoronoiCellCount << "], got " << p.VoronoiCellCount << ".";
+  }
+  else if (!(p.VoronoiWeightSpread >= 0 && p.VoronoiWeightSpread <= 1e4))
+  {
+    message << "VoronoiWeightSpread must lie in [0, 10000] mm, got " << p.VoronoiWeightSpread << ".";
+  }
+  else if (!(p.OrderedFraction >= 0 && p.OrderedFraction <= 1))
+  {
+    message << "OrderedFraction must lie in [0, 1], got " << p.OrderedFraction << ".";
+  }
+  else if (!(p.DiameterCorrelationLength == 0 ||
+             (p.DiameterCorrelationLength >= 1e-6 && p.DiameterCorrelationLength <= 1e4)))
+  {
+    message << "DiameterCorrelationLength must be 0 (independent voxels) or lie in [1e-06, 10000] mm, got "
+            << p.DiameterCorrelationLength << ".";
+  }
+  return message.str();
+}
 } // namespace
 
 std::string validate(const ModelParameters& p)
 {
-  return firstError(p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError });
+  return firstError(p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError, grainsError });
 }
 
 std::string smallShapeWarning(const ModelParameters& p)

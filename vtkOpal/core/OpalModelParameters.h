@@ -10,6 +10,15 @@
 namespace opal
 {
 
+// How the crystal domains are laid out (docs/design.md §2.5): the paper's
+// flat polygons, or three-dimensional grains of a weighted Voronoi
+// tessellation whose ordered cells are percolation clusters (§2.6).
+enum class DomainLayoutKind : int
+{
+  Polygons = 0,
+  Voronoi = 1,
+};
+
 struct ModelParameters
 {
   std::array<int, 3> Dimensions{ 160, 80, 200 };         // voxels (x, y, z), paper §7
@@ -28,6 +37,13 @@ struct ModelParameters
   std::array<double, 2> DomainDiameterRange{ 250.0, 350.0 }; // nm, fig12
   double RefractiveIndex = 1.45;                           // mu of opal (silica)
   int MaxPlacementAttempts = 1000;                         // per domain
+  DomainLayoutKind DomainLayout = DomainLayoutKind::Polygons;
+  int VoronoiCellCount = 1000;        // Voronoi sites in the opal
+  double VoronoiWeightSpread = 0.2;   // mm, additive weights uniform in [0, spread]
+  double OrderedFraction = 0.3;       // share of the Voronoi cells that are crystal domains
+  // mm: the scattering diameters as a smooth random field of this length
+  // (value noise on a lattice of this spacing); 0: independent voxels (the paper).
+  double DiameterCorrelationLength = 0.0;
   std::uint32_t Seed = 1;
 
   // Sets the parameters the paper varies between figures; false if the index is unknown.
@@ -40,6 +56,8 @@ constexpr double MaxVolumeFraction = 0.74;
 // domains of 5-10 vertices).
 constexpr int MaxDomainCount = 100000;
 constexpr int MaxDomainVertices = 64;
+// Every process keeps the sites, their adjacency and each voxel's cell.
+constexpr int MaxVoronoiCellCount = 1000000;
 
 // Empty if the parameters are valid, else one sentence naming the parameter.
 std::string validate(const ModelParameters& parameters);

@@ -1,13 +1,23 @@
 // The paper's figures as presets (docs/design.md §2.8): the parameters the paper
-// varies between its figures. Everything else keeps the model's defaults.
+// varies between its figures; and Voronoi opals (§2.6), which also set the
+// domain layout. Everything else keeps the model's defaults.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace opal
 {
+
+// A Voronoi preset's grain structure: DomainLayout voronoi and these.
+struct VoronoiPresetSettings
+{
+  int CellCount;
+  double WeightSpread;    // mm
+  double OrderedFraction;
+};
 
 struct PresetSettings
 {
@@ -15,6 +25,7 @@ struct PresetSettings
   std::array<double, 2> DomainDiameterRange; // nm
   std::array<int, 2> ImageSize;              // pixels, width x height
   double RotateXDegrees;                     // the stone's placement: rotation about x
+  std::optional<VoronoiPresetSettings> Voronoi; // the paper's figures: none (the layout is left as set)
 };
 
 // Index 0 of the preset enumeration is "custom" (no preset); presets are 1-based.

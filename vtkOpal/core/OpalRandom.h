@@ -22,6 +22,8 @@ enum class RandomStream : std::uint64_t
 {
   ScatteringDiameter = 1, // per voxel, counter = global voxel index
   DomainLayout = 2,       // sequential draws of the domain placement
+  VoronoiCells = 3,       // sequential draws of the Voronoi sites, clusters and domains
+  DiameterField = 4,      // per lattice node of the correlated diameter field
 };
 
 constexpr std::uint64_t hashCounter(std::uint64_t seed, RandomStream stream, std::uint64_t counter)

@@ -17,7 +17,7 @@ VolumeFields fieldsOf(BuiltVolume& volume)
 {
   return { volume.VoxelType.data(), volume.ParticleDiameter.data(), volume.Normal.data(), volume.DomainId.data(),
     volume.BraggLambdaMax.data(), volume.BraggLambdaMin.data(), volume.ScatteringCoefficient.data(),
-    volume.SurfaceDistance.data() };
+    volume.SurfaceDistance.data(), volume.CellId.empty() ? nullptr : volume.CellId.data() };
 }
 
 void allocate(BuiltVolume& volume)
@@ -31,6 +31,10 @@ void allocate(BuiltVolume& volume)
   volume.BraggLambdaMin.resize(voxels);
   volume.ScatteringCoefficient.resize(voxels);
   volume.SurfaceDistance.resize(voxels);
+  if (volume.Layout.hasCells())
+  {
+    volume.CellId.resize(voxels);
+  }
 }
 } // namespace
 
@@ -51,7 +55,10 @@ std::string volumeMemoryError(const ModelParameters& parameters)
 {
   const std::uint64_t voxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
     static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
-  const std::uint64_t needed = voxels * VolumeBytesPerVoxel;
+  // A Voronoi layout keeps each voxel's cell (twice: layout and array) and
+  // lists the ordered ones (16 bytes each, at most all).
+  const std::uint64_t layoutBytes = parameters.DomainLayout == DomainLayoutKind::Voronoi ? 4 + 4 + 16 : 0;
+  const std::uint64_t needed = voxels * (VolumeBytesPerVoxel + layoutBytes);
   const std::uint64_t available = physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {

@@ -1,7 +1,6 @@
 #include "OpalVolumeFiller.h"
 
 #include "OpalOptics.h"
-#include "OpalRandom.h"
 
 #include <algorithm>
 
@@ -13,18 +12,11 @@ VolumeFiller::VolumeFiller(const ModelParameters& parameters, const DomainLayout
   , Layout(layout)
   , VoxelGrid(Grid::fromParameters(parameters))
   , Shape(parameters.SemiAxes)
+  , Diameters(parameters)
   , RayleighPerCubicNm(
       rayleighScatteringPerMm(1.0, parameters.ScatteringVolumeFraction, ReferenceWavelengthNm))
   , MaxSpacing(*std::max_element(this->VoxelGrid.Spacing.begin(), this->VoxelGrid.Spacing.end()))
 {
-}
-
-double VolumeFiller::scatteringDiameter(std::int64_t globalIndex) const
-{
-  const double u = unitFromHash(hashCounter(this->Parameters.Seed, RandomStream::ScatteringDiameter,
-    static_cast<std::uint64_t>(globalIndex)));
-  const auto& range = this->Parameters.ScatteringDiameterRange;
-  return range[0] + (range[1] - range[0]) * u;
 }
 
 bool VolumeFiller::isSurfaceVoxel(int i, int j, int k) const
@@ -76,6 +68,10 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
       : this->Shape.signedDistance(grid.position(std::min(i, mirror), j, k));
     out.SurfaceDistance[o] = static_cast<float>(distance);
     clearVoxel(o, out);
+    if (out.CellId)
+    {
+      out.CellId[o] = this->Layout.cellIds()[static_cast<std::size_t>(globalIndex)];
+    }
     while (domainVoxel != domainEnd && domainVoxel->Index < globalIndex)
     {
       ++domainVoxel;
@@ -125,7 +121,7 @@ void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, co
 void VolumeFiller::fillScatteringVoxel(
   std::int64_t o, const std::array<int, 3>& ijk, double distance, const VolumeFields& out) const
 {
-  const double diameter = this->scatteringDiameter(this->VoxelGrid.linearIndex(ijk[0], ijk[1], ijk[2]));
+  const double diameter = this->Diameters.at(ijk[0], ijk[1], ijk[2]);
   out.VoxelType[o] = ScatteringVoxel;
   out.ParticleDiameter[o] = static_cast<float>(diameter);
   out.ScatteringCoefficient[o] = static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);

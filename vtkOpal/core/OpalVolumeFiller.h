@@ -3,6 +3,7 @@
 // and the domain layout, so pieces agree exactly with the whole volume.
 #pragma once
 
+#include "OpalDiameterField.h"
 #include "OpalDomainLayout.h"
 #include "OpalGrid.h"
 #include "OpalHalfEllipsoid.h"
@@ -32,6 +33,7 @@ struct VolumeFields
   float* BraggLambdaMin;        // nm
   float* ScatteringCoefficient; // 1/mm at 550 nm
   float* SurfaceDistance;       // mm, negative inside
+  std::int32_t* CellId = nullptr; // the Voronoi cell (-1 outside the opal); only with a Voronoi layout
 };
 
 class VolumeFiller
@@ -42,9 +44,6 @@ public:
   // Fills the voxels of `extent` (inclusive index bounds i0 i1 j0 j1 k0 k1)
   // whose z index lies in [kBegin, kEnd). Thread-safe for disjoint ranges.
   void fill(const std::array<int, 6>& extent, int kBegin, int kEnd, const VolumeFields& out) const;
-
-  // The particle diameter (nm) the scattering voxel with this global index gets.
-  double scatteringDiameter(std::int64_t globalIndex) const;
 
 private:
   bool isSurfaceVoxel(int i, int j, int k) const;
@@ -57,6 +56,7 @@ private:
   const DomainLayout& Layout;
   Grid VoxelGrid;
   HalfEllipsoid Shape;
+  DiameterField Diameters;
   double RayleighPerCubicNm; // mu_s(550) / l^3: eq. 1 with n = 6 phi / (pi l^3)
   double MaxSpacing;
 };

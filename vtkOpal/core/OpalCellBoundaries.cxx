@@ -1,0 +1,110 @@
+#include "OpalCellBoundaries.h"
+
+#include <unordered_map>
+#include <utility>
+
+namespace opal
+{
+
+namespace
+{
+// Voxel corners are the nodes of a lattice one larger than the grid each way.
+class CornerIndex
+{
+public:
+  CornerIndex(const Grid& grid, CellBoundaryMesh& mesh)
+    : VoxelGrid(grid)
+    , Mesh(mesh)
+  {
+  }
+
+  int at(const std::array<int, 3>& corner)
+  {
+    const std::int64_t key = corner[0] +
+      (this->VoxelGrid.Dimensions[0] + 1LL) * (corner[1] + (this->VoxelGrid.Dimensions[1] + 1LL) * corner[2]);
+    const auto [it, inserted] = this->Ids.try_emplace(key, static_cast<int>(this->Mesh.Points.size()));
+    if (inserted)
+    {
+      std::array<double, 3> position{};
+      for (int a = 0; a < 3; ++a)
+      {
+        position[a] = this->VoxelGrid.Origin[a] + (corner[a] - 0.5) * this->VoxelGrid.Spacing[a];
+      }
+      this->Mesh.Points.push_back(position);
+    }
+    return it->second;
+  }
+
+private:
+  const Grid& VoxelGrid;
+  CellBoundaryMesh& Mesh;
+  std::unordered_map<std::int64_t, int> Ids;
+};
+
+// The face of voxel ijk on the side `sign` (+1 or -1) of axis a, facing out.
+void addFace(CornerIndex& corners, CellBoundaryMesh& mesh, const std::array<int, 3>& ijk, int a, int sign, int domain)
+{
+  const int u = (a + 1) % 3, v = (a + 2) % 3;
+  std::array<int, 3> base = ijk;
+  base[a] += sign > 0 ? 1 : 0;
+  std::array<int, 4> face{};
+  const int du[4] = { 0, 1, 1, 0 }, dv[4] = { 0, 0, 1, 1 };
+  for (int c = 0; c < 4; ++c)
+  {
+    std::array<int, 3> corner = base;
+    corner[u] += du[c];
+    corner[v] += dv[c];
+    face[static_cast<std::size_t>(c)] = corners.at(corner);
+  }
+  if (sign < 0)
+  {
+    std::swap(face[1], face[3]); // u x v points along +a: reversed, it faces -a
+  }
+  mesh.Faces.push_back(face);
+  mesh.FaceDomain.push_back(domain);
+}
+} // namespace
+
+CellBoundaryMesh orderedCellBoundaries(const Grid& grid, const DomainLayout& layout)
+{
+  CellBoundaryMesh mesh;
+  if (!layout.hasCells())
+  {
+    return mesh;
+  }
+  CornerIndex corners(grid, mesh);
+  const std::vector<std::int32_t>& cells = layout.cellIds();
+  for (int k = 0; k < grid.Dimensions[2]; ++k)
+  {
+    for (int j = 0; j < grid.Dimensions[1]; ++j)
+    {
+      for (int i = 0; i < grid.Dimensions[0]; ++i)
+      {
+        const std::int32_t cell = cells[static_cast<std::size_t>(grid.linearIndex(i, j, k))];
+        const int domain = cell >= 0 ? layout.cellDomains()[static_cast<std::size_t>(cell)] : -1;
+        if (domain < 0)
+        {
+          continue;
+        }
+        const std::array<int, 3> ijk{ i, j, k };
+        for (int a = 0; a < 3; ++a)
+        {
+          for (int sign : { -1, 1 })
+          {
+            std::array<int, 3> next = ijk;
+            next[a] += sign;
+            const bool sameCell = grid.contains(next[0], next[1], next[2]) &&
+              cells[static_cast<std::size_t>(grid.linearIndex(next[0], next[1], next[2]))] == cell;
+            if (!sameCell)
+            {
+              addFace(corners, mesh, ijk, a, sign, domain);
+            }
+          }
+        }
+      }
+    }
+  }
+  return mesh;
+}
+
+} // namespace opal

@@ -1,0 +1,219 @@
+#include "OpalVoronoiCells.h"
+
+#include "OpalParallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace opal
+{
+
+std::vector<VoronoiSite> drawVoronoiSites(const ModelParameters& p, RandomSequence& random)
+{
+  const HalfEllipsoid shape(p.SemiAxes);
+  std::vector<VoronoiSite> sites;
+  sites.reserve(static_cast<std::size_t>(p.VoronoiCellCount));
+  while (static_cast<int>(sites.size()) < p.VoronoiCellCount)
+  {
+    // The half-ellipsoid fills pi/3 of its box: about 2 draws per site.
+    const std::array<double, 3> x{ random.uniform(-p.SemiAxes[0], p.SemiAxes[0]), random.uniform(0.0, p.SemiAxes[1]),
+      random.uniform(-p.SemiAxes[2], p.SemiAxes[2]) };
+    if (shape.contains(x))
+    {
+      sites.push_back({ x, random.uniform(0.0, p.VoronoiWeightSpread) });
+    }
+  }
+  return sites;
+}
+
+double weightedDistance(const VoronoiSite& site, const std::array<double, 3>& x)
+{
+  const double dx = x[0] - site.Position[0], dy = x[1] - site.Position[1], dz = x[2] - site.Position[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz) - site.Weight;
+}
+
+int nearestSiteBruteForce(const std::vector<VoronoiSite>& sites, const std::array<double, 3>& x)
+{
+  int best = -1;
+  double bestDistance = 0;
+  for (std::size_t i = 0; i < sites.size(); ++i)
+  {
+    const double d = weightedDistance(sites[i], x);
+    if (best < 0 || d < bestDistance)
+    {
+      best = static_cast<int>(i);
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
+VoronoiSiteSearch::VoronoiSiteSearch(
+  const std::vector<VoronoiSite>& sites, const std::array<double, 3>& lo, const std::array<double, 3>& hi)
+  : Sites(sites)
+  , Lo(lo)
+{
+  // About one site per bucket, at most 1024 buckets along an axis (the
+  // bucket cube must cover the box for the search's distance bound).
+  const std::array<double, 3> size{ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] };
+  const double volume = size[0] * size[1] * size[2];
+  this->BucketSize = std::max({ std::cbrt(volume / static_cast<double>(std::max<std::size_t>(1, sites.size()))),
+    size[0] / 1024, size[1] / 1024, size[2] / 1024, 1e-12 });
+  for (int a = 0; a < 3; ++a)
+  {
+    const double cells = std::ceil(size[a] / this->BucketSize);
+    this->Buckets[a] = static_cast<int>(std::clamp(cells, 1.0, 1024.0));
+  }
+  const std::size_t bucketCount = static_cast<std::size_t>(this->Buckets[0]) * this->Buckets[1] * this->Buckets[2];
+  std::vector<int> bucketOfSite(sites.size());
+  this->BucketStart.assign(bucketCount + 1, 0);
+  for (std::size_t i = 0; i < sites.size(); ++i)
+  {
+    const std::array<int, 3> b = this->bucketOf(sites[i].Position);
+    bucketOfSite[i] = b[0] + this->Buckets[0] * (b[1] + this->Buckets[1] * b[2]);
+    ++this->BucketStart[static_cast<std::size_t>(bucketOfSite[i]) + 1];
+    this->MaxWeight = std::max(this->MaxWeight, sites[i].Weight);
+  }
+  for (std::size_t b = 0; b < bucketCount; ++b)
+  {
+    this->BucketStart[b + 1] += this->BucketStart[b];
+  }
+  // Counting sort: each bucket's sites in increasing index.
+  std::vector<int> fill(this->BucketStart.begin(), this->BucketStart.end() - 1);
+  this->BucketSites.resize(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i)
+  {
+    this->BucketSites[static_cast<std::size_t>(fill[static_cast<std::size_t>(bucketOfSite[i])]++)] = static_cast<int>(i);
+  }
+}
+
+std::array<int, 3> VoronoiSiteSearch::bucketOf(const std::array<double, 3>& x) const
+{
+  std::array<int, 3> b{};
+  for (int a = 0; a < 3; ++a)
+  {
+    const double cell = std::floor((x[a] - this->Lo[a]) / this->BucketSize);
+    b[a] = static_cast<int>(std::clamp(cell, 0.0, static_cast<double>(this->Buckets[a] - 1)));
+  }
+  return b;
+}
+
+void VoronoiSiteSearch::visitBucket(
+  int bx, int by, int bz, const std::array<double, 3>& x, int& best, double& bestDistance) const
+{
+  const std::size_t b = static_cast<std::size_t>(bx + this->Buckets[0] * (by + this->Buckets[1] * bz));
+  for (int s = this->BucketStart[b]; s < this->BucketStart[b + 1]; ++s)
+  {
+    const int site = this->BucketSites[static_cast<std::size_t>(s)];
+    const double d = weightedDistance(this->Sites[static_cast<std::size_t>(site)], x);
+    if (best < 0 || d < bestDistance || (d == bestDistance && site < best))
+    {
+      best = site;
+      bestDistance = d;
+    }
+  }
+}
+
+int VoronoiSiteSearch::nearest(const std::array<double, 3>& x) const
+{
+  const std::array<int, 3> c = this->bucketOf(x);
+  const int maxRing = std::max({ this->Buckets[0], this->Buckets[1], this->Buckets[2] });
+  int best = -1;
+  double bestDistance = 0;
+  for (int ring = 0; ring <= maxRing; ++ring)
+  {
+    // Every site of ring r (buckets at Chebyshev distance r) lies at least
+    // (r - 1) bucket sizes from x, so it cannot beat the best once that,
+    // less the largest weight, exceeds the best.
+    if (best >= 0 && (ring - 1) * this->BucketSize - this->MaxWeight > bestDistance)
+    {
+      break;
+    }
+    for (int bz = std::max(0, c[2] - ring); bz <= std::min(this->Buckets[2] - 1, c[2] + ring); ++bz)
+    {
+      for (int by = std::max(0, c[1] - ring); by <= std::min(this->Buckets[1] - 1, c[1] + ring); ++by)
+      {
+        const bool shell = std::abs(bz - c[2]) == ring || std::abs(by - c[1]) == ring;
+        // Inside the shell's y-z cross-section only the two x ends belong to ring r.
+        const int step = shell || ring == 0 ? 1 : 2 * ring;
+        for (int bx = c[0] - ring; bx <= c[0] + ring; bx += step)
+        {
+          if (bx >= 0 && bx < this->Buckets[0])
+          {
+            this->visitBucket(bx, by, bz, x, best, bestDistance);
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+std::vector<std::int32_t> assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape,
+  const VoronoiSiteSearch& search, const std::function<bool(double)>& progress)
+{
+  std::vector<std::int32_t> cells(static_cast<std::size_t>(grid.voxelCount()), -1);
+  const int nz = grid.Dimensions[2];
+  const int chunk = std::max(1, nz / 20);
+  for (int k0 = 0; k0 < nz; k0 += chunk)
+  {
+    const int k1 = std::min(nz, k0 + chunk);
+    parallelFor(k0, k1, [&](int begin, int end) {
+      for (int k = begin; k < end; ++k)
+      {
+        for (int j = 0; j < grid.Dimensions[1]; ++j)
+        {
+          for (int i = 0; i < grid.Dimensions[0]; ++i)
+          {
+            const std::array<double, 3> x = grid.position(i, j, k);
+            if (shape.contains(x))
+            {
+              cells[static_cast<std::size_t>(grid.linearIndex(i, j, k))] = search.nearest(x);
+            }
+          }
+        }
+      }
+    });
+    if (progress && !progress(static_cast<double>(k1) / nz))
+    {
+      return {};
+    }
+  }
+  return cells;
+}
+
+std::vector<std::vector<int>> voronoiAdjacency(const Grid& grid, const std::vector<std::int32_t>& cells, int cellCount)
+{
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(cellCount));
+  const std::int64_t strides[3] = { 1, grid.Dimensions[0],
+    static_cast<std::int64_t>(grid.Dimensions[0]) * grid.Dimensions[1] };
+  for (int k = 0; k < grid.Dimensions[2]; ++k)
+  {
+    for (int j = 0; j < grid.Dimensions[1]; ++j)
+    {
+      for (int i = 0; i < grid.Dimensions[0]; ++i)
+      {
+        const std::int64_t v = grid.linearIndex(i, j, k);
+        const int here = cells[static_cast<std::size_t>(v)];
+        const int ijk[3] = { i, j, k };
+        for (int a = 0; a < 3; ++a)
+        {
+          const int there = ijk[a] + 1 < grid.Dimensions[a] ? cells[static_cast<std::size_t>(v + strides[a])] : -1;
+          if (here >= 0 && there >= 0 && here != there)
+          {
+            neighbours[static_cast<std::size_t>(here)].push_back(there);
+            neighbours[static_cast<std::size_t>(there)].push_back(here);
+          }
+        }
+      }
+    }
+  }
+  for (std::vector<int>& list : neighbours)
+  {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+} // namespace opal

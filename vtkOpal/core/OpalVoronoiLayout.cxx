@@ -1,0 +1,87 @@
+// DomainLayout::buildVoronoi (docs/design.md §2.6): the weighted Voronoi
+// cells of the opal, their percolation clusters, and one crystal domain per
+// ordered cell.
+#include "OpalDomainLayout.h"
+
+#include "OpalHalfEllipsoid.h"
+#include "OpalOptics.h"
+#include "OpalOrderedClusters.h"
+#include "OpalRandom.h"
+#include "OpalVoronoiCells.h"
+
+namespace opal
+{
+
+namespace
+{
+// Share of the layout's progress spent assigning voxels to cells.
+constexpr double AssignShare = 0.9;
+
+std::vector<std::uint8_t> cellsWithVoxels(const std::vector<std::int32_t>& cells, int cellCount)
+{
+  std::vector<std::uint8_t> has(static_cast<std::size_t>(cellCount), 0);
+  for (std::int32_t c : cells)
+  {
+    if (c >= 0)
+    {
+      has[static_cast<std::size_t>(c)] = 1;
+    }
+  }
+  return has;
+}
+
+// An ordered cell's crystal: the (111) normal tilted within
+// DomainRotationRange, spun uniformly, and one sphere diameter.
+Domain crystalDomain(int id, const ModelParameters& p, RandomSequence& random)
+{
+  constexpr double DegToRad = Pi / 180.0;
+  Domain domain;
+  domain.Id = id;
+  const double tilt = random.uniform(p.DomainRotationRange[0], p.DomainRotationRange[1]) * DegToRad;
+  const double spin = random.uniform(0.0, 360.0) * DegToRad;
+  domain.Normal = tiltedNormal(tilt, spin);
+  domain.ParticleDiameter = random.uniform(p.DomainDiameterRange[0], p.DomainDiameterRange[1]);
+  return domain;
+}
+} // namespace
+
+DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::function<bool(double)>& progress)
+{
+  DomainLayout layout;
+  const Grid grid = Grid::fromParameters(p);
+  const HalfEllipsoid shape(p.SemiAxes);
+  RandomSequence random(p.Seed, RandomStream::VoronoiCells);
+  const std::vector<VoronoiSite> sites = drawVoronoiSites(p, random);
+  const VoronoiSiteSearch search(sites, { -p.SemiAxes[0], 0.0, -p.SemiAxes[2] }, p.SemiAxes);
+  layout.CellIds = assignVoronoiCells(grid, shape, search,
+    [&progress](double f) { return !progress || progress(AssignShare * f); });
+  if (layout.CellIds.empty())
+  {
+    layout.Aborted = true;
+    return layout;
+  }
+  const int cellCount = static_cast<int>(sites.size());
+  const std::vector<std::uint8_t> ordered = growOrderedClusters(voronoiAdjacency(grid, layout.CellIds, cellCount),
+    cellsWithVoxels(layout.CellIds, cellCount), p.OrderedFraction, random);
+  layout.CellDomains.assign(static_cast<std::size_t>(cellCount), -1);
+  for (int c = 0; c < cellCount; ++c)
+  {
+    if (ordered[static_cast<std::size_t>(c)])
+    {
+      layout.CellDomains[static_cast<std::size_t>(c)] = static_cast<int>(layout.Domains.size());
+      layout.Domains.push_back(crystalDomain(static_cast<int>(layout.Domains.size()), p, random));
+    }
+  }
+  layout.Requested = static_cast<int>(layout.Domains.size());
+  for (std::size_t v = 0; v < layout.CellIds.size(); ++v)
+  {
+    const std::int32_t cell = layout.CellIds[v];
+    if (cell >= 0 && layout.CellDomains[static_cast<std::size_t>(cell)] >= 0)
+    {
+      layout.Voxels.push_back({ static_cast<std::int64_t>(v), layout.CellDomains[static_cast<std::size_t>(cell)] });
+    }
+  }
+  return layout;
+}
+
+} // namespace opal
