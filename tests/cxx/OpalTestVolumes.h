@@ -33,6 +33,16 @@ inline vtkSmartPointer<vtkOpalSource> makeSmallSource(int seed = 1)
   return source;
 }
 
+// A small volume of Voronoi grains with correlated scattering diameters.
+inline vtkSmartPointer<vtkOpalSource> makeSmallGrainSource(int seed = 1)
+{
+  auto source = makeSmallSource(seed);
+  source->SetDomainLayout(1);
+  source->SetVoronoiCellCount(80);
+  source->SetDiameterCorrelationLength(0.7);
+  return source;
+}
+
 // Counts the points of `piece` whose arrays differ from `whole` at the same global index.
 inline long long countDifferences(vtkImageData* whole, vtkImageData* piece, const std::string& name)
 {

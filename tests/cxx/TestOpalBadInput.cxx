@@ -10,7 +10,9 @@
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,6 +55,18 @@ int TestOpalBadInput(int, char*[])
     { "refractive index below 1", [](vtkOpalSource* s) { s->SetRefractiveIndex(0.9); }, "RefractiveIndex" },
     { "no placement attempts", [](vtkOpalSource* s) { s->SetMaxPlacementAttempts(0); }, "MaxPlacementAttempts" },
     { "unknown preset", [](vtkOpalSource* s) { s->SetPreset(99); }, "Preset" },
+    { "unknown layout", [](vtkOpalSource* s) { s->SetDomainLayout(2); }, "DomainLayout" },
+    { "no Voronoi cells", [](vtkOpalSource* s) { s->SetVoronoiCellCount(0); }, "VoronoiCellCount" },
+    { "too many Voronoi cells", [](vtkOpalSource* s) { s->SetVoronoiCellCount(2000000); }, "VoronoiCellCount" },
+    { "negative weight spread", [](vtkOpalSource* s) { s->SetVoronoiWeightSpread(-0.1); }, "VoronoiWeightSpread" },
+    { "NaN weight spread", [](vtkOpalSource* s) { s->SetVoronoiWeightSpread(std::nan("")); }, "VoronoiWeightSpread" },
+    { "ordered fraction above 1", [](vtkOpalSource* s) { s->SetOrderedFraction(1.5); }, "OrderedFraction" },
+    { "negative ordered fraction", [](vtkOpalSource* s) { s->SetOrderedFraction(-0.5); }, "OrderedFraction" },
+    { "negative correlation length", [](vtkOpalSource* s) { s->SetDiameterCorrelationLength(-1); },
+      "DiameterCorrelationLength" },
+    { "infinite correlation length",
+      [](vtkOpalSource* s) { s->SetDiameterCorrelationLength(std::numeric_limits<double>::infinity()); },
+      "DiameterCorrelationLength" },
     { "more voxels than memory", [](vtkOpalSource* s) { s->SetDimensions(4000, 4000, 4000); }, "of memory" },
   };
 

@@ -14,11 +14,14 @@
 #include "OpalVoronoiCells.h"
 #include "OpalVolumeBuild.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
@@ -142,6 +145,38 @@ void checkBoundariesClose(const opal::BuiltVolume& v)
     "the ordered cells' boundaries are closed (" + std::to_string(mesh.Faces.size()) + " faces, " +
       std::to_string(open) + " open edges)");
 }
+// The source's second output: the ordered cells' faces, each with its
+// domain's cell data, every domain present.
+void checkSourceBoundaries()
+{
+  auto source = opaltest::makeSmallGrainSource(3);
+  source->Update();
+  auto* faces = vtkPolyData::SafeDownCast(source->GetOutputDataObject(1));
+  vtkDataArray* ids = faces ? faces->GetCellData()->GetArray("DomainId") : nullptr;
+  OPAL_CHECK(ids && faces->GetNumberOfCells() > 0, "port 1 holds the ordered cells' faces with DomainId");
+  for (const char* array : { "ParticleDiameter", "Normal", "BraggLambdaMax" })
+  {
+    OPAL_CHECK(faces && faces->GetCellData()->GetArray(array), std::string("the faces carry ") + array);
+  }
+  const double placed = source->GetOutput()->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0);
+  std::vector<int> seen(static_cast<std::size_t>(placed), 0);
+  long long outOfRange = 0;
+  for (vtkIdType c = 0; ids && c < ids->GetNumberOfTuples(); ++c)
+  {
+    const double d = ids->GetComponent(c, 0);
+    if (d >= 0 && d < placed)
+    {
+      seen[static_cast<std::size_t>(d)] = 1;
+    }
+    else
+    {
+      ++outOfRange;
+    }
+  }
+  OPAL_CHECK(outOfRange == 0, "every face names a placed domain");
+  OPAL_CHECK(placed > 0 && std::count(seen.begin(), seen.end(), 1) == placed,
+    "every one of the " + std::to_string(placed) + " domains has faces");
+}
 } // namespace
 
 int TestOpalVoronoiGrains(int, char*[])
@@ -157,5 +192,6 @@ int TestOpalVoronoiGrains(int, char*[])
   }
   checkPercolation(voronoiModel(600, 0.1, 0.3));
   checkPercolation(voronoiModel(600, 0.1, 0.1));
+  checkSourceBoundaries();
   return opaltest::finish("TestOpalVoronoiGrains");
 }
