@@ -4,6 +4,7 @@
 #include "OpalCliFiles.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
+#include "OpalPresets.h"
 #include "OpalVolumeBuild.h"
 #include "OpalVtkSupport.h"
 #include "vtkOpalSource.h"
@@ -83,13 +84,21 @@ int main(int argc, char** argv)
 
   int dims[3];
   volume->GetDimensions(dims);
-  std::printf("Opal volume (preset %s)\n", model.presetName().c_str());
+  const opal::PresetSettings* recorded = opal::presetByIndex(model.presetIndex());
+  std::printf("Opal volume (preset %s)\n", recorded ? recorded->Name : "custom");
   std::printf("  grid             %d x %d x %d voxels (%lld)\n", dims[0], dims[1], dims[2],
     counts[0] + counts[1] + counts[2]);
   std::printf("  empty            %lld\n", counts[0]);
   std::printf("  scattering       %lld\n", counts[1]);
   std::printf("  diffraction      %lld\n", counts[2]);
-  std::printf("  domains placed   %d of %d\n", placed, source->GetDomainCount());
+  if (source->GetDomainLayout() == static_cast<int>(opal::DomainLayoutKind::Voronoi))
+  {
+    std::printf("  voronoi cells    %d, %d ordered (domains)\n", source->GetVoronoiCellCount(), placed);
+  }
+  else
+  {
+    std::printf("  domains placed   %d of %d\n", placed, source->GetDomainCount());
+  }
   std::printf("  build time       %.3f s\n", seconds);
   std::printf("  written to       %s\n", output.c_str());
   return 0;

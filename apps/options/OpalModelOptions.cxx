@@ -40,8 +40,9 @@ void OpalModelOptions::addTo(CLI::App& app)
     app, "--domain-angle-range", p.DomainAngleRange, "Allowed interior angles MIN MAX in degrees (30 170)", "Model");
   addArrayOption(app, "--domain-rotation-range", p.DomainRotationRange,
     "Tilt of the domain normal from +y MIN MAX in degrees (0 30)", "Model");
-  this->DomainDiameterRangeOption = addArrayOption(app, "--domain-diameter-range",
-    p.DomainDiameterRange, "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model");
+  this->keepIfGiven(addArrayOption(app, "--domain-diameter-range", p.DomainDiameterRange,
+                      "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model"),
+    &opal::ModelParameters::DomainDiameterRange);
   this->addGrainOptions(app);
   app.add_option("--refractive-index", p.RefractiveIndex, "Refractive index of opal")
     ->capture_default_str()
@@ -85,7 +86,7 @@ void OpalModelOptions::addGrainOptions(CLI::App& app)
 opal::ModelParameters OpalModelOptions::parameters() const
 {
   opal::ModelParameters resolved = this->Parameters;
-  resolved.applyPreset(this->presetIndex());
+  resolved.applyPreset(opal::presetIndexByName(this->Preset));
   for (const auto& [option, keep] : this->GivenOverPreset)
   {
     if (option->count() > 0)
@@ -98,7 +99,12 @@ opal::ModelParameters OpalModelOptions::parameters() const
 
 int OpalModelOptions::presetIndex() const
 {
-  // An explicit --domain-diameter-range wins over the preset's.
-  const bool ownDiameters = this->DomainDiameterRangeOption && this->DomainDiameterRangeOption->count() > 0;
-  return ownDiameters ? opal::CustomPreset : opal::presetIndexByName(this->Preset);
+  // A flag that wins over the preset's value (--domain-diameter-range, the
+  // layout's): the volume is then recorded (and rebuilt by the source) as custom.
+  bool overridden = false;
+  for (const auto& given : this->GivenOverPreset)
+  {
+    overridden = overridden || given.first->count() > 0;
+  }
+  return overridden ? opal::CustomPreset : opal::presetIndexByName(this->Preset);
 }

@@ -21,7 +21,7 @@ public:
   // The parameters: the preset's, then every flag given explicitly (a flag
   // wins over the preset's value).
   opal::ModelParameters parameters() const;
-  // The preset to record: custom when --domain-diameter-range overrides it.
+  // The preset to record: custom when a flag overrides one of its values.
   int presetIndex() const;
 
   const std::string& presetName() const { return this->Preset; }
@@ -41,5 +41,4 @@ private:
   std::vector<std::pair<CLI::Option*, std::function<void(opal::ModelParameters&, const opal::ModelParameters&)>>>
     GivenOverPreset;
   std::string Preset = "fig12";
-  CLI::Option* DomainDiameterRangeOption = nullptr;
 };

@@ -29,6 +29,13 @@ oiiotool --info -v spectral.exr | grep -q "44 channel" || fail "spectral.exr has
 
 "$volume" --dimensions 40 20 50 --domain-count 30 -o v.vti >v.txt 2>&1 || fail "opal-volume exits 0"
 grep -q "domains placed   30 of 30" v.txt || fail "opal-volume prints its summary"
+# Voronoi grains: a preset sets the layout; a flag given with it wins over its value.
+"$volume" --dimensions 40 20 50 --preset pinfire -o grains.vti >g.txt 2>&1 || fail "opal-volume --preset pinfire exits 0"
+grep -q "voronoi cells    3000, 360 ordered" g.txt || fail "pinfire: 3000 cells, 12% ordered: $(cat g.txt)"
+"$volume" --dimensions 40 20 50 --preset pinfire --voronoi-cell-count 100 --ordered-fraction 0.5 -o grains.vti >g.txt 2>&1 ||
+  fail "opal-volume with pinfire overridden exits 0"
+grep -q "voronoi cells    100, 50 ordered" g.txt || fail "flags win over the preset: $(cat g.txt)"
+grep -q "preset custom" g.txt || fail "an overridden preset is recorded as custom: $(cat g.txt)"
 
 # Each bad argument: one line on stderr, non-zero exit, nothing written.
 expect_one_line() {
@@ -48,6 +55,10 @@ expect_one_line "volume fraction 0.9" "ScatteringVolumeFraction" "$render" "${sm
 expect_one_line "three vertex values" "--domain-vertex-range" "$render" --domain-vertex-range 3 4 5 -o x.png
 expect_one_line "nothing to write" "nothing to write" "$render" "${small[@]}"
 expect_one_line "opal-volume bad dimensions" "Dimensions" "$volume" --dimensions 0 20 50 -o x.vti
+expect_one_line "unknown layout" "--domain-layout" "$volume" --domain-layout hexagons -o x.vti
+expect_one_line "ordered fraction 2" "OrderedFraction" "$volume" --domain-layout voronoi --ordered-fraction 2 -o x.vti
+expect_one_line "no Voronoi cells" "VoronoiCellCount" "$render" "${small[@]}" --voronoi-cell-count 0 -o x.png
+expect_one_line "negative correlation length" "DiameterCorrelationLength" "$volume" --diameter-correlation-length -1 -o x.vti
 expect_one_line "width beyond an int" "from -2147483648 to 2147483647" "$render" --width 99999999999 -o x.png
 expect_one_line "negative seed" "from 0 to 18446744073709551615" "$render" --seed -1 -o x.png
 # Enough digits to tell the value from the bound; one refractive-index rule for volume and render.

@@ -6,7 +6,9 @@ the image from the whole volume (every rank generates it, by the volume's
 determinism) with the same automatic exposure (taken from a thumbnail of the
 whole image), so RGB must match exactly and the float arrays to 1e-5 relative
 (identical arithmetic; the tolerance only allows for a different CPU path).
-Usage: pvpython TestOpalMPI.py N volume|render"""
+The voronoi case is the volume of Voronoi grains with correlated diameters
+(CellId too).
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render"""
 import os
 import sys
 
@@ -18,7 +20,8 @@ import opal_test_config as config
 from opal_test_support import check, finish, run
 
 ranks, kind = int(sys.argv[1]), sys.argv[2]
-arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else [])
+arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else []) + \
+    (["--voronoi"] if kind == "voronoi" else [])
 here = os.path.dirname(os.path.abspath(__file__))
 writer = os.path.join(here, "opal_write_pipeline.py")
 os.makedirs(config.OUTPUT_DIRECTORY, exist_ok=True)
@@ -44,9 +47,9 @@ parallel_data = parallel_reader.GetOutput()
 check(parallel_reader.GetNumberOfPieces() == ranks,
       f"{ranks} pieces written, got {parallel_reader.GetNumberOfPieces()}")
 check(serial_data.GetDimensions() == parallel_data.GetDimensions(), "same grid")
-if kind == "volume":
+if kind in ("volume", "voronoi"):
     exact = ["VoxelType", "ParticleDiameter", "Normal", "DomainId", "BraggLambdaMax",
-             "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance"]
+             "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance"] + (["CellId"] if kind == "voronoi" else [])
     close = []
 else:
     exact = ["RGB"]

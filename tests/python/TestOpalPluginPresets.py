@@ -1,5 +1,7 @@
 """pvpython: the plugin loads, its Opal Volume proxy is documented and builds
-every paper preset with the arrays of docs/design.md §2.5 and all 250 domains."""
+every paper preset with the arrays of docs/design.md §2.5 and all 250 domains,
+and the Voronoi presets (harlequin, pinfire) with CellId, their ordered cells
+as domains and the cells' faces on the Domains output."""
 
 from paraview import servermanager as sm
 from paraview.simple import LoadPlugin
@@ -43,5 +45,20 @@ for preset in ["fig10", "fig11", "fig12", "fig13", "fig15", "fig17"]:
           f"{preset}: field data records the preset")
     polygons = sm.Fetch(volume, idx=1)
     check(polygons.GetNumberOfCells() == 250, f"{preset}: 250 domain polygons")
+
+for preset, cells, fraction in [("harlequin", 150, 0.5), ("pinfire", 3000, 0.12)]:
+    volume = OpalVolume(Preset=preset)
+    volume.UpdatePipeline()
+    data = sm.Fetch(volume)
+    cell_ids = data.GetPointData().GetArray("CellId")
+    check(cell_ids is not None and cell_ids.GetClassName() == "vtkIntArray", f"{preset}: CellId is a vtkIntArray")
+    fields = data.GetFieldData()
+    check(fields.GetArray("DomainLayout").GetValue(0) == 1, f"{preset}: the layout is voronoi")
+    check(fields.GetArray("VoronoiCellCount").GetValue(0) == cells, f"{preset}: {cells} cells")
+    placed = fields.GetArray("DomainsPlaced").GetValue(0)
+    check(abs(placed - fraction * cells) <= 0.05 * cells,
+          f"{preset}: about {fraction:.0%} of {cells} cells ordered, got {placed}")
+    faces = sm.Fetch(volume, idx=1)
+    check(faces.GetNumberOfCells() > placed, f"{preset}: the ordered cells' faces on the Domains output")
 
 finish("TestOpalPluginPresets")
