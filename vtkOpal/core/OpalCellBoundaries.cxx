@@ -1,6 +1,5 @@
 #include "OpalCellBoundaries.h"
 
-#include <unordered_map>
 #include <utility>
 
 namespace opal
@@ -8,23 +7,28 @@ namespace opal
 
 namespace
 {
-// Voxel corners are the nodes of a lattice one larger than the grid each way.
+// Voxel corners are the nodes of a lattice one larger than the grid each
+// way; each gets its point the first time a face uses it (a dense table: as
+// large as the volume's int arrays, and much faster than hashing).
 class CornerIndex
 {
 public:
   CornerIndex(const Grid& grid, CellBoundaryMesh& mesh)
     : VoxelGrid(grid)
     , Mesh(mesh)
+    , Ids(static_cast<std::size_t>(grid.Dimensions[0] + 1) * static_cast<std::size_t>(grid.Dimensions[1] + 1) *
+          static_cast<std::size_t>(grid.Dimensions[2] + 1), -1)
   {
   }
 
   int at(const std::array<int, 3>& corner)
   {
-    const std::int64_t key = corner[0] +
-      (this->VoxelGrid.Dimensions[0] + 1LL) * (corner[1] + (this->VoxelGrid.Dimensions[1] + 1LL) * corner[2]);
-    const auto [it, inserted] = this->Ids.try_emplace(key, static_cast<int>(this->Mesh.Points.size()));
-    if (inserted)
+    const std::size_t key = static_cast<std::size_t>(corner[0]) +
+      (this->VoxelGrid.Dimensions[0] + 1ULL) * (corner[1] + (this->VoxelGrid.Dimensions[1] + 1ULL) * corner[2]);
+    int& id = this->Ids[key];
+    if (id < 0)
     {
+      id = static_cast<int>(this->Mesh.Points.size());
       std::array<double, 3> position{};
       for (int a = 0; a < 3; ++a)
       {
@@ -32,13 +36,13 @@ public:
       }
       this->Mesh.Points.push_back(position);
     }
-    return it->second;
+    return id;
   }
 
 private:
   const Grid& VoxelGrid;
   CellBoundaryMesh& Mesh;
-  std::unordered_map<std::int64_t, int> Ids;
+  std::vector<int> Ids;
 };
 
 // The face of voxel ijk on the side `sign` (+1 or -1) of axis a, facing out.

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 namespace opal
 {
@@ -54,7 +56,7 @@ VoronoiSiteSearch::VoronoiSiteSearch(
   , Lo(lo)
 {
   // About one site per bucket, at most 1024 buckets along an axis (the
-  // bucket cube must cover the box for the search's distance bound).
+  // bucket cube must cover the box for the search's distance bounds).
   const std::array<double, 3> size{ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] };
   const double volume = size[0] * size[1] * size[2];
   this->BucketSize = std::max({ std::cbrt(volume / static_cast<double>(std::max<std::size_t>(1, sites.size()))),
@@ -64,24 +66,45 @@ VoronoiSiteSearch::VoronoiSiteSearch(
     const double cells = std::ceil(size[a] / this->BucketSize);
     this->Buckets[a] = static_cast<int>(std::clamp(cells, 1.0, 1024.0));
   }
-  const std::size_t bucketCount = static_cast<std::size_t>(this->Buckets[0]) * this->Buckets[1] * this->Buckets[2];
-  std::vector<int> bucketOfSite(sites.size());
-  this->BucketStart.assign(bucketCount + 1, 0);
-  for (std::size_t i = 0; i < sites.size(); ++i)
+  this->bucketSites();
+  const int bucketCount = this->Buckets[0] * this->Buckets[1] * this->Buckets[2];
+  std::vector<std::vector<int>> candidates(static_cast<std::size_t>(bucketCount));
+  parallelFor(0, bucketCount, [&](int begin, int end) {
+    for (int b = begin; b < end; ++b)
+    {
+      const std::array<int, 3> c{ b % this->Buckets[0], (b / this->Buckets[0]) % this->Buckets[1],
+        b / (this->Buckets[0] * this->Buckets[1]) };
+      candidates[static_cast<std::size_t>(b)] = this->candidatesOf(c);
+    }
+  });
+  this->CandidateStart.assign(1, 0);
+  for (const std::vector<int>& list : candidates)
   {
-    const std::array<int, 3> b = this->bucketOf(sites[i].Position);
+    this->Candidates.insert(this->Candidates.end(), list.begin(), list.end());
+    this->CandidateStart.push_back(static_cast<int>(this->Candidates.size()));
+  }
+}
+
+// Counting sort of the sites into their buckets, each bucket's in increasing index.
+void VoronoiSiteSearch::bucketSites()
+{
+  const std::size_t bucketCount = static_cast<std::size_t>(this->Buckets[0]) * this->Buckets[1] * this->Buckets[2];
+  std::vector<int> bucketOfSite(this->Sites.size());
+  this->BucketStart.assign(bucketCount + 1, 0);
+  for (std::size_t i = 0; i < this->Sites.size(); ++i)
+  {
+    const std::array<int, 3> b = this->bucketOf(this->Sites[i].Position);
     bucketOfSite[i] = b[0] + this->Buckets[0] * (b[1] + this->Buckets[1] * b[2]);
     ++this->BucketStart[static_cast<std::size_t>(bucketOfSite[i]) + 1];
-    this->MaxWeight = std::max(this->MaxWeight, sites[i].Weight);
+    this->MaxWeight = std::max(this->MaxWeight, this->Sites[i].Weight);
   }
   for (std::size_t b = 0; b < bucketCount; ++b)
   {
     this->BucketStart[b + 1] += this->BucketStart[b];
   }
-  // Counting sort: each bucket's sites in increasing index.
   std::vector<int> fill(this->BucketStart.begin(), this->BucketStart.end() - 1);
-  this->BucketSites.resize(sites.size());
-  for (std::size_t i = 0; i < sites.size(); ++i)
+  this->BucketSites.resize(this->Sites.size());
+  for (std::size_t i = 0; i < this->Sites.size(); ++i)
   {
     this->BucketSites[static_cast<std::size_t>(fill[static_cast<std::size_t>(bucketOfSite[i])]++)] = static_cast<int>(i);
   }
@@ -98,52 +121,90 @@ std::array<int, 3> VoronoiSiteSearch::bucketOf(const std::array<double, 3>& x) c
   return b;
 }
 
-void VoronoiSiteSearch::visitBucket(
-  int bx, int by, int bz, const std::array<double, 3>& x, int& best, double& bestDistance) const
+template <typename Visit>
+void VoronoiSiteSearch::forEachSiteInRing(const std::array<int, 3>& c, int ring, Visit&& visit) const
 {
-  const std::size_t b = static_cast<std::size_t>(bx + this->Buckets[0] * (by + this->Buckets[1] * bz));
-  for (int s = this->BucketStart[b]; s < this->BucketStart[b + 1]; ++s)
+  for (int bz = std::max(0, c[2] - ring); bz <= std::min(this->Buckets[2] - 1, c[2] + ring); ++bz)
   {
-    const int site = this->BucketSites[static_cast<std::size_t>(s)];
-    const double d = weightedDistance(this->Sites[static_cast<std::size_t>(site)], x);
-    if (best < 0 || d < bestDistance || (d == bestDistance && site < best))
+    for (int by = std::max(0, c[1] - ring); by <= std::min(this->Buckets[1] - 1, c[1] + ring); ++by)
     {
-      best = site;
-      bestDistance = d;
+      // Inside the shell's y-z cross-section only the two x ends belong to the ring.
+      const bool shell = std::abs(bz - c[2]) == ring || std::abs(by - c[1]) == ring;
+      const int step = shell || ring == 0 ? 1 : 2 * ring;
+      for (int bx = c[0] - ring; bx <= c[0] + ring; bx += step)
+      {
+        if (bx < 0 || bx >= this->Buckets[0])
+        {
+          continue;
+        }
+        const std::size_t b = static_cast<std::size_t>(bx + this->Buckets[0] * (by + this->Buckets[1] * bz));
+        for (int s = this->BucketStart[b]; s < this->BucketStart[b + 1]; ++s)
+        {
+          visit(this->BucketSites[static_cast<std::size_t>(s)]);
+        }
+      }
     }
   }
+}
+
+// A site can be nearest somewhere in the bucket only if its smallest weighted
+// distance to the bucket's box is at most the smallest largest one of any
+// site. Sites in ring r lie at least (r - 1) bucket sizes away, so the rings
+// are visited outward until that bound, less the largest weight, passes the
+// smallest largest distance found.
+std::vector<int> VoronoiSiteSearch::candidatesOf(const std::array<int, 3>& c) const
+{
+  std::array<double, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = this->Lo[a] + c[a] * this->BucketSize;
+    hi[a] = lo[a] + this->BucketSize;
+  }
+  std::vector<std::pair<int, double>> near; // (site, smallest weighted distance to the box)
+  double bestLargest = std::numeric_limits<double>::infinity();
+  const int maxRing = std::max({ this->Buckets[0], this->Buckets[1], this->Buckets[2] });
+  for (int ring = 0; ring <= maxRing && (ring - 1) * this->BucketSize - this->MaxWeight <= bestLargest; ++ring)
+  {
+    this->forEachSiteInRing(c, ring, [&](int site) {
+      const VoronoiSite& s = this->Sites[static_cast<std::size_t>(site)];
+      double smallest = 0, largest = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        const double gap = std::max({ lo[a] - s.Position[a], 0.0, s.Position[a] - hi[a] });
+        const double reach = std::max(std::fabs(s.Position[a] - lo[a]), std::fabs(s.Position[a] - hi[a]));
+        smallest += gap * gap;
+        largest += reach * reach;
+      }
+      near.emplace_back(site, std::sqrt(smallest) - s.Weight);
+      bestLargest = std::min(bestLargest, std::sqrt(largest) - s.Weight);
+    });
+  }
+  std::vector<int> candidates;
+  for (const auto& [site, smallest] : near)
+  {
+    if (smallest <= bestLargest)
+    {
+      candidates.push_back(site);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  return candidates;
 }
 
 int VoronoiSiteSearch::nearest(const std::array<double, 3>& x) const
 {
   const std::array<int, 3> c = this->bucketOf(x);
-  const int maxRing = std::max({ this->Buckets[0], this->Buckets[1], this->Buckets[2] });
+  const std::size_t b = static_cast<std::size_t>(c[0] + this->Buckets[0] * (c[1] + this->Buckets[1] * c[2]));
   int best = -1;
   double bestDistance = 0;
-  for (int ring = 0; ring <= maxRing; ++ring)
+  for (int i = this->CandidateStart[b]; i < this->CandidateStart[b + 1]; ++i)
   {
-    // Every site of ring r (buckets at Chebyshev distance r) lies at least
-    // (r - 1) bucket sizes from x, so it cannot beat the best once that,
-    // less the largest weight, exceeds the best.
-    if (best >= 0 && (ring - 1) * this->BucketSize - this->MaxWeight > bestDistance)
+    const int site = this->Candidates[static_cast<std::size_t>(i)];
+    const double d = weightedDistance(this->Sites[static_cast<std::size_t>(site)], x);
+    if (best < 0 || d < bestDistance)
     {
-      break;
-    }
-    for (int bz = std::max(0, c[2] - ring); bz <= std::min(this->Buckets[2] - 1, c[2] + ring); ++bz)
-    {
-      for (int by = std::max(0, c[1] - ring); by <= std::min(this->Buckets[1] - 1, c[1] + ring); ++by)
-      {
-        const bool shell = std::abs(bz - c[2]) == ring || std::abs(by - c[1]) == ring;
-        // Inside the shell's y-z cross-section only the two x ends belong to ring r.
-        const int step = shell || ring == 0 ? 1 : 2 * ring;
-        for (int bx = c[0] - ring; bx <= c[0] + ring; bx += step)
-        {
-          if (bx >= 0 && bx < this->Buckets[0])
-          {
-            this->visitBucket(bx, by, bz, x, best, bestDistance);
-          }
-        }
-      }
+      best = site;
+      bestDistance = d;
     }
   }
   return best;

@@ -1,8 +1,8 @@
 // Additively weighted Voronoi cells (Yokota & Fujishiro 2024; docs/design.md
 // §2.6): sites drawn in the opal, each with a weight w_i, and each point
 // belongs to the cell minimising |x - s_i| - w_i. The search buckets the sites
-// on a uniform grid and visits buckets outward, so a voxel looks at a few
-// dozen sites instead of all of them.
+// on a uniform grid and lists, per bucket, the sites that can be nearest to
+// some point of it, so a voxel tests a handful of sites instead of all.
 #pragma once
 
 #include "OpalGrid.h"
@@ -41,13 +41,18 @@ public:
   VoronoiSiteSearch(const std::vector<VoronoiSite>& sites, const std::array<double, 3>& lo,
     const std::array<double, 3>& hi);
 
-  // The weighted-nearest site to x (ties: the lower index), as nearestSiteBruteForce.
+  // The weighted-nearest site to x, a point of the box (ties: the lower
+  // index), as nearestSiteBruteForce.
   int nearest(const std::array<double, 3>& x) const;
 
 private:
   std::array<int, 3> bucketOf(const std::array<double, 3>& x) const;
-  // Tests the sites of one bucket against the best so far.
-  void visitBucket(int bx, int by, int bz, const std::array<double, 3>& x, int& best, double& bestDistance) const;
+  void bucketSites();
+  // Calls visit(site) for the sites in the buckets at Chebyshev distance `ring` from bucket c.
+  template <typename Visit>
+  void forEachSiteInRing(const std::array<int, 3>& c, int ring, Visit&& visit) const;
+  // The sites that can be nearest to some point of bucket c, in increasing index.
+  std::vector<int> candidatesOf(const std::array<int, 3>& c) const;
 
   const std::vector<VoronoiSite>& Sites;
   std::array<double, 3> Lo{};
@@ -56,6 +61,8 @@ private:
   double MaxWeight = 0;
   std::vector<int> BucketStart; // sites of bucket b: BucketSites[BucketStart[b], BucketStart[b + 1])
   std::vector<int> BucketSites;
+  std::vector<int> CandidateStart; // candidates of bucket b: Candidates[CandidateStart[b], CandidateStart[b + 1])
+  std::vector<int> Candidates;
 };
 
 // The cell of every voxel of the grid (x fastest), -1 outside the opal.
