@@ -1,7 +1,7 @@
 // Bench: generate the paper-scale opal volume (160 x 80 x 200 voxels, 250
 // domains) and print the time of the whole source update and of its parts,
 // and of OpalCore's buildVolume (the programs' path, no VTK); then the same
-// volume of 2000 Voronoi grains (docs/design.md §2.6).
+// volume of 2000 Voronoi grains (docs/design.md §2.9).
 #include "OpalDomainLayout.h"
 #include "OpalModelParameters.h"
 #include "OpalVolumeBuild.h"

@@ -126,7 +126,7 @@ public:
   ///@}
 
   ///@{
-  /// Domain layout (docs/design.md §2.6): 0 the paper's polygons (default), 1
+  /// Domain layout (docs/design.md §2.9): 0 the paper's polygons (default), 1
   /// weighted Voronoi grains whose ordered cells are percolation clusters.
   vtkSetMacro(DomainLayout, int);
   vtkGetMacro(DomainLayout, int);

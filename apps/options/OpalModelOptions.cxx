@@ -55,7 +55,7 @@ void OpalModelOptions::addTo(CLI::App& app)
     ->group("Model");
 }
 
-// The Voronoi layout and the diameter field (docs/design.md §2.6).
+// The Voronoi layout and the diameter field (docs/design.md §2.3, §2.9).
 void OpalModelOptions::addGrainOptions(CLI::App& app)
 {
   opal::ModelParameters& p = this->Parameters;

@@ -1,4 +1,4 @@
-// The scattering diameters' correlation length (docs/design.md §2.2): the
+// The scattering diameters' correlation length (docs/design.md §2.3): the
 // value-noise field's autocorrelation at lags of L/2, L and 2L along each
 // axis agrees with its closed form (2/3 - s^2 + s^3/2) / (2/3) (0 beyond
 // s = 2), its mean is the range's middle, and length 0 is the paper's

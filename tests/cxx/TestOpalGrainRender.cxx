@@ -1,4 +1,4 @@
-// A render of each domain layout (docs/design.md §2.6): the paper's polygons
+// A render of each domain layout (docs/design.md §2.9): the paper's polygons
 // and Voronoi grains (the harlequin and pinfire presets) each give a finite
 // image in which domains diffract, with the validation layer silent.
 #include "OpalRenderScenes.h"

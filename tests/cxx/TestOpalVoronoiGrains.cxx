@@ -1,5 +1,5 @@
 // The Voronoi domain layout and the correlated diameters (docs/design.md
-// §2.6): the bucketed site search equals a brute-force weighted-nearest-site
+// §2.9): the bucketed site search equals a brute-force weighted-nearest-site
 // search; the cells fill the opal without gaps; each ordered cell is one
 // domain; the ordered share is OrderedFraction and ordered cells cluster; the
 // boundary mesh of each ordered cell is closed; pieces equal the whole run;

@@ -1,4 +1,4 @@
-// The surfaces of a Voronoi layout's ordered cells (docs/design.md §2.6), for
+// The surfaces of a Voronoi layout's ordered cells (docs/design.md §2.9), for
 // the source's second output: every voxel face where an ordered cell meets
 // another cell or the outside, as a quadrilateral facing out of the cell.
 // Corners are shared (a watertight mesh per cell), so ParaView shades and

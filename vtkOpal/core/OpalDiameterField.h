@@ -1,4 +1,4 @@
-// The scattering spheres' diameter per voxel (docs/design.md §2.2): the
+// The scattering spheres' diameter per voxel (docs/design.md §2.3): the
 // paper's independent uniform draw per voxel, or, with a correlation length
 // L > 0, a smooth random field: value noise whose lattice (spacing L, anchored
 // at the grid box's corner) carries independent uniform values, interpolated

@@ -1,7 +1,7 @@
 // The diffraction domains: the paper's (§3.2) jittered regular polygons,
 // tilted, spun and moved into the opal, rasterised as one-voxel-thick naive
 // digital planes; or the ordered cells of a weighted Voronoi tessellation
-// (docs/design.md §2.6). The list depends only on the parameters and the
+// (docs/design.md §2.9). The list depends only on the parameters and the
 // seed, so every process computes the same one.
 #pragma once
 

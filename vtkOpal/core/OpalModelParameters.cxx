@@ -235,7 +235,7 @@ std::string scalarsError(const ModelParameters& p)
   return message.str();
 }
 
-// The Voronoi layout's settings and the diameter field (docs/design.md §2.6).
+// The Voronoi layout's settings and the diameter field (docs/design.md §2.3, §2.9).
 std::string grainsError(const ModelParameters& p)
 {
   std::ostringstream message = messageStream();

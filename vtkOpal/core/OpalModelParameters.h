@@ -10,7 +10,7 @@
 namespace opal
 {
 
-// How the crystal domains are laid out (docs/design.md §2.5): the paper's
+// How the crystal domains are laid out (docs/design.md §2.4, §2.9): the paper's
 // flat polygons, or three-dimensional grains of a weighted Voronoi
 // tessellation whose ordered cells are percolation clusters (§2.6).
 enum class DomainLayoutKind : int

@@ -1,4 +1,4 @@
-// Which Voronoi cells are crystal (docs/design.md §2.6): correlated site
+// Which Voronoi cells are crystal (docs/design.md §2.9): correlated site
 // percolation over the cells' adjacency graph, after Yokota & Fujishiro
 // (2024), so ordered cells gather into patches instead of being strewn
 // independently.

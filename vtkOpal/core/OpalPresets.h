@@ -1,5 +1,5 @@
 // The paper's figures as presets (docs/design.md §2.8): the parameters the paper
-// varies between its figures; and Voronoi opals (§2.6), which also set the
+// varies between its figures; and Voronoi opals (§2.9), which also set the
 // domain layout. Everything else keeps the model's defaults.
 #pragma once
 

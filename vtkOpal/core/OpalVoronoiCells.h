@@ -1,5 +1,5 @@
 // Additively weighted Voronoi cells (Yokota & Fujishiro 2024; docs/design.md
-// §2.6): sites drawn in the opal, each with a weight w_i, and each point
+// §2.9): sites drawn in the opal, each with a weight w_i, and each point
 // belongs to the cell minimising |x - s_i| - w_i. The search buckets the sites
 // on a uniform grid and lists, per bucket, the sites that can be nearest to
 // some point of it, so a voxel tests a handful of sites instead of all.

@@ -1,4 +1,4 @@
-// DomainLayout::buildVoronoi (docs/design.md §2.6): the weighted Voronoi
+// DomainLayout::buildVoronoi (docs/design.md §2.9): the weighted Voronoi
 // cells of the opal, their percolation clusters, and one crystal domain per
 // ordered cell.
 #include "OpalDomainLayout.h"
