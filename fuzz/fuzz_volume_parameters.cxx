@@ -84,21 +84,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.RefractiveIndex = in.real(0.5, 3);
   p.MaxPlacementAttempts = in.integer(-1, 50);
   p.Seed = static_cast<std::uint32_t>(in.byte()) << 8 | in.byte();
+  // Read last, each valid at a zero byte, so the older corpus keeps its meaning.
+  p.DomainLayout = static_cast<opal::DomainLayoutKind>(in.integer(0, 2));
+  p.VoronoiCellCount = in.integer(1, 60);
+  p.VoronoiWeightSpread = in.real(0, 5);
+  p.OrderedFraction = in.real(0, 1.2);
+  p.DiameterCorrelationLength = in.real(0, 3);
 
   if (!opal::validate(p).empty())
   {
     return 0; // refused with a message: fine
   }
   const opal::DomainLayout layout = opal::DomainLayout::build(p);
-  require(layout.placedCount() <= p.DomainCount, "placed <= requested");
+  require(layout.hasCells() || layout.placedCount() <= p.DomainCount, "placed <= requested");
   const opal::Grid grid = opal::Grid::fromParameters(p);
   const std::size_t count = static_cast<std::size_t>(grid.voxelCount());
   std::vector<std::uint8_t> type(count);
   std::vector<float> diameter(count), normal(3 * count), lambdaMax(count), lambdaMin(count), scattering(count),
     distance(count);
-  std::vector<std::int32_t> domain(count);
+  std::vector<std::int32_t> domain(count), cells(count);
   const opal::VolumeFields fields{ type.data(), diameter.data(), normal.data(), domain.data(), lambdaMax.data(),
-    lambdaMin.data(), scattering.data(), distance.data() };
+    lambdaMin.data(), scattering.data(), distance.data(), layout.hasCells() ? cells.data() : nullptr };
   const std::array<int, 6> extent{ 0, p.Dimensions[0] - 1, 0, p.Dimensions[1] - 1, 0, p.Dimensions[2] - 1 };
   opal::VolumeFiller(p, layout).fill(extent, 0, p.Dimensions[2], fields);
   for (std::size_t i = 0; i < count; ++i)
@@ -109,6 +115,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(std::isfinite(distance[i]), "finite SurfaceDistance");
     require(std::isfinite(lambdaMax[i]) && std::isfinite(lambdaMin[i]), "finite Bragg wavelengths");
     require(domain[i] >= -1 && domain[i] < layout.placedCount(), "DomainId -1 or a placed domain");
+    require(!layout.hasCells() || (cells[i] >= -1 && cells[i] < layout.cellCount()), "CellId -1 or a cell");
   }
   return 0;
 }
