@@ -144,13 +144,27 @@ def check_property(where, element, proxy, loaded, fresh, pushed):
                   f"{member} = {xml} (got {value})")
 
 
+def create_representation(group, name, inputs):
+    """A representation proxy (no paraview.simple constructor) on the first source, set up."""
+    proxy = sm._getPyProxy(sm.ProxyManager().SMProxyManager.NewProxy(group, name))
+    if proxy is not None and inputs:
+        proxy.Input = inputs[0]
+        proxy.UpdateVTKObjects()
+    return proxy
+
+
 def check_proxy(path, group, element, inputs):
     where = f"{os.path.basename(path)}:{element.get('name')}"
-    create = globals().get(re.sub(r"\W", "", element.get("label", element.get("name"))))
-    if not check(create is not None, f"{where}: paraview.simple offers the proxy"):
-        return None
-    has_input = element.find("InputProperty") is not None
-    proxy = create(Input=inputs[0]) if has_input and inputs else create()
+    if group == "representations":
+        proxy = create_representation(group, element.get("name"), inputs)
+        if not check(proxy is not None, f"{where}: ParaView creates the representation"):
+            return None
+    else:
+        create = globals().get(re.sub(r"\W", "", element.get("label", element.get("name"))))
+        if not check(create is not None, f"{where}: paraview.simple offers the proxy"):
+            return None
+        has_input = element.find("InputProperty") is not None
+        proxy = create(Input=inputs[0]) if has_input and inputs else create()
     pushed = proxy.GetClientSideObject()
     check(pushed.GetClassName() == element.get("class"), f"{where}: the object is a {element.get('class')}")
     fresh = pushed.NewInstance()  # constructed by C++ alone: ParaView never set anything on it

@@ -1,0 +1,262 @@
+#include "vtkOpalSpectralImageActor.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkImageData.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpalSpectralRender.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPointData.h"
+#include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
+#include "vtkTextureObject.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace
+{
+// The frame as a quad over the viewport: the stone's colour where it was hit,
+// and the depth of that point under the camera's current projection (the
+// clipping range changes with the other props, the distances do not);
+// misses are discarded, so the scene behind shows.
+const char* const FrameFragmentShader = R"(//VTK::System::Dec
+in vec2 texCoord;
+uniform sampler2D colourTexture;
+uniform sampler2D distanceTexture;
+// The ray through a point of the frame, in the camera's frame: (ndc * rayScale, -1).
+uniform vec2 rayScale;
+// The projection's z and w rows, applied to (z_view, 1).
+uniform vec4 projectionZW;
+//VTK::Output::Dec
+void main()
+{
+  float distance = texture(distanceTexture, texCoord).r;
+  if (!(distance > 0.0))
+  {
+    discard;
+  }
+  vec2 ndc = 2.0 * texCoord - 1.0;
+  float zView = -distance / length(vec3(ndc * rayScale, 1.0));
+  float zClip = projectionZW.x * zView + projectionZW.y;
+  float wClip = projectionZW.z * zView + projectionZW.w;
+  gl_FragData[0] = vec4(texture(colourTexture, texCoord).rgb, 1.0);
+  gl_FragDepth = clamp(0.5 * zClip / wClip + 0.5, 0.0, 1.0);
+}
+)";
+
+// RGB to RGBA: rows of four bytes need no unpack alignment.
+std::vector<unsigned char> rgbaOf(vtkDataArray* rgb, vtkIdType pixels)
+{
+  std::vector<unsigned char> rgba(static_cast<std::size_t>(4 * pixels), 255);
+  for (vtkIdType p = 0; p < pixels; ++p)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[static_cast<std::size_t>(4 * p + c)] = static_cast<unsigned char>(rgb->GetComponent(p, c));
+    }
+  }
+  return rgba;
+}
+bool insideBox(const double* point, const double bounds[6])
+{
+  return point[0] >= bounds[0] && point[0] <= bounds[1] && point[1] >= bounds[2] && point[1] <= bounds[3] &&
+    point[2] >= bounds[4] && point[2] <= bounds[5];
+}
+
+// The up direction the camera's view transform actually uses (VTK keeps a
+// ViewUp parallel to the view direction and patches it there); false if degenerate.
+bool viewUpOf(vtkCamera* camera, double up[3])
+{
+  vtkMatrix4x4* view = camera->GetViewTransformMatrix();
+  for (int a = 0; a < 3; ++a)
+  {
+    up[a] = view->GetElement(1, a);
+  }
+  const double length = vtkMath::Norm(up);
+  return std::isfinite(length) && length > 0.5;
+}
+} // namespace
+
+vtkStandardNewMacro(vtkOpalSpectralImageActor);
+
+vtkOpalSpectralImageActor::vtkOpalSpectralImageActor() = default;
+vtkOpalSpectralImageActor::~vtkOpalSpectralImageActor() = default;
+
+void vtkOpalSpectralImageActor::SetRender(vtkOpalSpectralRender* render)
+{
+  this->Render = render;
+  this->Modified();
+}
+
+void vtkOpalSpectralImageActor::SetStoneBounds(const double bounds[6])
+{
+  std::copy(bounds, bounds + 6, this->StoneBounds);
+  this->Modified();
+}
+
+double* vtkOpalSpectralImageActor::GetBounds()
+{
+  return this->StoneBounds[0] <= this->StoneBounds[1] ? this->StoneBounds : nullptr;
+}
+
+int vtkOpalSpectralImageActor::RenderOpaqueGeometry(vtkViewport* viewport)
+{
+  auto* renderer = vtkRenderer::SafeDownCast(viewport);
+  auto* window = renderer ? vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow()) : nullptr;
+  // Not in a selection (picking) pass: the stone has no cells to pick.
+  if (!window || !this->Render || renderer->GetSelector())
+  {
+    return 0;
+  }
+  const bool interactive = window->GetDesiredUpdateRate() > 1.0;
+  if (!this->UpdateFrame(renderer, interactive))
+  {
+    return 0;
+  }
+  vtkImageData* image = this->Render->GetOutput();
+  if (image->GetMTime() != this->UploadedTime)
+  {
+    this->UploadFrame(window, image);
+  }
+  this->DrawFrame(window, renderer->GetActiveCamera(), renderer->GetTiledAspectRatio());
+  return 1;
+}
+
+bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interactive)
+{
+  int width = 0, height = 0;
+  renderer->GetTiledSize(&width, &height);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  double up[3];
+  // Nothing to draw from an eye in the stone's box (the render refuses an
+  // eye inside the opal), e.g. the default camera before the view frames it.
+  if (width < 1 || height < 1 || this->Render->GetNumberOfInputConnections(0) < 1 ||
+    insideBox(camera->GetPosition(), this->StoneBounds) || !viewUpOf(camera, up))
+  {
+    return false;
+  }
+  if (camera->GetParallelProjection() && !this->WarnedParallel)
+  {
+    vtkWarningMacro("Opal Spectral renders in perspective; the view's parallel projection is not used.");
+    this->WarnedParallel = true;
+  }
+  this->Render->SetImageSize(width, height);
+  this->Render->SetEyePosition(camera->GetPosition());
+  this->Render->SetFocalPoint(camera->GetFocalPoint());
+  this->Render->SetViewUp(up);
+  double angle = camera->GetViewAngle();
+  if (camera->GetUseHorizontalViewAngle())
+  {
+    const double radians = vtkMath::RadiansFromDegrees(angle);
+    angle = vtkMath::DegreesFromRadians(2 * std::atan(std::tan(radians / 2) * height / width));
+  }
+  this->Render->SetViewAngle(angle);
+  this->TanHalfViewAngle = std::tan(vtkMath::RadiansFromDegrees(angle) / 2);
+  if (this->Headlight)
+  {
+    this->Render->SetLightPosition(camera->GetPosition());
+  }
+  this->LastQuality = interactive ? 1 : this->StillQuality;
+  this->Render->SetQuality(this->LastQuality);
+  if (!this->Render->GetExecutive()->Update())
+  {
+    return false;
+  }
+  vtkImageData* image = this->Render->GetOutput();
+  return image->GetNumberOfPoints() > 0 && image->GetPointData()->GetArray("RGB") &&
+    image->GetPointData()->GetArray("Depth");
+}
+
+void vtkOpalSpectralImageActor::UploadFrame(vtkOpenGLRenderWindow* window, vtkImageData* image)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  const vtkIdType pixels = static_cast<vtkIdType>(dims[0]) * dims[1];
+  std::vector<unsigned char> rgba = rgbaOf(image->GetPointData()->GetArray("RGB"), pixels);
+  vtkDataArray* depthArray = image->GetPointData()->GetArray("Depth");
+  std::vector<float> depth(static_cast<std::size_t>(pixels));
+  for (vtkIdType p = 0; p < pixels; ++p)
+  {
+    depth[static_cast<std::size_t>(p)] = static_cast<float>(depthArray->GetComponent(p, 0));
+  }
+  this->ColourTexture->SetContext(window);
+  this->ColourTexture->Create2DFromRaw(dims[0], dims[1], 4, VTK_UNSIGNED_CHAR, rgba.data());
+  // A preview has half the pixels each way: smooth it as it is stretched.
+  this->ColourTexture->SetMinificationFilter(vtkTextureObject::Linear);
+  this->ColourTexture->SetMagnificationFilter(vtkTextureObject::Linear);
+  this->DepthTexture->SetContext(window);
+  this->DepthTexture->Create2DFromRaw(dims[0], dims[1], 1, VTK_FLOAT, depth.data());
+  this->DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
+  this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
+  this->FrameAspect = static_cast<double>(dims[0]) / dims[1];
+  this->UploadedTime = image->GetMTime();
+}
+
+void vtkOpalSpectralImageActor::DrawFrame(vtkOpenGLRenderWindow* window, vtkCamera* camera, double aspect)
+{
+  if (!this->Quad)
+  {
+    this->Quad = std::make_unique<vtkOpenGLQuadHelper>(window, nullptr, FrameFragmentShader, "");
+  }
+  else
+  {
+    window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
+  }
+  vtkShaderProgram* program = this->Quad->Program;
+  if (!program || !program->GetCompiled())
+  {
+    vtkErrorMacro("The Opal Spectral frame shader did not compile.");
+    return;
+  }
+  vtkOpenGLState* state = window->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(state, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglDepthMask depthMask(state);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(state);
+  state->vtkglEnable(GL_DEPTH_TEST);
+  state->vtkglDepthMask(GL_TRUE);
+  state->vtkglDepthFunc(GL_LEQUAL);
+  this->ColourTexture->Activate();
+  this->DepthTexture->Activate();
+  program->SetUniformi("colourTexture", this->ColourTexture->GetTextureUnit());
+  program->SetUniformi("distanceTexture", this->DepthTexture->GetTextureUnit());
+  const float rayScale[2] = { static_cast<float>(this->TanHalfViewAngle * this->FrameAspect),
+    static_cast<float>(this->TanHalfViewAngle) };
+  program->SetUniform2f("rayScale", rayScale);
+  vtkMatrix4x4* projection = camera->GetProjectionTransformMatrix(aspect, -1, 1);
+  const float projectionZW[4] = { static_cast<float>(projection->GetElement(2, 2)),
+    static_cast<float>(projection->GetElement(2, 3)), static_cast<float>(projection->GetElement(3, 2)),
+    static_cast<float>(projection->GetElement(3, 3)) };
+  program->SetUniform4f("projectionZW", projectionZW);
+  this->Quad->Render();
+  this->DepthTexture->Deactivate();
+  this->ColourTexture->Deactivate();
+}
+
+void vtkOpalSpectralImageActor::ReleaseGraphicsResources(vtkWindow* window)
+{
+  this->Quad.reset();
+  this->ColourTexture->ReleaseGraphicsResources(window);
+  this->DepthTexture->ReleaseGraphicsResources(window);
+  // Nothing left to release against a context that may be gone by the destructor.
+  this->ColourTexture->SetContext(nullptr);
+  this->DepthTexture->SetContext(nullptr);
+  this->UploadedTime = 0;
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkOpalSpectralImageActor::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Headlight: " << this->Headlight << "\n";
+  os << indent << "StillQuality: " << this->StillQuality << "\n";
+  os << indent << "LastQuality: " << this->LastQuality << "\n";
+}

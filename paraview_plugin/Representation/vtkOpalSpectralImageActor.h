@@ -1,0 +1,94 @@
+/**
+ * @class vtkOpalSpectralImageActor
+ * @brief Draws the spectral render of an opal from the renderer's own camera, with depth.
+ *
+ * At each opaque pass it renders the stone through a vtkOpalSpectralRender
+ * for the active camera and the viewport's size, and draws the image as a
+ * quad over the viewport that writes the stone's depth: other props in front
+ * of the stone hide it and props behind it are hidden, and pixels that miss
+ * the stone are left as they are (docs/design.md §5.2). While the window
+ * renders interactively (its desired update rate above 1 frame per second,
+ * as an interactor style sets it during a drag) the frame is a preview
+ * (Quality preview, a quarter of the pixels); a still render uses
+ * StillQuality. With Headlight on the light sits at the eye, the paper's
+ * set-up; off, the render filter's LightPosition is used. The camera's view
+ * angle is taken as it is; a parallel projection is rendered in perspective.
+ */
+#pragma once
+
+#include "vtkNew.h"
+#include "vtkOpalRepresentationModule.h" // for export macro
+#include "vtkProp.h"
+#include "vtkSmartPointer.h"
+
+#include <memory>
+
+class vtkCamera;
+class vtkImageData;
+class vtkOpalSpectralRender;
+class vtkOpenGLQuadHelper;
+class vtkOpenGLRenderWindow;
+class vtkRenderer;
+class vtkTextureObject;
+
+class VTKOPALREPRESENTATION_EXPORT vtkOpalSpectralImageActor : public vtkProp
+{
+public:
+  static vtkOpalSpectralImageActor* New();
+  vtkTypeMacro(vtkOpalSpectralImageActor, vtkProp);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The render filter (its input: the opal volume) that makes each frame.
+  void SetRender(vtkOpalSpectralRender* render);
+
+  ///@{
+  /// The light at the eye (default) or at the render filter's LightPosition.
+  vtkSetMacro(Headlight, bool);
+  vtkGetMacro(Headlight, bool);
+  ///@}
+
+  ///@{
+  /// Quality of still frames: 0 final (default), 1 preview.
+  vtkSetClampMacro(StillQuality, int, 0, 1);
+  vtkGetMacro(StillQuality, int);
+  ///@}
+
+  /// The stone's bounds, for the camera's reset and clipping range.
+  void SetStoneBounds(const double bounds[6]);
+  double* GetBounds() override;
+
+  /// Quality (0 final, 1 preview) of the last frame drawn; -1 before any.
+  vtkGetMacro(LastQuality, int);
+
+  int RenderOpaqueGeometry(vtkViewport* viewport) override;
+  vtkTypeBool HasTranslucentPolygonalGeometry() override { return 0; }
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkOpalSpectralImageActor();
+  ~vtkOpalSpectralImageActor() override;
+
+private:
+  vtkOpalSpectralImageActor(const vtkOpalSpectralImageActor&) = delete;
+  void operator=(const vtkOpalSpectralImageActor&) = delete;
+
+  // Points the render filter at the camera and size; false if no image came.
+  bool UpdateFrame(vtkRenderer* renderer, bool interactive);
+  // The image and each pixel's distance along its ray, as textures.
+  void UploadFrame(vtkOpenGLRenderWindow* window, vtkImageData* image);
+  // The quad, its depth from the camera's current projection.
+  void DrawFrame(vtkOpenGLRenderWindow* window, vtkCamera* camera, double aspect);
+
+  vtkSmartPointer<vtkOpalSpectralRender> Render;
+  bool Headlight = true;
+  int StillQuality = 0;
+  int LastQuality = -1;
+  double StoneBounds[6] = { 0, -1, 0, -1, 0, -1 };
+  vtkNew<vtkTextureObject> ColourTexture;
+  vtkNew<vtkTextureObject> DepthTexture;
+  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
+  vtkMTimeType UploadedTime = 0; // the render output's MTime the textures hold
+  bool WarnedParallel = false;
+  double TanHalfViewAngle = 0; // of the frame's vertical view angle
+  double FrameAspect = 1;      // width / height of the frame's image
+};

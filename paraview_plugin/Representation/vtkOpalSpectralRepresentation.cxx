@@ -1,0 +1,220 @@
+#include "vtkOpalSpectralRepresentation.h"
+
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpalSpectralImageActor.h"
+#include "vtkOpalSpectralRender.h"
+#include "vtkPVRenderView.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+vtkStandardNewMacro(vtkOpalSpectralRepresentation);
+
+vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
+{
+  this->Actor->SetRender(this->Render);
+}
+
+vtkOpalSpectralRepresentation::~vtkOpalSpectralRepresentation() = default;
+
+int vtkOpalSpectralRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+// Each rank renders the whole stone (the source makes any extent, so every
+// rank can build all of it): the whole extent, not this rank's piece.
+int vtkOpalSpectralRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    vtkInformation* inInfo = inputVector[0]->GetInformationObject(i);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  }
+  return 1;
+}
+
+int vtkOpalSpectralRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+    ? vtkImageData::GetData(inputVector[0], 0)
+    : nullptr;
+  // A new volume only when the input changed: the render session then keeps
+  // the uploaded volume and the light field across property changes.
+  if (this->Volume && input && input->GetMTime() == this->VolumeTime)
+  {
+    return this->Superclass::RequestData(request, inputVector, outputVector);
+  }
+  this->VolumeTime = input ? input->GetMTime() : 0;
+  this->Volume = vtkSmartPointer<vtkImageData>::New();
+  if (input)
+  {
+    this->Volume->ShallowCopy(input);
+  }
+  this->Volume->GetBounds(this->Bounds);
+  // Voxel centres are the points: the stone's box reaches half a voxel further.
+  double spacing[3];
+  this->Volume->GetSpacing(spacing);
+  for (int a = 0; a < 3 && this->Volume->GetNumberOfPoints() > 0; ++a)
+  {
+    this->Bounds[2 * a] -= spacing[a] / 2;
+    this->Bounds[2 * a + 1] += spacing[a] / 2;
+  }
+  this->Render->SetInputData(this->Volume);
+  this->Actor->SetStoneBounds(this->Bounds);
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+int vtkOpalSpectralRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request == vtkPVView::REQUEST_UPDATE())
+  {
+    // The camera's reset and clipping range include the stone; the frame is
+    // drawn where the data is (the render server), never delivered.
+    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+  }
+  return 1;
+}
+
+bool vtkOpalSpectralRepresentation::AddToView(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  renderView->GetRenderer()->AddActor(this->Actor);
+  return this->Superclass::AddToView(view);
+}
+
+bool vtkOpalSpectralRepresentation::RemoveFromView(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView)
+  {
+    return false;
+  }
+  // The textures go with the window they were made in, which may close first.
+  this->Actor->ReleaseGraphicsResources(renderView->GetRenderWindow());
+  renderView->GetRenderer()->RemoveActor(this->Actor);
+  return this->Superclass::RemoveFromView(view);
+}
+
+void vtkOpalSpectralRepresentation::SetVisibility(bool visible)
+{
+  this->Superclass::SetVisibility(visible);
+  this->Actor->SetVisibility(visible ? 1 : 0);
+}
+
+void vtkOpalSpectralRepresentation::SetHeadlight(int headlight)
+{
+  this->Actor->SetHeadlight(headlight != 0);
+}
+
+void vtkOpalSpectralRepresentation::SetLightPosition(double x, double y, double z)
+{
+  this->Render->SetLightPosition(x, y, z);
+}
+
+void vtkOpalSpectralRepresentation::SetStillQuality(int quality)
+{
+  this->Actor->SetStillQuality(quality);
+}
+
+void vtkOpalSpectralRepresentation::SetRefractiveIndex(double value)
+{
+  this->Render->SetRefractiveIndex(value);
+}
+
+void vtkOpalSpectralRepresentation::SetBraggBandwidth(double value)
+{
+  this->Render->SetBraggBandwidth(value);
+}
+
+void vtkOpalSpectralRepresentation::SetDiffractionGain(double value)
+{
+  this->Render->SetDiffractionGain(value);
+}
+
+void vtkOpalSpectralRepresentation::SetBraggOrders(int value)
+{
+  this->Render->SetBraggOrders(value);
+}
+
+void vtkOpalSpectralRepresentation::SetMosaicSpread(double value)
+{
+  this->Render->SetMosaicSpread(value);
+}
+
+void vtkOpalSpectralRepresentation::SetLightRadius(double value)
+{
+  this->Render->SetLightRadius(value);
+}
+
+void vtkOpalSpectralRepresentation::SetLightFalloffAtEntry(int value)
+{
+  this->Render->SetLightFalloffAtEntry(value != 0);
+}
+
+void vtkOpalSpectralRepresentation::SetExposure(double value)
+{
+  this->Render->SetExposure(value);
+}
+
+void vtkOpalSpectralRepresentation::SetWavelengthStep(double value)
+{
+  this->Render->SetWavelengthStep(value);
+}
+
+void vtkOpalSpectralRepresentation::SetModelRotation(double x, double y, double z)
+{
+  this->Render->SetModelRotation(x, y, z);
+}
+
+vtkOpalSpectralRender* vtkOpalSpectralRepresentation::GetRender()
+{
+  return this->Render;
+}
+
+vtkOpalSpectralImageActor* vtkOpalSpectralRepresentation::GetActor()
+{
+  return this->Actor;
+}
+
+// Prints each setting by its setter's name, as the filter and the actor hold it.
+void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  vtkOpalSpectralRender* r = this->Render;
+  const double* light = r->GetLightPosition();
+  const double* rotation = r->GetModelRotation();
+  os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
+  os << indent << "StillQuality: " << this->Actor->GetStillQuality() << "\n";
+  os << indent << "LightPosition: " << light[0] << " " << light[1] << " " << light[2] << "\n";
+  os << indent << "ModelRotation: " << rotation[0] << " " << rotation[1] << " " << rotation[2] << "\n";
+  os << indent << "RefractiveIndex: " << r->GetRefractiveIndex() << "\n";
+  os << indent << "BraggBandwidth: " << r->GetBraggBandwidth() << "\n";
+  os << indent << "DiffractionGain: " << r->GetDiffractionGain() << "\n";
+  os << indent << "BraggOrders: " << r->GetBraggOrders() << "\n";
+  os << indent << "MosaicSpread: " << r->GetMosaicSpread() << "\n";
+  os << indent << "LightRadius: " << r->GetLightRadius() << "\n";
+  os << indent << "LightFalloffAtEntry: " << r->GetLightFalloffAtEntry() << "\n";
+  os << indent << "Exposure: " << r->GetExposure() << "\n";
+  os << indent << "WavelengthStep: " << r->GetWavelengthStep() << "\n";
+}

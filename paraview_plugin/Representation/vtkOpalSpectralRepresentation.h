@@ -1,0 +1,90 @@
+/**
+ * @class vtkOpalSpectralRepresentation
+ * @brief "Opal Spectral": the opal volume rendered spectrally from the render view's camera.
+ *
+ * A representation of an Opal Volume (its port 0) in ParaView's render view
+ * (docs/design.md §5.2). Every time the view renders, the stone is rendered
+ * from the view's own camera at the view's size by a vtkOpalSpectralRender
+ * kept by this representation (its render session keeps the volume and, while
+ * the light and the rotation hold still, the light field on the device), and
+ * drawn with its depth by a vtkOpalSpectralImageActor, so rotating, panning or
+ * zooming changes the play of colour and the domains, slices and axes mix
+ * with the stone. While the view is dragged the frames are previews; the
+ * still frame that follows has StillQuality. Each rank renders the whole
+ * volume: the representation asks its input for the whole extent.
+ *
+ * The optics are the render filter's settings, with its defaults
+ * (opal::RenderParameters): RefractiveIndex, BraggBandwidth, DiffractionGain,
+ * BraggOrders, MosaicSpread, LightRadius, LightFalloffAtEntry, Exposure,
+ * WavelengthStep and ModelRotation, forwarded to the filter. The light is a
+ * headlight (the paper's set-up) or LightPosition.
+ */
+#pragma once
+
+#include "vtkNew.h"
+#include "vtkOpalRepresentationModule.h" // for export macro
+#include "vtkPVDataRepresentation.h"
+#include "vtkSmartPointer.h"
+
+class vtkImageData;
+class vtkOpalSpectralImageActor;
+class vtkOpalSpectralRender;
+
+class VTKOPALREPRESENTATION_EXPORT vtkOpalSpectralRepresentation : public vtkPVDataRepresentation
+{
+public:
+  static vtkOpalSpectralRepresentation* New();
+  vtkTypeMacro(vtkOpalSpectralRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+  void SetVisibility(bool visible) override;
+
+  ///@{
+  /// The light: at the eye (Headlight 1, default) or at LightPosition (mm).
+  void SetHeadlight(int headlight);
+  void SetLightPosition(double x, double y, double z);
+  ///@}
+
+  /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
+  void SetStillQuality(int quality);
+
+  ///@{
+  /// The render filter's optics (vtkOpalSpectralRender), forwarded.
+  void SetRefractiveIndex(double value);
+  void SetBraggBandwidth(double value);
+  void SetDiffractionGain(double value);
+  void SetBraggOrders(int value);
+  void SetMosaicSpread(double value);
+  void SetLightRadius(double value);
+  void SetLightFalloffAtEntry(int value);
+  void SetExposure(double value);
+  void SetWavelengthStep(double value);
+  void SetModelRotation(double x, double y, double z);
+  ///@}
+
+  /// The filter that renders each frame (for tests and scripts).
+  vtkOpalSpectralRender* GetRender();
+  /// The actor that draws it.
+  vtkOpalSpectralImageActor* GetActor();
+
+protected:
+  vtkOpalSpectralRepresentation();
+  ~vtkOpalSpectralRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+private:
+  vtkOpalSpectralRepresentation(const vtkOpalSpectralRepresentation&) = delete;
+  void operator=(const vtkOpalSpectralRepresentation&) = delete;
+
+  vtkNew<vtkOpalSpectralRender> Render;
+  vtkNew<vtkOpalSpectralImageActor> Actor;
+  vtkSmartPointer<vtkImageData> Volume;
+  vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken
+  double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
+};

@@ -1,0 +1,18 @@
+"""pvpython: the "Opal Spectral" representation renders the stone from the
+view's camera, equal to Opal Spectral Render for that camera, and composites
+with depth (the checks are opal_representation_scene.py's, run under pvbatch
+on a virtual display)."""
+import os
+import random
+
+import opal_test_config as config
+from opal_test_support import check, finish, run
+
+here = os.path.dirname(os.path.abspath(__file__))
+output = os.path.join(config.OUTPUT_DIRECTORY, "representation")
+os.makedirs(output, exist_ok=True)
+result = run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), config.PVBATCH,
+              os.path.join(here, "opal_representation_scene.py"), config.PLUGIN, output])
+print(result.stdout[-3000:])
+check("opal_representation_scene: passed" in result.stdout, "every check of the scene passed")
+finish("TestOpalSpectralRepresentation")

@@ -1,0 +1,116 @@
+"""pvbatch helper of TestOpalSpectralRepresentation (run on a virtual display):
+shows a small Opal Volume with the "Opal Spectral" representation and checks
+what the view shows.
+
+- Two camera directions 10 degrees apart: both show the stone (most of its
+  box's footprint is not background) and the domains' hues differ.
+- The still frame equals Opal Spectral Render's image for the same camera
+  (eye, focal point, view up, view angle, the light at the eye), pixel for
+  pixel within 1 level: the representation is that render, drawn 1:1.
+- Depth: a plane between the eye and the stone hides it; the same plane
+  behind the stone is hidden by it.
+
+Prints "opal_representation_scene: passed" or the failed checks.
+Usage: pvbatch opal_representation_scene.py PLUGIN OUTPUT_DIR"""
+import os
+import sys
+
+import numpy
+from paraview import servermanager as sm
+from paraview.simple import (ColorBy, CreateView, Hide, LoadPlugin, OutputPort, Plane, Render, SaveScreenshot,
+                             Show)
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+from opal_test_support import check, failures
+
+plugin, output = sys.argv[1], sys.argv[2]
+LoadPlugin(plugin, remote=False, ns=globals())
+width, height = 160, 120
+
+volume = OpalVolume(Dimensions=[80, 40, 100], DomainCount=120, Preset="fig11")  # noqa: F821
+view = CreateView("RenderView")
+view.ViewSize = [width, height]
+view.OrientationAxesVisibility = 0
+view.UseColorPaletteForBackground = 0
+view.Background = [0, 0, 0]
+view.UseFXAA = 0
+stone = Show(OutputPort(volume, 0), view)
+stone.SetRepresentationType("Opal Spectral")
+Render(view)  # the first render resets the camera; the cameras below are set after it
+
+
+def look_from(eye):
+    view.CameraPosition = eye
+    view.CameraFocalPoint = [0, 2, 0]
+    view.CameraViewUp = [0, 0, -1]
+    view.CameraViewAngle = 30
+    Render(view)
+
+
+def screenshot(name):
+    path = os.path.join(output, name)
+    SaveScreenshot(path, view, ImageResolution=[width, height])
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
+
+
+def hue(pixels):
+    """Mean hue angle (degrees) of the saturated pixels: the domains' colours."""
+    rgb = pixels.reshape(-1, 3).astype(float)
+    saturated = rgb[(rgb.max(axis=1) - rgb.min(axis=1)) > 40]
+    if len(saturated) == 0:
+        return None
+    r, g, b = saturated[:, 0], saturated[:, 1], saturated[:, 2]
+    return numpy.degrees(numpy.arctan2(numpy.sqrt(3) * (g - b), 2 * r - g - b)).mean()
+
+
+# Two directions 10 degrees apart, about the stone's long axis (z).
+first_eye = [0.0, 36.0, 0.0]
+second_eye = [36.0 * numpy.sin(numpy.radians(10)), 36.0 * numpy.cos(numpy.radians(10)), 0.0]
+look_from(first_eye)
+first = screenshot("representation-0deg.png")
+look_from(second_eye)
+second = screenshot("representation-10deg.png")
+for name, pixels in (("0 degrees", first), ("10 degrees", second)):
+    stone_share = numpy.mean(pixels.max(axis=2) > 20)
+    check(stone_share > 0.25, f"{name}: the stone fills {100 * stone_share:.0f}% of the view (> 25%)")
+changed = numpy.mean(numpy.any(numpy.abs(first - second) > 8, axis=2))
+check(changed > 0.02, f"turning 10 degrees changes the picture ({100 * changed:.1f}% of pixels)")
+hues = (hue(first), hue(second))
+check(None not in hues and abs(hues[0] - hues[1]) > 1.0, f"the domains' hues move with the view: {hues}")
+
+# The still frame is Opal Spectral Render's image for the same camera.
+render = OpalSpectralRender(Input=OutputPort(volume, 0), ImageSize=[width, height],  # noqa: F821
+                            EyePosition=second_eye, FocalPoint=[0, 2, 0], ViewUp=[0, 0, -1], ViewAngle=30,
+                            LightPosition=second_eye)
+render.UpdatePipeline()
+rgb = vtk_to_numpy(sm.Fetch(render).GetPointData().GetArray("RGB")).astype(int).reshape(height, width, 3)
+difference = numpy.abs(second - rgb)
+check(difference.max() <= 1, f"the still frame is the render's image pixel for pixel (largest difference "
+      f"{difference.max()}, {numpy.mean(difference.max(axis=2) > 1) * 100:.2f}% of pixels off)")
+
+# Depth: an opaque plane (a stand-in for the Domains output or a slice) in
+# front of the stone hides it, behind it is hidden.
+look_from(first_eye)
+plane = Plane(Origin=[-20, 0, -20], Point1=[20, 0, -20], Point2=[-20, 0, 20])
+plane_display = Show(plane, view)
+plane_display.ColorArrayName = ["POINTS", ""]
+plane_display.AmbientColor = plane_display.DiffuseColor = [0, 0, 1]
+plane_display.Ambient, plane_display.Diffuse = 1.0, 0.0
+centre = (slice(height // 2 - 5, height // 2 + 5), slice(width // 2 - 5, width // 2 + 5))
+for y, where in ((20.0, "in front of"), (-1.0, "behind")):
+    plane.Origin, plane.Point1, plane.Point2 = [-20, y, -20], [20, y, -20], [-20, y, 20]
+    Render(view)
+    pixels = screenshot(f"representation-plane-{'front' if y > 0 else 'behind'}.png")[centre]
+    blue = numpy.mean((pixels[..., 2] > 200) & (pixels[..., 0] < 50) & (pixels[..., 1] < 50))
+    if y > 0:
+        check(blue > 0.95, f"a plane {where} the stone hides it ({100 * blue:.0f}% of the centre blue)")
+    else:
+        check(blue < 0.05, f"a plane {where} the stone is hidden by it ({100 * blue:.0f}% of the centre blue)")
+Hide(plane, view)
+# The verdict on stdout, for the test; the script ends normally (pvbatch
+# reports an X error when sys.exit ends it with a window open).
+print("opal_representation_scene:", "FAILED" if failures else "passed")
