@@ -1,0 +1,48 @@
+"""Run by the ParaView client (paraview --script) under Xvfb for
+TestOpalGuiLiveView: in the GUI's own render view, the Opal Volume shown as
+"Opal Spectral", then the camera turned 10 degrees between two renders: the
+stone's pixels change. The verdict goes to OPAL_GUI_VERDICT (the client's
+stdout is not the test's), then the client is ended."""
+import os
+
+import numpy
+from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, SaveScreenshot, Show
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+verdict_path = os.environ["OPAL_GUI_VERDICT"]
+lines = []
+
+
+def screenshot(view, path):
+    SaveScreenshot(path, view, ImageResolution=[320, 240])
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+
+try:
+    LoadPlugin(os.environ["OPAL_PLUGIN"], remote=False, ns=globals())
+    volume = OpalVolume(Dimensions=[80, 40, 100], DomainCount=120)  # noqa: F821 (from the plugin)
+    view = GetActiveViewOrCreate("RenderView")
+    stone = Show(OutputPort(volume, 0), view)
+    stone.SetRepresentationType("Opal Spectral")
+    Render(view)
+    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 40, 0], [0, 2, 0], [0, 0, -1]
+    Render(view)
+    before = screenshot(view, os.path.join(os.path.dirname(verdict_path), "gui-live-before.png"))
+    view.GetActiveCamera().Azimuth(10)
+    Render(view)
+    after = screenshot(view, os.path.join(os.path.dirname(verdict_path), "gui-live-after.png"))
+    background = before[0]  # a corner: the view's background
+    stone_share = numpy.mean(numpy.any(numpy.abs(before - background) > 12, axis=1))
+    changed = numpy.mean(numpy.any(numpy.abs(before - after) > 8, axis=1))
+    lines.append(f"stone {100 * stone_share:.0f}% of the view, {100 * changed:.1f}% of pixels changed")
+    passed = 0.1 < stone_share < 0.95 and changed > 0.02
+except Exception as error:  # the verdict must be written whatever happens
+    lines.append(f"error: {error!r}")
+    passed = False
+with open(verdict_path, "w") as out:
+    out.write("\n".join(lines + ["passed" if passed else "FAILED"]) + "\n")
+os._exit(0)  # end the client: the GUI would wait for its user
