@@ -1,5 +1,6 @@
 #include "vtkOpalSpectralRepresentation.h"
 
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -60,6 +61,9 @@ int vtkOpalSpectralRepresentation::RequestData(
   if (input)
   {
     this->Volume->ShallowCopy(input);
+    // The stone stays where the scene has it (its Domains, slices): no
+    // preset placement (fig13's 5 degrees), only OpalModelRotation.
+    this->Volume->GetFieldData()->RemoveArray("Preset");
   }
   this->Volume->GetBounds(this->Bounds);
   // Voxel centres are the points: the stone's box reaches half a voxel further.
