@@ -161,7 +161,10 @@ bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interact
   }
   this->Render->SetViewAngle(angle);
   this->TanHalfViewAngle = std::tan(vtkMath::RadiansFromDegrees(angle) / 2);
-  if (this->Headlight)
+  // The headlight follows the eye at still frames; a preview keeps the last
+  // still frame's light, so dragging re-marches without rerunning the light
+  // pass (the light field depends on the light, not on the eye).
+  if (this->Headlight && (!interactive || this->LastQuality < 0))
   {
     this->Render->SetLightPosition(camera->GetPosition());
   }

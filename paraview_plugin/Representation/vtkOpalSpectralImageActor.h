@@ -7,11 +7,12 @@
  * quad over the viewport that writes the stone's depth: other props in front
  * of the stone hide it and props behind it are hidden, and pixels that miss
  * the stone are left as they are (docs/design.md §5.2). While the window
- * renders interactively (its desired update rate above 1 frame per second,
- * as an interactor style sets it during a drag) the frame is a preview
+ * renders interactively (its desired update rate above 1 frame per second:
+ * ParaView's InteractiveRender, used during a drag, sets 5) the frame is a preview
  * (Quality preview, a quarter of the pixels); a still render uses
  * StillQuality. With Headlight on the light sits at the eye, the paper's
- * set-up; off, the render filter's LightPosition is used. The camera's view
+ * set-up (previews keep the last still frame's light, so a drag needs no
+ * light pass); off, the render filter's LightPosition is used. The camera's view
  * angle is taken as it is; a parallel projection is rendered in perspective.
  */
 #pragma once

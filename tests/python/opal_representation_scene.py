@@ -7,6 +7,8 @@ what the view shows.
 - The still frame equals Opal Spectral Render's image for the same camera
   (eye, focal point, view up, view angle, the light at the eye), pixel for
   pixel within 1 level: the representation is that render, drawn 1:1.
+- An interactive render (ParaView's, as during a drag) draws a preview,
+  not the still frame; the still render after it is final again.
 - Depth: a plane between the eye and the stone hides it; the same plane
   behind the stone is hidden by it.
 
@@ -21,6 +23,7 @@ from paraview.simple import (ColorBy, CreateView, Hide, LoadPlugin, OutputPort, 
                              Show)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 
 from opal_test_support import check, failures
 
@@ -91,6 +94,28 @@ rgb = vtk_to_numpy(sm.Fetch(render).GetPointData().GetArray("RGB")).astype(int).
 difference = numpy.abs(second - rgb)
 check(difference.max() <= 1, f"the still frame is the render's image pixel for pixel (largest difference "
       f"{difference.max()}, {numpy.mean(difference.max(axis=2) > 1) * 100:.2f}% of pixels off)")
+
+# An interactive render (as during a drag) draws a preview: the stone at half
+# the resolution, not the still frame; the still render after it is final again.
+view.SMProxy.InteractiveRender()
+grab = vtkWindowToImageFilter()
+grab.SetInput(view.GetRenderWindow())
+grab.ShouldRerenderOff()
+grab.ReadFrontBufferOff()
+grab.Update()
+grabbed = grab.GetOutput()
+w, h, _ = grabbed.GetDimensions()
+preview = vtk_to_numpy(grabbed.GetPointData().GetScalars())[:, :3].astype(int).reshape(h, w, 3)
+if (w, h) == (width, height):
+    preview_share = numpy.mean(preview.max(axis=2) > 20)
+    off = numpy.mean(numpy.abs(preview - second).max(axis=2) > 8)
+    check(preview_share > 0.25, f"the preview shows the stone ({100 * preview_share:.0f}% of the view)")
+    check(off > 0.02, f"the preview is not the still frame ({100 * off:.1f}% of pixels differ)")
+else:
+    check(False, f"the interactive frame is grabbed at the view's size (got {w} x {h})")
+Render(view)
+again = screenshot("representation-10deg-again.png")
+check(numpy.abs(again - second).max() <= 1, "the still render after it is the final frame again")
 
 # Depth: an opaque plane (a stand-in for the Domains output or a slice) in
 # front of the stone hides it, behind it is hidden.
