@@ -245,6 +245,9 @@ int vtkOpalBraggMap::RequestData(
   out->AddArray(arrays.Wavelength);
   out->AddArray(arrays.Visible);
   out->AddArray(arrays.Colour);
+  // Shown first coloured by the wavelength it diffracts (ParaView colours by
+  // the active scalars), in the plugin's "Visible spectrum" map.
+  out->SetActiveScalars("BraggWavelength");
   return 1;
 }
 

@@ -201,6 +201,9 @@ void addDomainCellData(
   output->GetCellData()->AddArray(diameters);
   output->GetCellData()->AddArray(normals);
   output->GetCellData()->AddArray(lambdaMax);
+  // Shown first coloured by the longest wavelength each domain diffracts
+  // (ParaView colours by the active scalars), in the "Visible spectrum" map.
+  output->GetCellData()->SetActiveScalars("BraggLambdaMax");
 }
 
 // The paper's layout: one polygon per domain.
