@@ -113,13 +113,16 @@ for proxy in (volume, render, bragg):
     check(any(m.GetName() == "ShowInMenu" and m.GetAttribute("category") == "Opal" for m in menus),
           f"{proxy.GetXMLName()} is in the Opal menu category")
 
-# First views: ParaView colours a new display by the data's active scalars.
-domains = sm.Fetch(OutputPort(volume, 1))
+# First views: ParaView colours a new display by the data's active scalars
+# (read from the filters themselves: Fetch's gather does not keep them).
+volume.UpdatePipeline()
+domains = volume.GetClientSideObject().GetOutputDataObject(1)
 check(domains.GetCellData().GetScalars() is not None and
       domains.GetCellData().GetScalars().GetName() == "BraggLambdaMax",
       "the Domains output's active scalars are BraggLambdaMax (shown in the Visible spectrum map)")
 on_domains = OpalBraggMap(Input=OutputPort(volume, 1))  # noqa: F821 (from the plugin)
-mapped = sm.Fetch(on_domains).GetCellData().GetScalars()
+on_domains.UpdatePipeline()
+mapped = on_domains.GetClientSideObject().GetOutputDataObject(0).GetCellData().GetScalars()
 check(mapped is not None and mapped.GetName() == "BraggWavelength",
       "the Bragg map's active scalars are BraggWavelength")
 
