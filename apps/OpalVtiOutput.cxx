@@ -22,8 +22,9 @@ std::string writeVolume(const opal::ModelParameters& parameters, int preset, con
 {
   installStderrOutputWindow("opal-render");
   vtkNew<vtkOpalSource> source;
-  source->SetModelParameters(parameters);
+  // The preset first: choosing it sets its values, which the parameters then replace.
   source->SetPreset(preset);
+  source->SetModelParameters(parameters);
   if (!source->GetExecutive()->Update())
   {
     return "the volume could not be built for " + path;

@@ -42,8 +42,9 @@ int main(int argc, char** argv)
   installStderrOutputWindow("opal-volume");
 
   vtkNew<vtkOpalSource> source;
-  source->SetModelParameters(model.parameters());
+  // The preset first: choosing it sets its values, which the flags then replace.
   source->SetPreset(model.presetIndex());
+  source->SetModelParameters(model.parameters());
   for (const std::string& error :
     { opal::validate(source->GetModelParameters()), opal::volumeMemoryError(source->GetModelParameters()) })
   {

@@ -52,7 +52,9 @@ vtkOpalSource::vtkOpalSource()
 {
   this->SetNumberOfInputPorts(0);
   this->SetNumberOfOutputPorts(2);
-  this->SetModelParameters(opal::ModelParameters());
+  opal::ModelParameters defaults;
+  defaults.applyPreset(opal::DefaultPreset); // the model's defaults are fig12's already
+  this->SetModelParameters(defaults);
   this->Preset = opal::DefaultPreset;
 }
 
@@ -92,8 +94,19 @@ opal::ModelParameters vtkOpalSource::GetModelParameters() const
   p.RefractiveIndex = this->RefractiveIndex;
   p.MaxPlacementAttempts = this->MaxPlacementAttempts;
   p.Seed = static_cast<std::uint32_t>(this->Seed);
-  p.applyPreset(this->Preset);
   return p;
+}
+
+void vtkOpalSource::SetPreset(int preset)
+{
+  if (preset == this->Preset)
+  {
+    return;
+  }
+  this->Preset = preset;
+  opal::ModelParameters p = this->GetModelParameters();
+  p.applyPreset(preset); // an unknown index sets nothing; Validate names it
+  this->SetModelParameters(p);
 }
 
 void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)

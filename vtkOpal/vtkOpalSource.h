@@ -21,10 +21,10 @@
  * voxel index and the seed, so pieces agree exactly with the whole volume.
  *
  * Preset (fig10 ... fig17, harlequin, pinfire, or custom) sets the parameters
- * the paper varies between its figures; while a preset other than custom is
- * chosen it takes precedence over DomainDiameterRange, and harlequin and
- * pinfire over DomainLayout, VoronoiCellCount, VoronoiWeightSpread and
- * OrderedFraction.
+ * the paper varies between its figures when it is chosen: DomainDiameterRange,
+ * and for harlequin and pinfire DomainLayout, VoronoiCellCount,
+ * VoronoiWeightSpread and OrderedFraction. A parameter set afterwards is used
+ * (the command line's rule; in ParaView the panel shows the filled values).
  */
 #pragma once
 
@@ -177,14 +177,16 @@ public:
 
   ///@{
   /// 0 custom, 1 fig10, 2 fig11, 3 fig12 (default), 4 fig13, 5 fig15, 6 fig17,
-  /// 7 harlequin, 8 pinfire.
-  vtkSetMacro(Preset, int);
+  /// 7 harlequin, 8 pinfire. Choosing a preset sets the parameters it stands
+  /// for (DomainDiameterRange; harlequin and pinfire also the Voronoi layout's);
+  /// a parameter set afterwards is used. Custom sets nothing.
+  void SetPreset(int preset);
   vtkGetMacro(Preset, int);
   /// Chooses the preset by name ("fig12", "custom"); false if the name is unknown.
   bool SetPresetByName(const char* name);
   ///@}
 
-  /// The parameters as the next update will use them (preset applied).
+  /// The parameters as the next update will use them.
   opal::ModelParameters GetModelParameters() const;
   /// Sets every model parameter at once; the preset is left as it is.
   void SetModelParameters(const opal::ModelParameters& parameters);
