@@ -1,7 +1,7 @@
 """The ParaView GUI under Xvfb (paraview --script tests/gui/opal_gui_live_view.py):
-in the client's own render view the "Opal Spectral" representation renders
-the stone, and turning the camera 10 degrees between two renders changes the
-stone's pixels."""
+in the client's own render view the volume is shown as "Opal Spectral" by
+default (the cabochon in colour), and turning the camera 10 degrees between
+two renders changes the stone's pixels."""
 import os
 import random
 

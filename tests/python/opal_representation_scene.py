@@ -2,6 +2,7 @@
 shows a small Opal Volume with the "Opal Spectral" representation and checks
 what the view shows.
 
+- The volume is shown as "Opal Spectral" first (its proxy's hint).
 - Two camera directions 10 degrees apart: both show the stone (most of its
   box's footprint is not background) and the domains' hues differ.
 - The still frame equals Opal Spectral Render's image for the same camera
@@ -39,6 +40,7 @@ view.UseColorPaletteForBackground = 0
 view.Background = [0, 0, 0]
 view.UseFXAA = 0
 stone = Show(OutputPort(volume, 0), view)
+check(stone.Representation == "Opal Spectral", f"the volume is shown as Opal Spectral first ({stone.Representation})")
 stone.SetRepresentationType("Opal Spectral")
 Render(view)  # the first render resets the camera; the cameras below are set after it
 
