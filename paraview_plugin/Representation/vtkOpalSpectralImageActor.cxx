@@ -3,6 +3,7 @@
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -176,7 +177,7 @@ bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interact
   }
   vtkImageData* image = this->Render->GetOutput();
   return image->GetNumberOfPoints() > 0 && image->GetPointData()->GetArray("RGB") &&
-    image->GetPointData()->GetArray("Depth");
+    vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth"));
 }
 
 void vtkOpalSpectralImageActor::UploadFrame(vtkOpenGLRenderWindow* window, vtkImageData* image)
@@ -185,19 +186,15 @@ void vtkOpalSpectralImageActor::UploadFrame(vtkOpenGLRenderWindow* window, vtkIm
   image->GetDimensions(dims);
   const vtkIdType pixels = static_cast<vtkIdType>(dims[0]) * dims[1];
   std::vector<unsigned char> rgba = rgbaOf(image->GetPointData()->GetArray("RGB"), pixels);
-  vtkDataArray* depthArray = image->GetPointData()->GetArray("Depth");
-  std::vector<float> depth(static_cast<std::size_t>(pixels));
-  for (vtkIdType p = 0; p < pixels; ++p)
-  {
-    depth[static_cast<std::size_t>(p)] = static_cast<float>(depthArray->GetComponent(p, 0));
-  }
+  // The render writes Depth as contiguous floats: uploaded as it is.
+  auto* depth = vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth"));
   this->ColourTexture->SetContext(window);
   this->ColourTexture->Create2DFromRaw(dims[0], dims[1], 4, VTK_UNSIGNED_CHAR, rgba.data());
   // A preview has half the pixels each way: smooth it as it is stretched.
   this->ColourTexture->SetMinificationFilter(vtkTextureObject::Linear);
   this->ColourTexture->SetMagnificationFilter(vtkTextureObject::Linear);
   this->DepthTexture->SetContext(window);
-  this->DepthTexture->Create2DFromRaw(dims[0], dims[1], 1, VTK_FLOAT, depth.data());
+  this->DepthTexture->Create2DFromRaw(dims[0], dims[1], 1, VTK_FLOAT, depth->GetPointer(0));
   this->DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
   this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
   this->FrameAspect = static_cast<double>(dims[0]) / dims[1];
