@@ -136,7 +136,7 @@ void vtkOpalSpectralRepresentation::SetLightPosition(double x, double y, double 
   this->Render->SetLightPosition(x, y, z);
 }
 
-void vtkOpalSpectralRepresentation::SetStillQuality(int quality)
+void vtkOpalSpectralRepresentation::SetQuality(int quality)
 {
   this->Actor->SetStillQuality(quality);
 }
@@ -209,7 +209,7 @@ void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   const double* light = r->GetLightPosition();
   const double* rotation = r->GetModelRotation();
   os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
-  os << indent << "StillQuality: " << this->Actor->GetStillQuality() << "\n";
+  os << indent << "Quality: " << this->Actor->GetStillQuality() << "\n";
   os << indent << "LightPosition: " << light[0] << " " << light[1] << " " << light[2] << "\n";
   os << indent << "ModelRotation: " << rotation[0] << " " << rotation[1] << " " << rotation[2] << "\n";
   os << indent << "RefractiveIndex: " << r->GetRefractiveIndex() << "\n";

@@ -10,7 +10,7 @@
  * drawn with its depth by a vtkOpalSpectralImageActor, so rotating, panning or
  * zooming changes the play of colour and the domains, slices and axes mix
  * with the stone. While the view is dragged the frames are previews; the
- * still frame that follows has StillQuality. Each rank renders the whole
+ * still frame that follows has Quality. Each rank renders the whole
  * volume: the representation asks its input for the whole extent.
  *
  * The optics are the render filter's settings, with its defaults
@@ -47,7 +47,7 @@ public:
   ///@}
 
   /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
-  void SetStillQuality(int quality);
+  void SetQuality(int quality);
 
   ///@{
   /// The render filter's optics (vtkOpalSpectralRender), forwarded.
