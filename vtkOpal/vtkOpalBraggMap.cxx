@@ -31,6 +31,7 @@ vtkOpalBraggMap::vtkOpalBraggMap()
   const opal::BraggMapSettings defaults;
   std::copy(defaults.LightPosition.begin(), defaults.LightPosition.end(), this->LightPosition);
   std::copy(defaults.EyePosition.begin(), defaults.EyePosition.end(), this->EyePosition);
+  std::copy(defaults.ModelRotation.begin(), defaults.ModelRotation.end(), this->ModelRotation);
   this->RefractiveIndex = 0; // the input's (its field data RefractiveIndex)
   this->BraggOrder = defaults.BraggOrder;
   this->MosaicSpread = defaults.MosaicSpread;
@@ -163,6 +164,7 @@ opal::BraggMapSettings vtkOpalBraggMap::GetSettings() const
   opal::BraggMapSettings settings;
   std::copy(this->LightPosition, this->LightPosition + 3, settings.LightPosition.begin());
   std::copy(this->EyePosition, this->EyePosition + 3, settings.EyePosition.begin());
+  std::copy(this->ModelRotation, this->ModelRotation + 3, settings.ModelRotation.begin());
   settings.RefractiveIndex = this->RefractiveIndex;
   settings.BraggOrder = this->BraggOrder;
   settings.MosaicSpread = this->MosaicSpread;
@@ -185,17 +187,23 @@ int vtkOpalBraggMap::RequestData(
     vtkErrorMacro("BraggOrder must be at least 1 and MosaicSpread lie in [0, 90] degrees.");
     return 0;
   }
+  if (!std::all_of(this->ModelRotation, this->ModelRotation + 3, [](double a) { return std::isfinite(a); }))
+  {
+    vtkErrorMacro("ModelRotation must be finite.");
+    return 0;
+  }
+  opal::BraggMapSettings settings = this->GetSettings();
   // The volume carries the domains on its points, the layout on its cells.
   const bool onPoints = input->GetPointData()->GetArray("DomainId") != nullptr;
   vtkDataSetAttributes* attributes =
     onPoints ? static_cast<vtkDataSetAttributes*>(input->GetPointData()) : input->GetCellData();
-  const std::string error = checkInput(input, attributes, onPoints, this->LightPosition);
+  const std::string error =
+    checkInput(input, attributes, onPoints, opal::inStoneFrame(settings.LightPosition, settings).data());
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  opal::BraggMapSettings settings = this->GetSettings();
   if (settings.RefractiveIndex == 0)
   {
     // The volume's, as its field data records it (the volume and its domain polygons both carry it).
@@ -258,6 +266,8 @@ void vtkOpalBraggMap::PrintSelf(ostream& os, vtkIndent indent)
      << this->LightPosition[2] << "\n";
   os << indent << "EyePosition: " << this->EyePosition[0] << " " << this->EyePosition[1] << " "
      << this->EyePosition[2] << "\n";
+  os << indent << "ModelRotation: " << this->ModelRotation[0] << " " << this->ModelRotation[1] << " "
+     << this->ModelRotation[2] << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
   os << indent << "BraggOrder: " << this->BraggOrder << "\n";
   os << indent << "MosaicSpread: " << this->MosaicSpread << "\n";

@@ -34,6 +34,11 @@ public:
   /// Eye position in mm, for the mosaic weight. Default (0, 60, 0).
   vtkSetVector3Macro(EyePosition, double);
   vtkGetVector3Macro(EyePosition, double);
+  /// The stone's turn in degrees about x, then y, then z, under the fixed light
+  /// and eye — the render's ModelRotation, so both can share one light and eye.
+  /// Default (0, 0, 0).
+  vtkSetVector3Macro(ModelRotation, double);
+  vtkGetVector3Macro(ModelRotation, double);
   /// Refractive index mu; 0 (the default): the input volume's (field data RefractiveIndex).
   vtkSetMacro(RefractiveIndex, double);
   vtkGetMacro(RefractiveIndex, double);
@@ -53,6 +58,7 @@ protected:
 
   double LightPosition[3];
   double EyePosition[3];
+  double ModelRotation[3];
   double RefractiveIndex;
   int BraggOrder;
   double MosaicSpread;

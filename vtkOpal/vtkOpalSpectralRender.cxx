@@ -156,7 +156,10 @@ opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(
   {
     p.RefractiveIndex = volume.RefractiveIndex;
   }
-  p.PresetRotation = volume.PresetRotation;
+  if (this->PresetPlacement)
+  {
+    p.PresetRotation = volume.PresetRotation;
+  }
   // The image a preview renders is the smaller one: extent and data agree.
   return opal::withQuality(p);
 }
@@ -354,6 +357,7 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   print("LightPosition", this->LightPosition, 3);
   print("LightRadius", &this->LightRadius, 1);
   print("ModelRotation", this->ModelRotation, 3);
+  print("PresetPlacement", &this->PresetPlacement, 1);
   print("WavelengthRange", this->WavelengthRange, 2);
   print("WavelengthStep", &this->WavelengthStep, 1);
   print("RefractiveIndex", &this->RefractiveIndex, 1);

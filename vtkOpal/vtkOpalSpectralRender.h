@@ -23,7 +23,10 @@
  * records them in its output information): ImageSize 0 x 0 takes the preset's
  * image size (640 x 480 for custom), RefractiveIndex 0 the model's, and the
  * preset's placement of the stone (fig13: 5 degrees about x) comes before
- * ModelRotation. A value set here is used as set.
+ * ModelRotation unless PresetPlacement is off. A value set here is used as set.
+ * (ParaView's proxy fills ImageSize and ModelRotation with the upstream
+ * preset's values and turns PresetPlacement off, so its panel shows them:
+ * docs/design.md §2.8.)
  *
  * The filter keeps a render session (docs/design.md §5): the volume stays on
  * the device while the input is unchanged, and the light field while the
@@ -83,6 +86,12 @@ public:
   /// preset placement (fig13: 5 about x). Default 0.
   vtkSetVector3Macro(ModelRotation, double);
   vtkGetVector3Macro(ModelRotation, double);
+  /// Whether the volume's preset placement (fig13: 5 degrees about x) turns the
+  /// stone before ModelRotation. Default on; off when ModelRotation already
+  /// holds the whole turn (as ParaView's proxy fills it in).
+  vtkSetMacro(PresetPlacement, bool);
+  vtkGetMacro(PresetPlacement, bool);
+  vtkBooleanMacro(PresetPlacement, bool);
   /// Wavelength range in nm. Default 380-780.
   vtkSetVector2Macro(WavelengthRange, double);
   vtkGetVector2Macro(WavelengthRange, double);
@@ -178,6 +187,7 @@ protected:
   double LightPosition[3];
   double LightRadius;
   double ModelRotation[3];
+  bool PresetPlacement = true;
   double WavelengthRange[2];
   double WavelengthStep;
   double RefractiveIndex;

@@ -2,6 +2,8 @@
 
 #include "OpalModelParameters.h"
 #include "OpalPresets.h"
+#include "vtkSMOpalPipelineWalk.h"
+#include "vtkSMOpalViewpointFilterProxy.h"
 
 #include "vtkObjectFactory.h"
 #include "vtkSMPropertyHelper.h"
@@ -19,6 +21,14 @@ void vtkSMOpalVolumeSourceProxy::SetPropertyModifiedFlag(const char* name, int f
   if (flag && name && std::strcmp(name, "Preset") == 0 && !this->Filling)
   {
     this->FillFromPreset();
+    // The renders and Bragg maps of this volume show its preset's view settings.
+    for (vtkSMProxy* consumer : vtkSMOpalPipelineWalk::DownstreamProxies(this))
+    {
+      if (auto* filter = vtkSMOpalViewpointFilterProxy::SafeDownCast(consumer))
+      {
+        filter->FillFromVolumePreset();
+      }
+    }
   }
 }
 

@@ -198,6 +198,10 @@ def main():
     for path, group, element in proxies:
         proxy = check_proxy(path, group, element, inputs)
         if proxy is not None and element.find("InputProperty") is None:
+            # A filter on a volume with a preset shows the preset's view
+            # settings instead of its XML defaults (docs/design.md §2.8).
+            if "Preset" in proxy.ListProperties():
+                proxy.Preset = "custom"
             inputs.append(proxy)
     for name, reason in skipped:
         print(f"skipped {name}: {reason}")

@@ -13,6 +13,10 @@ struct BraggMapSettings
 {
   std::array<double, 3> LightPosition{ 0.0, 60.0, 0.0 }; // mm
   std::array<double, 3> EyePosition{ 0.0, 60.0, 0.0 };   // mm
+  // The stone's turn under a fixed light and eye, as the render's ModelRotation
+  // (degrees about x, then y, then z): light and eye are turned back into the
+  // stone's frame, so a render and a Bragg map can share one light and eye.
+  std::array<double, 3> ModelRotation{ 0.0, 0.0, 0.0 };
   double RefractiveIndex = 1.45;
   int BraggOrder = 1;                                     // Bragg order k
   double MosaicSpread = 0.0;                           // degrees; 0 = off
@@ -25,6 +29,9 @@ struct BraggMapValue
   double Visible = 0;                     // 1 inside the visible range (times the mosaic weight), else 0
   std::array<std::uint8_t, 3> Colour{};   // sRGB of lambda_B, black if not visible
 };
+
+// A position given in the scene (light, eye) in the stone's frame: turned back by ModelRotation.
+std::array<double, 3> inStoneFrame(const std::array<double, 3>& scenePosition, const BraggMapSettings& settings);
 
 // For a domain at `position` with lattice-plane normal `normal` and spheres
 // of diameter `diameterNm`.

@@ -1,6 +1,6 @@
 #include "OpalRenderCamera.h"
 
-#include <glm/gtc/matrix_transform.hpp>
+#include "OpalRotation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,19 +16,10 @@ glm::dvec3 vec(const std::array<double, 3>& a)
   return { a[0], a[1], a[2] };
 }
 
-// Degrees about x, then y, then z.
-glm::dmat3 rotationOf(const std::array<double, 3>& degrees)
-{
-  const glm::dmat4 rotation = glm::rotate(glm::dmat4(1.0), glm::radians(degrees[2]), glm::dvec3(0, 0, 1)) *
-    glm::rotate(glm::dmat4(1.0), glm::radians(degrees[1]), glm::dvec3(0, 1, 0)) *
-    glm::rotate(glm::dmat4(1.0), glm::radians(degrees[0]), glm::dvec3(1, 0, 0));
-  return glm::dmat3(rotation);
-}
-
 // R^-1 for the stone's rotation: the preset's placement, then ModelRotation.
 glm::dmat3 toModelFrame(const RenderParameters& p)
 {
-  return glm::transpose(rotationOf(p.ModelRotation) * rotationOf(p.PresetRotation));
+  return glm::transpose(rotationOfDegrees(p.ModelRotation) * rotationOfDegrees(p.PresetRotation));
 }
 } // namespace
 

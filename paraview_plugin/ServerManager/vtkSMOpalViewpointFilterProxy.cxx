@@ -1,0 +1,144 @@
+#include "vtkSMOpalViewpointFilterProxy.h"
+
+#include "OpalPresets.h"
+#include "vtkSMOpalPipelineWalk.h"
+
+#include "vtkCommand.h"
+#include "vtkObjectFactory.h"
+#include "vtkSMProperty.h"
+#include "vtkSMPropertyHelper.h"
+#include "vtkSMPropertyLink.h"
+#include "vtkSMSessionProxyManager.h"
+#include "vtkNew.h"
+
+#include <cstring>
+#include <string>
+
+vtkStandardNewMacro(vtkSMOpalViewpointFilterProxy);
+
+namespace
+{
+// What the render and the Bragg map share: one light, one eye, one turn of
+// the stone, one refractive index (docs/design.md §4).
+constexpr const char* SharedProperties[] = { "LightPosition", "EyePosition", "ModelRotation", "RefractiveIndex" };
+
+bool hasSharedProperties(vtkSMProxy* proxy)
+{
+  for (const char* name : SharedProperties)
+  {
+    if (!proxy->GetProperty(name))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+vtkSMOpalViewpointFilterProxy::vtkSMOpalViewpointFilterProxy() = default;
+vtkSMOpalViewpointFilterProxy::~vtkSMOpalViewpointFilterProxy()
+{
+  this->UnfollowRender();
+}
+
+void vtkSMOpalViewpointFilterProxy::SetPropertyModifiedFlag(const char* name, int flag)
+{
+  this->Superclass::SetPropertyModifiedFlag(name, flag);
+  if (!flag || !name || std::strcmp(name, "Input") != 0 || !hasSharedProperties(this))
+  {
+    return;
+  }
+  if (vtkSMProxy* volume = vtkSMOpalPipelineWalk::UpstreamOpalVolume(this))
+  {
+    this->FillFromVolumePreset();
+    this->ShareViewpoint(volume);
+  }
+}
+
+void vtkSMOpalViewpointFilterProxy::FillFromVolumePreset()
+{
+  vtkSMProxy* volume = vtkSMOpalPipelineWalk::UpstreamOpalVolume(this);
+  const opal::PresetSettings* preset =
+    volume ? opal::presetByIndex(vtkSMPropertyHelper(volume, "Preset").GetAsInt()) : nullptr;
+  if (!preset)
+  {
+    return; // custom: the values shown stay (ImageSize 0 0: the volume's default)
+  }
+  const double placement[3] = { preset->RotateXDegrees, 0.0, 0.0 };
+  vtkSMPropertyHelper(this, "ModelRotation").Set(placement, 3);
+  if (this->GetProperty("ImageSize") && this->GetProperty("PresetPlacement"))
+  {
+    vtkSMPropertyHelper(this, "ImageSize").Set(preset->ImageSize.data(), 2);
+    vtkSMPropertyHelper(this, "PresetPlacement").Set(0); // ModelRotation now holds the placement
+  }
+}
+
+void vtkSMOpalViewpointFilterProxy::ShareViewpoint(vtkSMProxy* volume)
+{
+  for (vtkSMProxy* other : vtkSMOpalPipelineWalk::DownstreamProxies(volume))
+  {
+    auto* filter = vtkSMOpalViewpointFilterProxy::SafeDownCast(other);
+    if (!filter || filter == this || !hasSharedProperties(filter) || filter->IsRender() == this->IsRender())
+    {
+      continue;
+    }
+    if (!this->IsRender())
+    {
+      this->FollowRender(filter); // a new Bragg map follows the stone's first render
+      return;
+    }
+    if (!filter->FollowedRender)
+    {
+      filter->FollowRender(this); // a new render leads the Bragg maps no render leads yet
+    }
+  }
+}
+
+bool vtkSMOpalViewpointFilterProxy::IsRender()
+{
+  return this->GetProperty("ImageSize") != nullptr;
+}
+
+void vtkSMOpalViewpointFilterProxy::FollowRender(vtkSMProxy* render)
+{
+  for (const char* name : SharedProperties)
+  {
+    this->GetProperty(name)->Copy(render->GetProperty(name));
+    vtkNew<vtkSMPropertyLink> link;
+    link->AddLinkedProperty(render, name, vtkSMLink::INPUT);
+    link->AddLinkedProperty(this, name, vtkSMLink::OUTPUT);
+    link->AddLinkedProperty(this, name, vtkSMLink::INPUT);
+    link->AddLinkedProperty(render, name, vtkSMLink::OUTPUT);
+    this->LinkNames.push_back(std::string("OpalViewpoint.") + std::to_string(render->GetGlobalID()) + "." +
+      std::to_string(this->GetGlobalID()) + "." + name);
+    this->GetSessionProxyManager()->RegisterLink(this->LinkNames.back().c_str(), link);
+  }
+  this->FollowedRender = render;
+  // A link to a deleted proxy would crash the next change: unlink first.
+  this->RenderObserver =
+    render->AddObserver(vtkCommand::DeleteEvent, this, &vtkSMOpalViewpointFilterProxy::UnfollowRender);
+  this->UpdateVTKObjects();
+}
+
+void vtkSMOpalViewpointFilterProxy::UnfollowRender()
+{
+  vtkSMSessionProxyManager* manager = this->GetSession() ? this->GetSessionProxyManager() : nullptr;
+  for (const std::string& name : this->LinkNames)
+  {
+    if (manager)
+    {
+      manager->UnRegisterLink(name.c_str());
+    }
+  }
+  this->LinkNames.clear();
+  if (this->FollowedRender)
+  {
+    this->FollowedRender->RemoveObserver(this->RenderObserver);
+  }
+  this->FollowedRender = nullptr;
+}
+
+void vtkSMOpalViewpointFilterProxy::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+}
