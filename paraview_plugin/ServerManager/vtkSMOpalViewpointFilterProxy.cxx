@@ -55,6 +55,16 @@ void vtkSMOpalViewpointFilterProxy::SetPropertyModifiedFlag(const char* name, in
   }
 }
 
+void vtkSMOpalViewpointFilterProxy::AddConsumer(vtkSMProperty* property, vtkSMProxy* proxy)
+{
+  this->Superclass::AddConsumer(property, proxy);
+  const char* group = proxy ? proxy->GetXMLGroup() : nullptr;
+  if (this->IsRender() && group && std::strcmp(group, "representations") == 0 && proxy->GetProperty("MapScalars"))
+  {
+    vtkSMPropertyHelper(proxy, "MapScalars").Set(0);
+  }
+}
+
 void vtkSMOpalViewpointFilterProxy::FillFromVolumePreset()
 {
   vtkSMProxy* volume = vtkSMOpalPipelineWalk::UpstreamOpalVolume(this);

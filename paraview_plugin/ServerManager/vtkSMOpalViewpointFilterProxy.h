@@ -13,7 +13,8 @@
  * shows the domains for the light and eye the render uses (docs/design.md
  * §2.8, §4). A Bragg map follows the stone's first render; a new render leads
  * the Bragg maps no render leads yet; renders stay independent of each other
- * (two eyes on one stone are a fair comparison). The
+ * (two eyes on one stone are a fair comparison). The render's image is shown
+ * in true colours: its representations start with Map Scalars off. The
  * volume's proxy calls FillFromVolumePreset again when its preset changes.
  */
 #pragma once
@@ -42,6 +43,9 @@ protected:
   ~vtkSMOpalViewpointFilterProxy() override;
 
   void SetPropertyModifiedFlag(const char* name, int flag) override;
+  // The render's image is colours (sRGB): its representations show them as
+  // they are (Map Scalars off), not through a colour map.
+  void AddConsumer(vtkSMProperty* property, vtkSMProxy* proxy) override;
 
 private:
   vtkSMOpalViewpointFilterProxy(const vtkSMOpalViewpointFilterProxy&) = delete;

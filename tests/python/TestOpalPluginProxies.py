@@ -5,7 +5,7 @@ formula says; its colour map defaults to the visible spectrum."""
 
 import numpy
 from paraview import servermanager as sm
-from paraview.simple import GetColorTransferFunction, LoadPlugin, OutputPort
+from paraview.simple import CreateView, GetColorTransferFunction, LoadPlugin, OutputPort, Show
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import opal_test_config as config
@@ -125,5 +125,19 @@ on_domains.UpdatePipeline()
 mapped = on_domains.GetClientSideObject().GetOutputDataObject(0).GetCellData().GetScalars()
 check(mapped is not None and mapped.GetName() == "BraggWavelength",
       "the Bragg map's active scalars are BraggWavelength")
+
+# The render's image: ParaView's Apply shows it in an Opal Image View of its
+# own (the View hint), in true colours (Map Scalars off), and the pipeline
+# browser has an icon for it (no "Could not find icon pixmap" warning).
+controller = sm.vtkSMParaViewPipelineControllerWithRendering()
+check(controller.GetPreferredViewType(render.SMProxy, 0) == "OpalImageView",
+      "the render's image opens in an Opal Image View")
+check(controller.GetPipelineIcon(render.SMProxy, 0) == "GEOMETRY", "the render's pipeline icon is ParaView's own")
+image_view = CreateView("OpalImageView")
+check(image_view.InteractionMode == "2D" and image_view.CameraParallelProjection == 1 and
+      image_view.OrientationAxesVisibility == 0, "the Opal Image View starts in 2-D, parallel, without axes")
+display = Show(render, image_view)
+check(display.MapScalars == 0 and list(display.ColorArrayName) == ["POINTS", "RGB"],
+      f"the image is shown in its RGB colours, unmapped (MapScalars {display.MapScalars})")
 
 finish("TestOpalPluginProxies")

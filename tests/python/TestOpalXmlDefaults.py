@@ -191,7 +191,11 @@ def main():
     check(len(files) >= 3, f"the plugin's XML files are found in {XML_DIRECTORY}")
     proxies = [(path, group.get("name"), element) for path in files
                for group in ET.parse(path).getroot().iter("ProxyGroup") for element in group
-               if element.get("class")]
+               if element.get("class") and group.get("name") != "views"]
+    skipped.extend((f"{os.path.basename(path)}:{element.get('name')}",
+                    "a view: ParaView's RenderView and its properties, none of ours")
+                   for path in files for group in ET.parse(path).getroot().iter("ProxyGroup")
+                   if group.get("name") == "views" for element in group)
     # Sources first: the filters take the first source as their input.
     proxies.sort(key=lambda item: item[2].find("InputProperty") is not None)
     inputs = []
