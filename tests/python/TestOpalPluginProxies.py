@@ -126,6 +126,19 @@ mapped = on_domains.GetClientSideObject().GetOutputDataObject(0).GetCellData().G
 check(mapped is not None and mapped.GetName() == "BraggWavelength",
       "the Bragg map's active scalars are BraggWavelength")
 
+# The panel's search: for a group drawn by one widget (the Light and Eye
+# handles) ParaView matches the group's label and widget name, not the
+# properties' names, so the labels carry the words a user types.
+for proxy in (render, bragg):
+    groups = [proxy.SMProxy.GetPropertyGroup(i) for i in range(proxy.SMProxy.GetNumberOfPropertyGroups())]
+    handles = {g.GetProperty(0).GetXMLName(): [g.GetXMLLabel() or "", g.GetPanelWidget()]
+               for g in groups if g.GetPanelWidget() == "InteractiveHandle"}
+    found = {word: sorted(name for name, tags in handles.items() if any(word in t.lower() for t in tags))
+             for word in ("position", "eye", "light")}
+    check(found == {"position": ["EyePosition", "LightPosition"], "eye": ["EyePosition"],
+                    "light": ["LightPosition"]},
+          f"{proxy.GetXMLName()}: searching position/eye/light finds the handles {found}")
+
 # The render's image: ParaView's Apply shows it in an Opal Image View of its
 # own (the View hint), in true colours (Map Scalars off), and the pipeline
 # browser has an icon for it (no "Could not find icon pixmap" warning).
