@@ -46,6 +46,30 @@ std::vector<float> surfaceDistancePairs(const RenderVolume& volume)
   });
   return pairs;
 }
+
+// Skin cells take their source's values (docs/design.md §3.3).
+template <typename Cell>
+void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
+{
+  for (const SkinCell& cell : skin)
+  {
+    cells[static_cast<std::size_t>(cell.Index)] = cells[static_cast<std::size_t>(cell.Source)];
+  }
+}
+
+// AbsorptionCoefficient as the shaders read it (AbsorptionCellBinding): per
+// voxel (coloured, grey) mu_a at 550 nm, a voxel of exponent 0 grey, the
+// skin filled like the cells (docs/design.md §3.9).
+std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::vector<SkinCell>& skin)
+{
+  std::vector<gpu::vec2> cells(volume.voxelCount());
+  forEachVoxel(volume, [&](std::size_t i) {
+    const float absorption = volume.AbsorptionCoefficient[i];
+    cells[i] = volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
+  });
+  fillSkin(cells, skin);
+  return cells;
+}
 } // namespace
 
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
@@ -63,10 +87,11 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
+  // constant_id 0: the mode, 1: ABSORPTION (pipelines with it made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[mode] = std::make_unique<ComputePipeline>(
-      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode });
+    this->LightPasses[{ mode, false }] = std::make_unique<ComputePipeline>(
+      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode, 0 });
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
@@ -95,8 +120,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->Volume.reset();
   this->LightField.reset();
   const std::size_t voxels = volume.voxelCount();
+  const bool absorbs = volume.absorbs();
   // Fields and light field, refused up front if too large.
-  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * DeviceBytesPerVoxel;
+  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs);
   if (bytes > this->Context->memoryBudget())
   {
     throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than the " +
@@ -115,13 +141,25 @@ void RenderSession::setVolume(const RenderVolume& volume)
     return buffer;
   };
   // The medium reaches the smooth surface: skin cells filled from inside.
+  const std::vector<SkinCell> skin = skinCells(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
   forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
-  for (const SkinCell& skin : skinCells(volume))
-  {
-    cells[static_cast<std::size_t>(skin.Index)] = cells[static_cast<std::size_t>(skin.Source)];
-  }
+  fillSkin(cells, skin);
   uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
+  uploaded->Absorbs = absorbs;
+  uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
+  if (absorbs)
+  {
+    const std::vector<gpu::vec2> absorption = absorptionCells(volume, skin);
+    uploaded->AbsorptionCells = deviceLocal(voxels * sizeof(gpu::vec2), "AbsorptionCoefficient volume", absorption.data());
+    uploaded->LightAbsorption = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light absorption field");
+  }
+  else
+  {
+    // Bound but never read: the passes without ABSORPTION.
+    uploaded->AbsorptionCells = deviceLocal(sizeof(gpu::LightFieldPair), "absorption placeholder");
+    uploaded->LightAbsorption = deviceLocal(sizeof(gpu::LightFieldPair), "light absorption placeholder");
+  }
   uploaded->SurfaceDistance =
     deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
   uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
@@ -142,6 +180,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Shape.ScatteringCoefficient = nullptr;
   uploaded->Shape.DomainId = nullptr;
   uploaded->Shape.SurfaceDistance = nullptr;
+  uploaded->Shape.AbsorptionCoefficient = nullptr;
+  uploaded->Shape.AbsorptionExponent = nullptr;
   this->Volume = std::move(uploaded);
   this->bindBuffers();
   this->PendingUploadSeconds = secondsSince(start);
@@ -270,6 +310,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.specularSamples = p.SpecularSamples;
   block.domainCount = static_cast<int>(shape.Domains.size());
   block.braggOrders = p.BraggOrders;
+  block.absorptionExponent = this->Volume->AbsorptionExponent;
   return setup;
 }
 
@@ -280,7 +321,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t wavelengths = setup.Bins.size();
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
-  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * DeviceBytesPerVoxel;
+  const std::uint64_t volumeBytes =
+    static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * deviceBytesPerVoxel(this->Volume->Absorbs);
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
     spectrumBytes;
@@ -399,6 +441,8 @@ void RenderSession::bindBuffers()
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();
+  buffers[gpu::AbsorptionCellBinding] = v.AbsorptionCells.get();
+  buffers[gpu::LightAbsorptionBinding] = v.LightAbsorption.get();
   this->Bindings->bind(buffers);
 }
 
