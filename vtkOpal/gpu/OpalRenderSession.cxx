@@ -57,18 +57,37 @@ void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
   }
 }
 
+// A buffer in device-local memory, holding `values` if given: what only the
+// device reads and writes.
+std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
+  VulkanContext& context, std::uint64_t bytes, const char* what, const void* values = nullptr)
+{
+  auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
+  if (values)
+  {
+    buffer->upload(values, bytes);
+  }
+  return buffer;
+}
+
 // AbsorptionCoefficient as the shaders read it (AbsorptionCellBinding): per
 // voxel (coloured, grey) mu_a at 550 nm, a voxel of exponent 0 grey, the
-// skin filled like the cells (docs/design.md §3.9).
-std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::vector<SkinCell>& skin)
+// skin filled like the cells (docs/design.md §3.9). Without absorption a
+// placeholder, bound but never read (the passes without ABSORPTION).
+std::unique_ptr<VulkanBuffer> absorptionCells(
+  VulkanContext& context, const RenderVolume& volume, const std::vector<SkinCell>& skin, bool absorbs)
 {
+  if (!absorbs)
+  {
+    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder");
+  }
   std::vector<gpu::vec2> cells(volume.voxelCount());
   forEachVoxel(volume, [&](std::size_t i) {
     const float absorption = volume.AbsorptionCoefficient[i];
     cells[i] = volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
   });
   fillSkin(cells, skin);
-  return cells;
+  return deviceLocalBuffer(context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data());
 }
 } // namespace
 
@@ -131,39 +150,22 @@ void RenderSession::setVolume(const RenderVolume& volume)
   }
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  // What only the device reads and writes lives in device-local memory.
-  auto deviceLocal = [&](std::uint64_t bytes, const char* what, const void* values = nullptr) {
-    auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
-    if (values)
-    {
-      buffer->upload(values, bytes);
-    }
-    return buffer;
-  };
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
   forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   fillSkin(cells, skin);
-  uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
+  uploaded->Cells = deviceLocalBuffer(
+    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
-  if (absorbs)
-  {
-    const std::vector<gpu::vec2> absorption = absorptionCells(volume, skin);
-    uploaded->AbsorptionCells = deviceLocal(voxels * sizeof(gpu::vec2), "AbsorptionCoefficient volume", absorption.data());
-    uploaded->LightAbsorption = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light absorption field");
-  }
-  else
-  {
-    // Bound but never read: the passes without ABSORPTION.
-    uploaded->AbsorptionCells = deviceLocal(sizeof(gpu::LightFieldPair), "absorption placeholder");
-    uploaded->LightAbsorption = deviceLocal(sizeof(gpu::LightFieldPair), "light absorption placeholder");
-  }
-  uploaded->SurfaceDistance =
-    deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
-  uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
-  uploaded->EntryVoxels = deviceLocal(voxels * sizeof(std::uint32_t), "light entry voxels");
+  uploaded->AbsorptionCells = absorptionCells(context, volume, skin, absorbs);
+  uploaded->LightAbsorption = deviceLocalBuffer(context,
+    absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field");
+  uploaded->SurfaceDistance = deviceLocalBuffer(
+    context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
+  uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->EntryVoxels = deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels");
   // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
@@ -173,8 +175,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
       domain.PlaneSpacing });
   }
-  uploaded->DomainTable =
-    deviceLocal(records.size() * sizeof(gpu::DomainRecord), "domain table", records.empty() ? nullptr : records.data());
+  uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
+    records.empty() ? nullptr : records.data());
   uploaded->Geometry = VolumeGeometry(volume);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
