@@ -90,6 +90,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.VoronoiWeightSpread = in.real(0, 5);
   p.OrderedFraction = in.real(0, 1.2);
   p.DiameterCorrelationLength = in.real(0, 3);
+  p.BodyAbsorption = in.real(0, 5);
+  p.BodyAbsorptionExponent = in.real(0, 14);
+  p.BackingThickness = in.real(0, 32);
+  p.BackingAbsorption = in.real(0, 20);
+  p.DomainScatteringCoefficient = in.real(0, 5);
 
   if (!opal::validate(p).empty())
   {
@@ -103,8 +108,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<float> diameter(count), normal(3 * count), lambdaMax(count), lambdaMin(count), scattering(count),
     distance(count);
   std::vector<std::int32_t> domain(count), cells(count);
+  std::vector<float> absorption(count), exponent(count);
+  const bool absorbs = p.absorbs();
   const opal::VolumeFields fields{ type.data(), diameter.data(), normal.data(), domain.data(), lambdaMax.data(),
-    lambdaMin.data(), scattering.data(), distance.data(), layout.hasCells() ? cells.data() : nullptr };
+    lambdaMin.data(), scattering.data(), distance.data(), layout.hasCells() ? cells.data() : nullptr,
+    absorbs ? absorption.data() : nullptr, absorbs ? exponent.data() : nullptr };
   const std::array<int, 6> extent{ 0, p.Dimensions[0] - 1, 0, p.Dimensions[1] - 1, 0, p.Dimensions[2] - 1 };
   opal::VolumeFiller(p, layout).fill(extent, 0, p.Dimensions[2], fields);
   for (std::size_t i = 0; i < count; ++i)
@@ -113,6 +121,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(std::isfinite(diameter[i]), "finite ParticleDiameter");
     require(std::isfinite(scattering[i]), "finite ScatteringCoefficient");
     require(std::isfinite(distance[i]), "finite SurfaceDistance");
+    require(std::isfinite(absorption[i]) && absorption[i] >= 0, "finite AbsorptionCoefficient >= 0");
+    require(std::isfinite(exponent[i]), "finite AbsorptionExponent");
     require(std::isfinite(lambdaMax[i]) && std::isfinite(lambdaMin[i]), "finite Bragg wavelengths");
     require(domain[i] >= -1 && domain[i] < layout.placedCount(), "DomainId -1 or a placed domain");
     require(!layout.hasCells() || (cells[i] >= -1 && cells[i] < layout.cellCount()), "CellId -1 or a cell");

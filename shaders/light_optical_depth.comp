@@ -6,6 +6,9 @@
 // Absorption is 0 and mu_s is proportional to lambda^-4, so every wavelength
 // follows as tau(lambda) = tau(550) (550/lambda)^4; this replaces the paper's
 // march towards the light at every sample and wavelength (eq. 6, 7).
+// With ABSORPTION (docs/design.md §3.9) the paths also sum the absorption,
+// coloured and grey apart (they scale differently with lambda), into a second
+// field; without it the pass is the paper's.
 // The medium is the one the view march crosses: each cell's mu_s, inside the
 // smooth surface (SurfaceDistance <= 0) only; paths cross it cell by cell.
 // Voxels in the skin (near the surface, inside or out) are walked to the
@@ -23,11 +26,14 @@
 
 layout(local_size_x = LightPassGroupSize) in;
 layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
+layout(constant_id = 1) const bool ABSORPTION = false;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
+layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 
 layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueues { DispatchQueue queues[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
@@ -44,20 +50,42 @@ float entryGeometry(vec3 p, vec3 lightEntry, vec3 direction)
   return transmission * P.apexDistanceSquared / (r * r);
 }
 
+// The light at a point: the optical depths to the light at 550 nm (x the
+// scattering; y, z the coloured and grey absorption, 0 without ABSORPTION)
+// and the geometry factor.
+struct LightSample
+{
+  vec3 tau;
+  float geometry;
+};
+
 // Stores a voxel's (optical depth, geometry factor) where the light field
 // keeps them: in its own pair, and as the +x neighbour in the pair before it
-// (in its own pair too at the end of a row).
-void storeLight(int index, vec2 light)
+// (in its own pair too at the end of a row); its absorption depths likewise.
+void storeLight(int index, LightSample light)
 {
   int x = index % P.gridDimensions.x;
-  lightField[index].voxel = light;
-  if (x > 0) lightField[index - 1].nextVoxel = light;
-  if (x == P.gridDimensions.x - 1) lightField[index].nextVoxel = light;
+  vec2 field = vec2(light.tau.x, light.geometry);
+  lightField[index].voxel = field;
+  if (x > 0) lightField[index - 1].nextVoxel = field;
+  if (x == P.gridDimensions.x - 1) lightField[index].nextVoxel = field;
+  if (ABSORPTION)
+  {
+    lightAbsorption[index].voxel = light.tau.yz;
+    if (x > 0) lightAbsorption[index - 1].nextVoxel = light.tau.yz;
+    if (x == P.gridDimensions.x - 1) lightAbsorption[index].nextVoxel = light.tau.yz;
+  }
 }
 
-float scatteringIn(ivec3 cell)
+// A voxel's extinction coefficients at 550 nm: (mu_s, coloured mu_a, grey mu_a).
+vec3 mediumAt(int index)
 {
-  return insideGrid(cell) ? voxelCells[voxelIndex(cell)].scattering : 0.0;
+  return vec3(voxelCells[index].scattering, ABSORPTION ? absorptionCells[index] : vec2(0.0));
+}
+
+vec3 mediumIn(ivec3 cell)
+{
+  return insideGrid(cell) ? mediumAt(voxelIndex(cell)) : vec3(0.0);
 }
 
 // The skin: outside voxel centres nearer the surface than a cell's diagonal
@@ -68,11 +96,11 @@ float skinDepth()
 }
 
 // Walks the path from p + t direction cell by cell while it stays inside the
-// smooth surface, adding each cell's mu_s times its length there to tau;
+// smooth surface, adding each cell's coefficients times its length there to tau;
 // returns where the path leaves the surface (bisected), or tEnd. The surface
 // is tested only beyond the distance known to be safe, as sphere tracing
 // does (a distance field changes at most as fast as one moves).
-float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout float tau)
+float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau)
 {
   vec3 origin = p + t * direction;
   float span = tEnd - t;
@@ -82,19 +110,19 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout float tau)
   for (int i = 0; i < 65536 && s < span; ++i)
   {
     float sNext = min(cellExit(walk), span);
-    float mus = scatteringIn(walk.cell);
+    vec3 medium = mediumIn(walk.cell);
     if (sNext > safe)
     {
       float d = surfaceDistance(origin + sNext * direction);
       if (d > 0.0)
       {
         float sOut = bisectSurface(origin, direction, sNext, s);
-        tau += mus * max(sOut - s, 0.0);
+        tau += medium * max(sOut - s, 0.0);
         return t + sOut;
       }
       safe = sNext - 0.9 * d;
     }
-    tau += mus * (sNext - s);
+    tau += medium * (sNext - s);
     s = sNext;
     stepWalk(walk);
   }
@@ -110,7 +138,7 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout float tau)
 // point just inside (unattenuated light there would brighten the
 // terminator). From the voxel's own distance and the field's slope along the
 // path: no search, which a CPU driver would pay for every skin voxel.
-vec2 continuedFromInside(vec3 p, vec3 direction, float d)
+LightSample continuedFromInside(vec3 p, vec3 direction, float d)
 {
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
@@ -118,32 +146,32 @@ vec2 continuedFromInside(vec3 p, vec3 direction, float d)
   if (cosL > 0.25)
   {
     float back = d / cosL;
-    float mus = scatteringIn(voxelOf(p - (back + 0.5 * P.smallestSpacing) * direction));
+    vec3 medium = mediumIn(voxelOf(p - (back + 0.5 * P.smallestSpacing) * direction));
     float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - back * direction) : r;
     float transmission = 1.0 - fresnelReflectance(cosL, P.refractiveIndex);
-    return vec2(-mus * back, transmission * P.apexDistanceSquared / (falloff * falloff));
+    return LightSample(-medium * back, transmission * P.apexDistanceSquared / (falloff * falloff));
   }
   vec3 q = p - (d + 0.01 * P.smallestSpacing) * surfaceNormal(p);
   if (!insideGrid(voxelOf(q)) || surfaceDistance(q) > 0.0)
   {
     // Beside the grid's faces the field's continuation has no nearest point to offer.
-    return vec2(0.0, P.apexDistanceSquared / (r * r));
+    return LightSample(vec3(0.0), P.apexDistanceSquared / (r * r));
   }
   vec3 towardLight = normalize(P.light - q);
-  float tau = 0.0;
+  vec3 tau = vec3(0.0);
   float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau);
-  return vec2(tau, entryGeometry(p, q + exit * towardLight, towardLight));
+  return LightSample(tau, entryGeometry(p, q + exit * towardLight, towardLight));
 }
 
-// The exact light at p (eq. 6, 7, absorption 0): the path to the light
+// The exact light at p (eq. 6, 7): the path to the light
 // crossed cell by cell through every stretch inside the opal; the light
 // enters where the stretch nearest the light leaves it (L_in). An outside
 // p behind the opal thus gets the light through it, one beside it the
 // continuation above.
-vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP)
+LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP)
 {
   float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
-  float tau = 0.0;
+  vec3 tau = vec3(0.0);
   float lightEntry = -1.0;
   float t = 0.0;
   bool inside = surfaceDistanceAtP <= 0.0;
@@ -162,7 +190,7 @@ vec2 lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surface
   {
     return continuedFromInside(p, direction, surfaceDistanceAtP);
   }
-  return vec2(tau, entryGeometry(p, p + lightEntry * direction, direction));
+  return LightSample(tau, entryGeometry(p, p + lightEntry * direction, direction));
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
@@ -206,11 +234,19 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   // The corners' light: two pairs, each a corner and its +x neighbour.
   LightFieldPair nearPair = lightField[nearZ], farPair = lightField[farZ];
   vec2 lightQ = mix(mix(nearPair.voxel, nearPair.nextVoxel, f.x), mix(farPair.voxel, farPair.nextVoxel, f.x), f.y);
-  // Two half-segments, each with the scattering of the voxel it lies in.
-  float segment = 0.5 * step * (voxelCells[index].scattering + scatteringIn(voxelOf(p + 0.75 * step * direction)));
+  vec2 absorptionQ = vec2(0.0);
+  if (ABSORPTION)
+  {
+    LightFieldPair nearAbsorption = lightAbsorption[nearZ], farAbsorption = lightAbsorption[farZ];
+    absorptionQ = mix(mix(nearAbsorption.voxel, nearAbsorption.nextVoxel, f.x),
+      mix(farAbsorption.voxel, farAbsorption.nextVoxel, f.x), f.y);
+  }
+  // Two half-segments, each with the coefficients of the voxel it lies in.
+  vec3 segment = 0.5 * step * (mediumAt(index) + mediumIn(voxelOf(p + 0.75 * step * direction)));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
   float rq = distance(P.light, q), rp = distance(P.light, p);
-  storeLight(index, vec2(lightQ.x + segment, P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)));
+  storeLight(index, LightSample(vec3(lightQ.x, absorptionQ) + segment,
+    P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)));
 }
 
 // The voxel this invocation lights, or -1.
@@ -245,7 +281,7 @@ void main()
   if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
   {
     // Outside beyond the skin: nothing inside reads it; unattenuated light.
-    storeLight(index, vec2(0.0, P.apexDistanceSquared / (distanceToLight * distanceToLight)));
+    storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)));
     return;
   }
   if (LIGHT_PASS_MODE == LightPassSweepFromAbove)

@@ -49,7 +49,11 @@ OPAL_CONSTANT int LightEntryQueuesBinding = 12; // DispatchQueue per layer of th
 OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
 OPAL_CONSTANT int PixelMirrorBinding = 14;     // PixelMirror per pixel
 OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue: the pixels queued for the highlight
-OPAL_CONSTANT int BindingCount = 16;
+// Absorption (docs/design.md §3.9), read only by the passes specialised on it
+// (ABSORPTION); without absorption both hold a placeholder.
+OPAL_CONSTANT int AbsorptionCellBinding = 16;   // vec2 per voxel: mu_a at 550 nm, coloured and grey (1/mm)
+OPAL_CONSTANT int LightAbsorptionBinding = 17;  // LightFieldPair per voxel: absorption depths to the light, coloured and grey
+OPAL_CONSTANT int BindingCount = 18;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -90,6 +94,7 @@ struct OPAL_ALIGNED RenderParameterBlock
   int specularSamples;                // sub-rays per pixel axis for the highlight
   int domainCount;
   int braggOrders;                    // orders k = 1..braggOrders
+  float absorptionExponent;           // p of the coloured absorption, mu_a(lambda) = mu_a(550) (550/lambda)^p
 };
 
 // One wavelength bin (core/OpalSpectralSampling.h): its centre and width,
@@ -115,7 +120,8 @@ struct VoxelCell
 // The light field (docs/design.md §3.3) of a voxel and of its +x neighbour
 // (the last voxel of a row repeats itself), each as (optical depth to the
 // light at 550 nm, Fresnel transmission x fall-off): a trilinear read takes
-// four loads instead of sixteen.
+// four loads instead of sixteen. The absorption field (§3.9) has the same
+// layout, each as (coloured, grey) absorption depth to the light at 550 nm.
 struct OPAL_ALIGNED LightFieldPair
 {
   vec2 voxel;

@@ -4,7 +4,8 @@
 // ray passes the light (for HighlightPass); the refracted ray (Snell 1 -> mu, carrying 1 - F)
 // crosses the opal voxel by voxel (3-D DDA, so no one-voxel-thick domain is
 // tunnelled through) and gathers Rayleigh single scattering (eq. 8) and Bragg
-// diffraction (eq. 4, 9), each domain once per crossing.
+// diffraction (eq. 4, 9), each domain once per crossing. With ABSORPTION the
+// light and view paths are dimmed by the absorption too (docs/design.md §3.9).
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -14,6 +15,8 @@ layout(constant_id = 0) const int WAVELENGTHS = 41;
 // per pixel, or with EXACT_SCATTERING evaluated at every wavelength.
 layout(constant_id = 1) const int SPECTRAL_NODES = 16;
 layout(constant_id = 2) const bool EXACT_SCATTERING = false;
+// The volume absorbs: read the absorption cells and their light field.
+layout(constant_id = 3) const bool ABSORPTION = false;
 
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
@@ -22,6 +25,8 @@ layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 #include "opal_voxel_walk.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
+layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
@@ -38,30 +43,63 @@ float radiance[WAVELENGTHS];
 // The body's scattering on the nodes s_k = s_first + k s_step, divided by s:
 // sum of w exp(-tau s_k) over the sub-steps (unless EXACT_SCATTERING).
 float scatterNodes[SPECTRAL_NODES];
+// (550/lambda)^p at the nodes' wavelengths, p the coloured absorption's
+// exponent (only with ABSORPTION).
+float absorptionNodes[SPECTRAL_NODES];
 
-// The light field at p, trilinear over voxel centres and clamped: (optical
-// depth to the light at 550 nm, geometry factor). Each pair holds a voxel and
-// its +x neighbour, so the eight corners take four loads. The light pass
-// gives the outside corners near the surface values continued from inside.
-vec2 lightAt(vec3 p)
+// A voxel's absorption at 550 nm, (coloured, grey); 0 without ABSORPTION.
+vec2 absorptionAt(int index)
+{
+  return ABSORPTION ? absorptionCells[index] : vec2(0.0);
+}
+
+// The absorption's spectral factor at a wavelength of Rayleigh scale s =
+// (550/lambda)^4: exp(-coloured depth (550/lambda)^p - grey depth).
+float absorbedAt(float s, vec2 tauAbsorption)
+{
+  return ABSORPTION ? exp(-tauAbsorption.x * pow(s, 0.25 * P.absorptionExponent) - tauAbsorption.y) : 1.0;
+}
+
+// The light at a point: optical depths to the light at 550 nm (x the
+// scattering; y, z the coloured and grey absorption, 0 without ABSORPTION)
+// and the geometry factor.
+struct LightSample
+{
+  vec3 tau;
+  float geometry;
+};
+
+// Trilinear interpolation of a pair field's four pairs (each a voxel and its
+// +x neighbour), f the position within the cell.
+vec2 trilinearPairs(LightFieldPair p00, LightFieldPair p10, LightFieldPair p01, LightFieldPair p11, vec3 f)
+{
+  vec2 x00 = mix(p00.voxel, p00.nextVoxel, f.x);
+  vec2 x10 = mix(p10.voxel, p10.nextVoxel, f.x);
+  vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
+  vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
+  return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+}
+
+// The light field at p, trilinear over voxel centres and clamped. Each pair
+// holds a voxel and its +x neighbour, so the eight corners take four loads
+// (and four more for the absorption). The light pass gives the outside
+// corners near the surface values continued from inside.
+LightSample lightAt(vec3 p)
 {
   vec3 g = clamp((p - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
   ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
   ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
   vec3 f = clamp(g - vec3(c0), 0.0, 1.0);
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
-  LightFieldPair p00 = lightField[c0.x + c0.y * sy + c0.z * sz];
-  LightFieldPair p10 = lightField[c0.x + c1.y * sy + c0.z * sz];
-  LightFieldPair p01 = lightField[c0.x + c0.y * sy + c1.z * sz];
-  LightFieldPair p11 = lightField[c0.x + c1.y * sy + c1.z * sz];
-  vec2 x00 = mix(p00.voxel, p00.nextVoxel, f.x);
-  vec2 x10 = mix(p10.voxel, p10.nextVoxel, f.x);
-  vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
-  vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
-  vec2 light = mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
+  int i00 = c0.x + c0.y * sy + c0.z * sz, i10 = c0.x + c1.y * sy + c0.z * sz;
+  int i01 = c0.x + c0.y * sy + c1.z * sz, i11 = c0.x + c1.y * sy + c1.z * sz;
+  vec2 light = trilinearPairs(lightField[i00], lightField[i10], lightField[i01], lightField[i11], f);
+  vec2 absorption = ABSORPTION
+    ? trilinearPairs(lightAbsorption[i00], lightAbsorption[i10], lightAbsorption[i01], lightAbsorption[i11], f)
+    : vec2(0.0);
   // Outside voxels beside the opal hold depths continued linearly (negative)
   // from the inside: a read just inside the surface stays at or above 0.
-  return vec2(max(light.x, 0.0), light.y);
+  return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
 }
 
 // What the march gathers per pixel besides the radiance: the brightest
@@ -72,14 +110,15 @@ float dominantY;
 // Bragg diffraction at a domain crossing (eq. 4, 9): lambda_B from the
 // glancing angle of the light on the lattice planes; the box band B averaged
 // per bin; gain G and 1/pi turn the reflected irradiance into radiance.
-void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, float tauView)
+// tauView: the view path's depths at 550 nm, as LightSample's tau.
+void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView)
 {
   vec3 towardLight = normalize(P.light - at);
   float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
-  vec2 light = lightAt(at);
-  float tauLight = light.x;
-  float geometry = light.y;
-  float weight = P.diffractionGain * geometry *
+  LightSample light = lightAt(at);
+  float tauLight = light.tau.x;
+  vec2 tauAbsorption = light.tau.yz + tauView.yz;
+  float weight = P.diffractionGain * light.geometry *
     mosaicWeight(lattice.latticeNormal, towardLight, towardEye, P.mosaicSpread) / OPAL_PI;
   for (int k = 1; k <= P.braggOrders; ++k)
   {
@@ -90,7 +129,8 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, float tau
       float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
       if (band > 0.0)
       {
-        float value = weight * band * exp(-(tauLight + tauView) * bins[l].rayleighScale);
+        float s = bins[l].rayleighScale;
+        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption);
         radiance[l] += value;
         contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
       }
@@ -135,27 +175,31 @@ float scatterAt(float s)
 }
 
 // Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]
-// in a voxel of coefficient mus, isotropic phase 1/(4 pi), in sub-steps of at
-// most marchStep with the view transmittance at each midpoint. Returns the
-// view optical depth after the segment.
-float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float mus, float tauView)
+// in a voxel of coefficients (mus, absorption), isotropic phase 1/(4 pi), in
+// sub-steps of at most marchStep with the view transmittance at each
+// midpoint. Returns the view depths (as LightSample's tau) after the segment.
+vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float mus, vec2 absorption, vec3 tauView)
 {
   int pieces = max(1, int(ceil(segment / P.marchStep)));
   float ds = segment / float(pieces);
   for (int q = 0; q < pieces; ++q)
   {
     vec3 at = origin + (t + (float(q) + 0.5) * ds) * inward;
-    vec2 light = lightAt(at);
-    float tauTotal = light.x + tauView + 0.5 * mus * ds;
-    float weight = light.y * mus * ds / (4.0 * OPAL_PI);
+    LightSample light = lightAt(at);
+    float tauTotal = light.tau.x + tauView.x + 0.5 * mus * ds;
+    vec2 tauAbsorption = light.tau.yz + tauView.yz + 0.5 * absorption * ds;
+    // The grey absorption dims every wavelength alike.
+    float weight = light.geometry * mus * ds / (4.0 * OPAL_PI) * (ABSORPTION ? exp(-tauAbsorption.y) : 1.0);
+    bool coloured = ABSORPTION && tauAbsorption.x > 0.0;
     if (!EXACT_SCATTERING)
     {
-      // exp(-tau (s0 + k ds)) = exp(-tau s0) exp(-tau ds)^k: two exps, then products.
+      // exp(-tau (s0 + k ds)) = exp(-tau s0) exp(-tau ds)^k: two exps, then
+      // products; the coloured absorption, a power of s, one exp per node.
       float term = weight * exp(-tauTotal * nodeFirst());
       float ratio = exp(-tauTotal * nodeStep());
       for (int k = 0; k < SPECTRAL_NODES; ++k)
       {
-        scatterNodes[k] += term;
+        scatterNodes[k] += coloured ? term * exp(-tauAbsorption.x * absorptionNodes[k]) : term;
         term *= ratio;
       }
     }
@@ -164,10 +208,10 @@ float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, floa
       for (int l = 0; l < WAVELENGTHS; ++l)
       {
         float s = bins[l].rayleighScale;
-        radiance[l] += weight * s * exp(-tauTotal * s);
+        radiance[l] += weight * s * exp(-tauTotal * s) * (coloured ? absorbedAt(s, vec2(tauAbsorption.x, 0.0)) : 1.0);
       }
     }
-    tauView += mus * ds;
+    tauView += vec3(mus, absorption) * ds;
   }
   return tauView;
 }
@@ -178,14 +222,14 @@ float scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, floa
 const int MAX_CROSSINGS = 8;
 vec3 crossingPoint[MAX_CROSSINGS];
 int crossingDomain[MAX_CROSSINGS];
-float crossingDepth[MAX_CROSSINGS]; // view optical depth at the crossing
+vec3 crossingDepth[MAX_CROSSINGS]; // view depths at the crossing (as LightSample's tau)
 
 // Where the walk stands between rounds.
 struct WalkState
 {
   VoxelWalk walk;
   float t;
-  float tauView;   // optical depth at 550 nm from P_in along the view path
+  vec3 tauView;    // depths at 550 nm from P_in along the view path (as LightSample's tau)
   int lastDomain;  // the domain being crossed, counted once
   bool done;       // the ray has left the opal
 };
@@ -206,16 +250,23 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       VoxelCell cell = voxelCells[v];
       int domain = cell.domainId;
       float mus = cell.scattering;
+      vec2 absorption = absorptionAt(v);
       if (domain >= 0 && domain != state.lastDomain)
       {
+        // The paper's domains neither scatter nor absorb; beyond it they may
+        // (docs/design.md §2.10): the depths at the segment's midpoint.
         crossingPoint[count] = origin + (state.t + 0.5 * segment) * inward;
         crossingDomain[count] = domain;
-        crossingDepth[count] = state.tauView;
+        crossingDepth[count] = state.tauView + 0.5 * segment * vec3(mus, absorption);
         ++count;
       }
-      else if (domain < 0 && mus > 0.0)
+      if (mus > 0.0)
       {
-        state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, state.tauView);
+        state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView);
+      }
+      else if (ABSORPTION)
+      {
+        state.tauView.yz += absorption * segment;
       }
       state.lastDomain = domain;
     }
@@ -231,7 +282,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 // at tExit, gathering scattering and each domain once per crossing.
 void marchInside(vec3 origin, vec3 inward, float tExit)
 {
-  WalkState state = WalkState(startWalk(origin, inward), 0.0, 0.0, -1, false);
+  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false);
   for (int round = 0; round < 4096 && !state.done; ++round)
   {
     int count = walkRecording(state, origin, inward, tExit);
@@ -290,6 +341,13 @@ void main()
   }
   for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
   for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
+  if (ABSORPTION && !EXACT_SCATTERING)
+  {
+    for (int k = 0; k < SPECTRAL_NODES; ++k)
+    {
+      absorptionNodes[k] = pow(nodeFirst() + float(k) * nodeStep(), 0.25 * P.absorptionExponent);
+    }
+  }
   dominantLambda = 0.0;
   dominantY = 0.0;
 

@@ -55,6 +55,11 @@ void AddModelParameters(
   addArray<vtkDoubleArray>(f, "VoronoiWeightSpread", { p.VoronoiWeightSpread });
   addArray<vtkDoubleArray>(f, "OrderedFraction", { p.OrderedFraction });
   addArray<vtkDoubleArray>(f, "DiameterCorrelationLength", { p.DiameterCorrelationLength });
+  addArray<vtkDoubleArray>(f, "BodyAbsorption", { p.BodyAbsorption });
+  addArray<vtkDoubleArray>(f, "BodyAbsorptionExponent", { p.BodyAbsorptionExponent });
+  addArray<vtkDoubleArray>(f, "BackingThickness", { p.BackingThickness });
+  addArray<vtkDoubleArray>(f, "BackingAbsorption", { p.BackingAbsorption });
+  addArray<vtkDoubleArray>(f, "DomainScatteringCoefficient", { p.DomainScatteringCoefficient });
   addArray<vtkDoubleArray>(f, "RefractiveIndex", { p.RefractiveIndex });
   addArray<vtkIntArray>(f, "MaxPlacementAttempts", { p.MaxPlacementAttempts });
   addArray<vtkIntArray>(f, "Seed", { static_cast<int>(p.Seed) });

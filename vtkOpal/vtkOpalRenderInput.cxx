@@ -56,6 +56,35 @@ vtkDataArray* scalarArray(vtkImageData* input, const char* name, std::string& er
   return array;
 }
 
+// The optional absorption (docs/design.md §2.10): AbsorptionCoefficient and
+// its AbsorptionExponent (0, grey, where that array is absent); empty or the reason.
+std::string readAbsorption(vtkImageData* input, opal::RenderVolume& volume, vtkOpalRenderInput::Storage& storage)
+{
+  vtkPointData* points = input->GetPointData();
+  if (!points->GetArray("AbsorptionCoefficient"))
+  {
+    return {};
+  }
+  std::string error;
+  vtkDataArray* absorption = scalarArray(input, "AbsorptionCoefficient", error);
+  vtkDataArray* exponent = points->GetArray("AbsorptionExponent") ? scalarArray(input, "AbsorptionExponent", error) : nullptr;
+  if (!error.empty())
+  {
+    return error;
+  }
+  volume.AbsorptionCoefficient = contiguousValues(absorption, storage.Absorption);
+  if (exponent)
+  {
+    volume.AbsorptionExponent = contiguousValues(exponent, storage.AbsorptionExponent);
+  }
+  else
+  {
+    storage.AbsorptionExponent.assign(static_cast<std::size_t>(input->GetNumberOfPoints()), 0.0f);
+    volume.AbsorptionExponent = storage.AbsorptionExponent.data();
+  }
+  return {};
+}
+
 // The domain table from the field arrays DomainNormal and DomainParticleDiameter.
 std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>& domains)
 {
@@ -145,7 +174,8 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
   volume.ScatteringCoefficient = contiguousValues(scattering, storage.Scattering);
   volume.DomainId = contiguousValues(domainIds, storage.DomainId);
   volume.SurfaceDistance = contiguousValues(distance, storage.SurfaceDistance);
-  return readDomainTable(input, volume.Domains);
+  error = readAbsorption(input, volume, storage);
+  return error.empty() ? readDomainTable(input, volume.Domains) : error;
 }
 
 VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume)

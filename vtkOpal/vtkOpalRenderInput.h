@@ -1,8 +1,9 @@
 // Reads what the render needs from an Opal volume (docs/design.md §2, §6):
-// the three voxel fields without a virtual call per value (the arrays' own
-// memory where they are float/int AOS arrays, else one converted copy), the
-// domain table from the field data the source writes, and the render
-// settings the source records in its output information.
+// the voxel fields (three, and the absorption where present) without a
+// virtual call per value (the arrays' own memory where they are float/int
+// AOS arrays, else one converted copy), the domain table from the field data
+// the source writes, and the render settings the source records in its
+// output information.
 #pragma once
 
 #include "OpalModelParameters.h"
@@ -22,7 +23,7 @@ namespace vtkOpalRenderInput
 // Holds converted copies where an input array is not of the render's type.
 struct Storage
 {
-  std::vector<float> Scattering, SurfaceDistance;
+  std::vector<float> Scattering, SurfaceDistance, Absorption, AbsorptionExponent;
   std::vector<std::int32_t> DomainId;
 };
 

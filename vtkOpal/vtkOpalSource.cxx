@@ -91,6 +91,11 @@ opal::ModelParameters vtkOpalSource::GetModelParameters() const
   p.VoronoiWeightSpread = this->VoronoiWeightSpread;
   p.OrderedFraction = this->OrderedFraction;
   p.DiameterCorrelationLength = this->DiameterCorrelationLength;
+  p.BodyAbsorption = this->BodyAbsorption;
+  p.BodyAbsorptionExponent = this->BodyAbsorptionExponent;
+  p.BackingThickness = this->BackingThickness;
+  p.BackingAbsorption = this->BackingAbsorption;
+  p.DomainScatteringCoefficient = this->DomainScatteringCoefficient;
   p.RefractiveIndex = this->RefractiveIndex;
   p.MaxPlacementAttempts = this->MaxPlacementAttempts;
   p.Seed = static_cast<std::uint32_t>(this->Seed);
@@ -128,6 +133,11 @@ void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
   this->VoronoiWeightSpread = p.VoronoiWeightSpread;
   this->OrderedFraction = p.OrderedFraction;
   this->DiameterCorrelationLength = p.DiameterCorrelationLength;
+  this->BodyAbsorption = p.BodyAbsorption;
+  this->BodyAbsorptionExponent = p.BodyAbsorptionExponent;
+  this->BackingThickness = p.BackingThickness;
+  this->BackingAbsorption = p.BackingAbsorption;
+  this->DomainScatteringCoefficient = p.DomainScatteringCoefficient;
   this->RefractiveIndex = p.RefractiveIndex;
   this->MaxPlacementAttempts = p.MaxPlacementAttempts;
   this->Seed = static_cast<int>(p.Seed);
@@ -304,10 +314,15 @@ bool vtkOpalSource::FillVolume(
   auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
   auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
   auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
+  // Only with a Voronoi layout, only when the model absorbs (docs/design.md §2.9, §2.10).
   auto cellId = makePointArray<vtkIntArray>("CellId", 1, layout.hasCells() ? count : 0);
+  const bool absorbs = parameters.absorbs();
+  auto absorption = makePointArray<vtkFloatArray>("AbsorptionCoefficient", 1, absorbs ? count : 0);
+  auto exponent = makePointArray<vtkFloatArray>("AbsorptionExponent", 1, absorbs ? count : 0);
   const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0), normal->GetPointer(0),
     domainId->GetPointer(0), lambdaMax->GetPointer(0), lambdaMin->GetPointer(0), scattering->GetPointer(0),
-    distance->GetPointer(0), layout.hasCells() ? cellId->GetPointer(0) : nullptr };
+    distance->GetPointer(0), layout.hasCells() ? cellId->GetPointer(0) : nullptr,
+    absorbs ? absorption->GetPointer(0) : nullptr, absorbs ? exponent->GetPointer(0) : nullptr };
 
   // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
   const opal::VolumeFiller filler(parameters, layout);
@@ -338,6 +353,11 @@ bool vtkOpalSource::FillVolume(
   if (layout.hasCells())
   {
     pointData->AddArray(cellId);
+  }
+  if (absorbs)
+  {
+    pointData->AddArray(absorption);
+    pointData->AddArray(exponent);
   }
   return true;
 }
@@ -425,6 +445,11 @@ void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "VoronoiWeightSpread: " << this->VoronoiWeightSpread << "\n";
   os << indent << "OrderedFraction: " << this->OrderedFraction << "\n";
   os << indent << "DiameterCorrelationLength: " << this->DiameterCorrelationLength << "\n";
+  os << indent << "BodyAbsorption: " << this->BodyAbsorption << "\n";
+  os << indent << "BodyAbsorptionExponent: " << this->BodyAbsorptionExponent << "\n";
+  os << indent << "BackingThickness: " << this->BackingThickness << "\n";
+  os << indent << "BackingAbsorption: " << this->BackingAbsorption << "\n";
+  os << indent << "DomainScatteringCoefficient: " << this->DomainScatteringCoefficient << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
   os << indent << "MaxPlacementAttempts: " << this->MaxPlacementAttempts << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

@@ -5,7 +5,8 @@
  * Output port 0 is a vtkImageData whose points are voxel centres, with the
  * point arrays VoxelType, ParticleDiameter, Normal, DomainId, BraggLambdaMax,
  * BraggLambdaMin, ScatteringCoefficient and SurfaceDistance (docs/design.md
- * §2.5), CellId with the Voronoi layout, and the domain table as field data
+ * §2.5), CellId with the Voronoi layout, AbsorptionCoefficient and
+ * AbsorptionExponent when the model absorbs (§2.10), and the domain table as field data
  * (DomainNormal, DomainParticleDiameter, indexed by DomainId) for the render.
  * Output port 1 is the diffraction-domain layout as polygons with DomainId,
  * ParticleDiameter, Normal and BraggLambdaMax as cell data: one polygon per
@@ -158,6 +159,29 @@ public:
   ///@}
 
   ///@{
+  /// Absorption of the body in 1/mm at 550 nm, mu_a(lambda) = mu_a(550)
+  /// (550/lambda)^p with p = BodyAbsorptionExponent; domains absorb alike.
+  /// Default 0 (the paper). With absorption the volume carries the point
+  /// arrays AbsorptionCoefficient and AbsorptionExponent (docs/design.md §2.10).
+  vtkSetMacro(BodyAbsorption, double);
+  vtkGetMacro(BodyAbsorption, double);
+  /// p: 0 (default) grey; > 0 absorbs blue (the orange body of fire opal).
+  vtkSetMacro(BodyAbsorptionExponent, double);
+  vtkGetMacro(BodyAbsorptionExponent, double);
+  /// Height in mm of the backing layer: the opal's voxels with y below it
+  /// absorb BackingAbsorption (grey, 1/mm) instead of the body's (the potch
+  /// of black opal, the ironstone of boulder opal). Defaults 0.
+  vtkSetMacro(BackingThickness, double);
+  vtkGetMacro(BackingThickness, double);
+  vtkSetMacro(BackingAbsorption, double);
+  vtkGetMacro(BackingAbsorption, double);
+  /// Scattering coefficient of the domain voxels in 1/mm at 550 nm (lambda^-4
+  /// like the body's); 0 (default): the paper's domains do not scatter.
+  vtkSetMacro(DomainScatteringCoefficient, double);
+  vtkGetMacro(DomainScatteringCoefficient, double);
+  ///@}
+
+  ///@{
   /// Refractive index mu of opal. Default 1.45.
   vtkSetMacro(RefractiveIndex, double);
   vtkGetMacro(RefractiveIndex, double);
@@ -225,6 +249,11 @@ protected:
   double VoronoiWeightSpread;
   double OrderedFraction;
   double DiameterCorrelationLength;
+  double BodyAbsorption;
+  double BodyAbsorptionExponent;
+  double BackingThickness;
+  double BackingAbsorption;
+  double DomainScatteringCoefficient;
   double RefractiveIndex;
   int MaxPlacementAttempts;
   int Seed;

@@ -44,6 +44,7 @@ void OpalModelOptions::addTo(CLI::App& app)
                       "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model"),
     &opal::ModelParameters::DomainDiameterRange);
   this->addGrainOptions(app);
+  this->addAbsorptionOptions(app);
   app.add_option("--refractive-index", p.RefractiveIndex, "Refractive index of opal")
     ->capture_default_str()
     ->group("Model");
@@ -81,6 +82,28 @@ void OpalModelOptions::addGrainOptions(CLI::App& app)
        "Correlation length of the scattering diameters in mm (0: independent voxels, the paper)")
     ->capture_default_str()
     ->group("Model");
+}
+
+// Absorption, the backing layer and scattering inside domains (docs/design.md §2.10).
+void OpalModelOptions::addAbsorptionOptions(CLI::App& app)
+{
+  opal::ModelParameters& p = this->Parameters;
+  const std::pair<const char*, std::pair<double*, const char*>> options[] = {
+    { "--body-absorption", { &p.BodyAbsorption, "Absorption of the body in 1/mm at 550 nm (0: none, the paper)" } },
+    { "--body-absorption-exponent",
+      { &p.BodyAbsorptionExponent,
+        "p of the body's absorption mu_a(550) (550/lambda)^p: 0 grey, > 0 absorbs blue (orange body)" } },
+    { "--backing-thickness",
+      { &p.BackingThickness, "Height in mm of the backing layer at the base (0: none, the paper)" } },
+    { "--backing-absorption", { &p.BackingAbsorption, "Grey absorption of the backing layer in 1/mm" } },
+    { "--domain-scattering-coefficient",
+      { &p.DomainScatteringCoefficient,
+        "Scattering inside the domains in 1/mm at 550 nm, as lambda^-4 (0: none, the paper)" } },
+  };
+  for (const auto& [flag, target] : options)
+  {
+    app.add_option(flag, *target.first, target.second)->capture_default_str()->group("Model");
+  }
 }
 
 opal::ModelParameters OpalModelOptions::parameters() const

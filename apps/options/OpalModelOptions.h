@@ -29,6 +29,7 @@ public:
 
 private:
   void addGrainOptions(CLI::App& app);
+  void addAbsorptionOptions(CLI::App& app);
   // Registers a flag that a preset also sets: given explicitly, it wins.
   template <typename T>
   void keepIfGiven(CLI::Option* option, T opal::ModelParameters::*field)

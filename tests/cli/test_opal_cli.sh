@@ -37,6 +37,11 @@ grep -q "voronoi cells    3000, 360 ordered" g.txt || fail "pinfire: 3000 cells,
 grep -q "voronoi cells    100, 50 ordered" g.txt || fail "flags win over the preset: $(cat g.txt)"
 grep -q "preset custom" g.txt || fail "an overridden preset is recorded as custom: $(cat g.txt)"
 
+# Absorption, a backing and domain scattering: a render and a volume with the arrays.
+"$render" "${small[@]}" --body-absorption 0.3 --body-absorption-exponent 4 --backing-thickness 2 --backing-absorption 5 \
+  --domain-scattering-coefficient 0.5 --save-volume absorbing.vti -o absorbing.png >/dev/null 2>&1 || fail "an absorbing render exits 0"
+grep -q 'Name="AbsorptionCoefficient"' absorbing.vti || fail "the absorbing volume carries AbsorptionCoefficient"
+
 # Each bad argument: one line on stderr, non-zero exit, nothing written.
 expect_one_line() {
   local name=$1 pattern=$2; shift 2
@@ -59,6 +64,11 @@ expect_one_line "unknown layout" "--domain-layout" "$volume" --domain-layout hex
 expect_one_line "ordered fraction 2" "OrderedFraction" "$volume" --domain-layout voronoi --ordered-fraction 2 -o x.vti
 expect_one_line "no Voronoi cells" "VoronoiCellCount" "$render" "${small[@]}" --voronoi-cell-count 0 -o x.png
 expect_one_line "negative correlation length" "DiameterCorrelationLength" "$volume" --diameter-correlation-length -1 -o x.vti
+expect_one_line "negative body absorption" "BodyAbsorption" "$render" "${small[@]}" --body-absorption -0.5 -o x.png
+expect_one_line "NaN absorption exponent" "BodyAbsorptionExponent" "$volume" --body-absorption-exponent nan -o x.vti
+expect_one_line "backing thicker than the box" "BackingThickness" "$volume" --backing-thickness 9 -o x.vti
+expect_one_line "negative backing absorption" "BackingAbsorption" "$volume" --backing-absorption -1 -o x.vti
+expect_one_line "negative domain scattering" "DomainScatteringCoefficient" "$render" "${small[@]}" --domain-scattering-coefficient -1 -o x.png
 expect_one_line "width beyond an int" "from -2147483648 to 2147483647" "$render" --width 99999999999 -o x.png
 expect_one_line "negative seed" "from 0 to 18446744073709551615" "$render" --seed -1 -o x.png
 # Enough digits to tell the value from the bound; one refractive-index rule for volume and render.

@@ -106,13 +106,15 @@ struct SlabScene
   std::array<int, 3> Dimensions{ 80, 20, 80 };
   double Spacing = 0.1;
   double Scattering = 0.0;                 // mu_s(550) in 1/mm everywhere inside
+  double Absorption = 0.0;                 // mu_a(550) in 1/mm everywhere, domain included (0: no arrays)
+  double AbsorptionExponent = 0.0;         // p of mu_a(lambda) = mu_a(550) (550/lambda)^p
   bool WithDomain = false;
   glm::dvec3 DomainCentre{ 0.0, 1.0, 0.0 };
   glm::dvec3 DomainNormal{ 0.0, 1.0, 0.0 };
   double DomainHalfSize = 2.5;             // mm, a square
   double PlaneSpacing = 200.0;             // nm, FCC (111) d
 
-  std::vector<float> ScatteringField, DistanceField;
+  std::vector<float> ScatteringField, DistanceField, AbsorptionField, ExponentField;
   std::vector<std::int32_t> DomainField;
   std::vector<std::array<int, 3>> DomainVoxels;
   opal::Grid VoxelGrid;
@@ -167,6 +169,13 @@ struct SlabScene
     volume.ScatteringCoefficient = this->ScatteringField.data();
     volume.DomainId = this->DomainField.data();
     volume.SurfaceDistance = this->DistanceField.data();
+    if (this->Absorption > 0)
+    {
+      this->AbsorptionField.assign(count, static_cast<float>(this->Absorption));
+      this->ExponentField.assign(count, static_cast<float>(this->AbsorptionExponent));
+      volume.AbsorptionCoefficient = this->AbsorptionField.data();
+      volume.AbsorptionExponent = this->ExponentField.data();
+    }
     return volume;
   }
 };

@@ -12,6 +12,7 @@
 #include "vtkOpalSpectralRender.h"
 
 #include "vtkExecutive.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
@@ -48,6 +49,25 @@ std::function<void(vtkImageData*)> setValue(const char* name, double value, bool
   };
 }
 
+// Gives the volume absorption (docs/design.md §2.10: AbsorptionCoefficient
+// 0.1/mm and AbsorptionExponent 2 everywhere), then `value` at the centre
+// voxel of the named one of the two.
+std::function<void(vtkImageData*)> absorbingWith(const char* name, double value)
+{
+  return [name, value](vtkImageData* volume) {
+    for (const auto& [array, uniform] : { std::pair<const char*, float>{ "AbsorptionCoefficient", 0.1f },
+           { "AbsorptionExponent", 2.0f } })
+    {
+      vtkNew<vtkFloatArray> values;
+      values->SetName(array);
+      values->SetNumberOfTuples(volume->GetNumberOfPoints());
+      values->Fill(uniform);
+      volume->GetPointData()->AddArray(values);
+    }
+    setValue(name, value)(volume);
+  };
+}
+
 // Each bad array fails the request with a message naming it; the good volume renders again.
 void checkBadArrays(vtkImageData* good, opaltest::MessageRecorder* recorder, vtkOpalSpectralRender* render)
 {
@@ -60,6 +80,10 @@ void checkBadArrays(vtkImageData* good, opaltest::MessageRecorder* recorder, vtk
     { "DomainId 1e9", setValue("DomainId", 1e9), "DomainId" },
     { "NaN domain normal", setValue("DomainNormal", nan, true), "DomainNormal" },
     { "zero domain diameter", setValue("DomainParticleDiameter", 0.0, true), "DomainParticleDiameter" },
+    { "NaN absorption", absorbingWith("AbsorptionCoefficient", nan), "AbsorptionCoefficient" },
+    { "negative absorption", absorbingWith("AbsorptionCoefficient", -0.5), "AbsorptionCoefficient" },
+    { "infinite absorption exponent", absorbingWith("AbsorptionExponent", inf), "AbsorptionExponent" },
+    { "a second coloured exponent", absorbingWith("AbsorptionExponent", 3.0), "AbsorptionExponent" },
   };
   for (const BadArray& bad : cases)
   {

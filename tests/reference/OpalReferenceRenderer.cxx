@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -102,6 +103,8 @@ public:
     : S(scene)
     , Scattering(scene.Scattering)
     , DomainId(scene.DomainId)
+    , Absorption(scene.Absorption)
+    , Exponent(scene.AbsorptionExponent)
   {
     this->fillSkin();
   }
@@ -136,6 +139,11 @@ public:
           {
             this->Scattering[v] = this->S.Scattering[deepest];
             this->DomainId[v] = this->S.DomainId[deepest];
+            if (this->absorbs())
+            {
+              this->Absorption[v] = this->S.Absorption[deepest];
+              this->Exponent[v] = this->S.AbsorptionExponent[deepest];
+            }
           }
         }
   }
@@ -163,6 +171,26 @@ public:
   {
     int c[3];
     return this->voxel(p, c) ? this->Scattering[this->index(c[0], c[1], c[2])] : 0.0;
+  }
+
+  bool absorbs() const { return !this->Absorption.empty(); }
+
+  // mu_a(lambda) of voxel v (docs/design.md §2.10), 1/mm.
+  double absorption(std::size_t v, double lambda) const
+  {
+    return this->absorbs() ? this->Absorption[v] * std::pow(550.0 / lambda, static_cast<double>(this->Exponent[v])) : 0.0;
+  }
+
+  double absorption(const dvec3& p, double lambda) const
+  {
+    int c[3];
+    return this->voxel(p, c) ? this->absorption(this->index(c[0], c[1], c[2]), lambda) : 0.0;
+  }
+
+  // True if voxel v scatters or absorbs (a domain voxel of the paper does neither).
+  bool extinguishes(std::size_t v) const
+  {
+    return this->Scattering[v] > 0 || (this->absorbs() && this->Absorption[v] > 0);
   }
 
   // Trilinear SurfaceDistance between voxel centres, continued linearly beyond them.
@@ -248,7 +276,21 @@ public:
   const Scene& S;
   std::vector<float> Scattering; // the scene's, with the skin filled
   std::vector<int> DomainId;
+  std::vector<float> Absorption, Exponent; // likewise; empty without absorption
 };
+
+// Absorption depths along a path at 550 nm, by exponent p: a voxel's
+// mu_a(550) times its length goes to its exponent's depth, so any mix of
+// exponents gives exact depths at every wavelength.
+using AbsorptionDepth = std::map<float, double>;
+
+double atWavelength(const AbsorptionDepth& depth, double lambda)
+{
+  double tau = 0;
+  for (const auto& [exponent, depth550] : depth)
+    tau += depth550 * std::pow(550.0 / lambda, static_cast<double>(exponent));
+  return tau;
+}
 
 double fresnel(double cosI, double mu)
 {
@@ -261,12 +303,15 @@ double fresnel(double cosI, double mu)
   return 0.5 * (rs * rs + rp * rp);
 }
 
-// Light reaching p (eq. 6, 7 with docs/design.md §4.1's 1/r^2 to the sample), at 550 nm
-// optical depth tau and geometric factor g: march towards the light one voxel
+// Light reaching p (eq. 6, 7 with docs/design.md §4.1's 1/r^2 to the sample), at the
+// wavelength lambda (rayleigh = (550/lambda)^4) optical depth tau (scattering and absorption)
+// and geometric factor g: march towards the light one voxel
 // length at a time, nearest-voxel coefficients at each step's midpoint, until
 // the path leaves the opal at L_in, where the Fresnel transmission applies.
-void lightAt(const Volume& v, const dvec3& p, const dvec3& light, double apexDistance2, double mu, double& tau, double& g)
+void lightAt(const Volume& v, const dvec3& p, const dvec3& light, double apexDistance2, double mu, double rayleigh,
+  double lambda, double& tau, double& g)
 {
+  auto extinction = [&](const dvec3& at) { return v.scattering(at) * rayleigh + v.absorption(at, lambda); };
   const dvec3 d = glm::normalize(light - p);
   const double h = v.minSpacing();
   const double tEnd = std::min(v.box(p, d)[1], glm::length(light - p));
@@ -278,10 +323,10 @@ void lightAt(const Volume& v, const dvec3& p, const dvec3& light, double apexDis
     if (v.distance(p + (t + step) * d) > 0)
     {
       exit = v.bisect(p, d, t, t + step, false);
-      tau += v.scattering(p + 0.5 * (t + exit) * d) * (exit - t);
+      tau += extinction(p + 0.5 * (t + exit) * d) * (exit - t);
       break;
     }
-    tau += v.scattering(p + (t + 0.5 * step) * d) * step;
+    tau += extinction(p + (t + 0.5 * step) * d) * step;
     t += step;
   }
   const dvec3 entry = p + exit * d;
@@ -291,10 +336,12 @@ void lightAt(const Volume& v, const dvec3& p, const dvec3& light, double apexDis
 
 // --- Converged mode: the light exactly, the view path refined ---
 
-// The optical depth over [a, b] of p + t d in the piecewise-constant field,
+// The pieces of [a, b] of p + t d in the piecewise-constant fields,
 // exactly: every grid plane between voxel cells that the segment crosses,
-// listed and sorted; each piece's midpoint names its voxel.
-double exactDepth(const Volume& v, const dvec3& p, const dvec3& d, double a, double b)
+// listed and sorted; each piece's midpoint names its voxel. Calls
+// piece(midpoint, length) for each.
+template <typename Piece>
+void forEachPiece(const Volume& v, const dvec3& p, const dvec3& d, double a, double b, Piece&& piece)
 {
   std::vector<double> cuts{ a, b };
   for (int k = 0; k < 3; ++k)
@@ -307,13 +354,28 @@ double exactDepth(const Volume& v, const dvec3& p, const dvec3& d, double a, dou
       cuts.push_back((first + i * spacing - p[k]) / d[k]);
   }
   std::sort(cuts.begin(), cuts.end());
-  double tau = 0;
   for (std::size_t i = 1; i < cuts.size(); ++i)
   {
     const double t0 = std::max(cuts[i - 1], a), t1 = std::min(cuts[i], b);
     if (t1 > t0)
-      tau += v.scattering(p + 0.5 * (t0 + t1) * d) * (t1 - t0);
+      piece(p + 0.5 * (t0 + t1) * d, t1 - t0);
   }
+}
+
+// The scattering optical depth at 550 nm over [a, b] of p + t d, exactly,
+// and the absorption depths by exponent added to `absorption`.
+double exactDepth(const Volume& v, const dvec3& p, const dvec3& d, double a, double b, AbsorptionDepth& absorption)
+{
+  double tau = 0;
+  forEachPiece(v, p, d, a, b, [&](const dvec3& middle, double length) {
+    tau += v.scattering(middle) * length;
+    int c[3];
+    if (v.absorbs() && v.voxel(middle, c))
+    {
+      const std::size_t voxel = v.index(c[0], c[1], c[2]);
+      absorption[v.Exponent[voxel]] += v.Absorption[voxel] * length;
+    }
+  });
   return tau;
 }
 
@@ -350,7 +412,8 @@ std::vector<std::array<double, 2>> insideStretches(const Volume& v, const dvec3&
 // The light at p exactly (converged mode): the optical depth of every
 // stretch of the straight path inside the opal, each exact; the light
 // enters where the stretch nearest it ends (L_in).
-void lightExact(const Volume& v, const dvec3& p, const dvec3& light, double apexDistance2, double mu, double& tau, double& g)
+void lightExact(const Volume& v, const dvec3& p, const dvec3& light, double apexDistance2, double mu, double& tau,
+  AbsorptionDepth& absorption, double& g)
 {
   const dvec3 d = glm::normalize(light - p);
   const double tEnd = std::min(v.box(p, d)[1], glm::length(light - p));
@@ -358,7 +421,7 @@ void lightExact(const Volume& v, const dvec3& p, const dvec3& light, double apex
   dvec3 entry = p;
   for (const auto& stretch : insideStretches(v, p, d, tEnd))
   {
-    tau += exactDepth(v, p, d, stretch[0], stretch[1]);
+    tau += exactDepth(v, p, d, stretch[0], stretch[1], absorption);
     entry = p + stretch[1] * d;
   }
   g = (1 - fresnel(glm::dot(v.normal(entry), d), mu)) * apexDistance2 / glm::dot(light - p, light - p);
@@ -588,6 +651,7 @@ struct Sample
   int Voxel;
   int Domain; // -1 for the body
   double Tau = 0, G = 0; // the light, where computed ahead (converged mode)
+  AbsorptionDepth TauAbsorption; // likewise, the light's absorption depths
 };
 
 std::vector<Sample> viewSamples(const Volume& volume, const std::vector<Segment>& segments, const dvec3& origin,
@@ -601,14 +665,18 @@ std::vector<Sample> viewSamples(const Volume& volume, const std::vector<Segment>
     if (domain >= 0)
     {
       if (domain != lastDomain)
-        samples.push_back({ origin + 0.5 * (segment.T0 + segment.T1) * inward, segment.T1 - segment.T0, segment.Voxel, domain });
+        samples.push_back(
+          { origin + 0.5 * (segment.T0 + segment.T1) * inward, segment.T1 - segment.T0, segment.Voxel, domain, 0, 0, {} });
       lastDomain = domain;
-      continue;
+      // The paper's domains neither scatter nor absorb; beyond it (docs/design.md §2.10) they may.
+      if (!volume.extinguishes(static_cast<std::size_t>(segment.Voxel)))
+        continue;
     }
-    lastDomain = -1;
+    else
+      lastDomain = -1;
     const double length = (segment.T1 - segment.T0) / substeps;
     for (int q = 0; q < substeps; ++q)
-      samples.push_back({ origin + (segment.T0 + (q + 0.5) * length) * inward, length, segment.Voxel, -1 });
+      samples.push_back({ origin + (segment.T0 + (q + 0.5) * length) * inward, length, segment.Voxel, -1, 0, 0, {} });
   }
   return samples;
 }
@@ -632,17 +700,18 @@ struct Setup
   int Substeps;
 };
 
-// The light of a sample: computed ahead in converged mode; in the literal
-// mode marched again for every wavelength, as the paper does.
-void sampleLight(const Setup& s, const Sample& sample, double& tau, double& g)
+// The light of a sample at the wavelength lambda (rayleigh = (550/lambda)^4):
+// its optical depth and geometry factor, computed ahead in converged mode; in
+// the literal mode marched again for every wavelength, as the paper does.
+void sampleLight(const Setup& s, const Sample& sample, double rayleigh, double lambda, double& tau, double& g)
 {
   if (s.ViewSettings.Converged)
   {
-    tau = sample.Tau;
+    tau = sample.Tau * rayleigh + atWavelength(sample.TauAbsorption, lambda);
     g = sample.G;
     return;
   }
-  lightAt(s.V, sample.Middle, s.Light, s.ApexDistance2, s.ViewSettings.RefractiveIndex, tau, g);
+  lightAt(s.V, sample.Middle, s.Light, s.ApexDistance2, s.ViewSettings.RefractiveIndex, rayleigh, lambda, tau, g);
 }
 
 // Bragg-Snell (eq. 4, 9) at a domain crossing: the box band averaged over this bin.
@@ -657,13 +726,14 @@ double diffracted(const Setup& s, const Sample& sample, const Band& band, double
   const double hi = std::min(band.Lambda + 0.5 * band.Width, lambdaB * (1 + 0.5 * width));
   const double b = std::max(hi - lo, 0.0) / band.Width;
   double tau, g;
-  sampleLight(s, sample, tau, g);
-  return s.ViewSettings.DiffractionGain * b * g * std::exp(-(tau * rayleigh + tauView)) / Pi;
+  sampleLight(s, sample, rayleigh, band.Lambda, tau, g);
+  return s.ViewSettings.DiffractionGain * b * g * std::exp(-(tau + tauView)) / Pi;
 }
 
 // Every wavelength separately (the paper's cost): the body's single
 // scattering (eq. 8, phase 1/(4 pi), T_V at each sample's middle) and the
-// domains' diffraction; the pixel's XYZ and its dominant Bragg wavelength.
+// domains' diffraction, extinction mu_s + mu_a on both paths (tauView: at
+// this wavelength); the pixel's XYZ and its dominant Bragg wavelength.
 PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, double transmitted, double highlight, double lightRadiance)
 {
   PixelResult pixel;
@@ -675,10 +745,13 @@ PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, doubl
     std::size_t crossing = 0;
     for (const Sample& sample : samples)
     {
+      const auto voxel = static_cast<std::size_t>(sample.Voxel);
+      const double mus = s.V.Scattering[voxel] * rayleigh, mua = s.V.absorption(voxel, band.Lambda);
       if (sample.Domain >= 0)
       {
+        // Seen at the middle of the crossing's first voxel.
         double lambdaB;
-        const double value = diffracted(s, sample, band, rayleigh, tauView, lambdaB);
+        const double value = diffracted(s, sample, band, rayleigh, tauView + 0.5 * (mus + mua) * sample.Length, lambdaB);
         radiance += value;
         if (crossingY.size() <= crossing)
         {
@@ -688,13 +761,14 @@ PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, doubl
         crossingY[crossing++] += value * band.D65 * band.Y * band.Width;
         continue;
       }
-      const double mus = s.V.Scattering[static_cast<std::size_t>(sample.Voxel)] * rayleigh;
-      if (mus <= 0)
-        continue;
-      double tau, g;
-      sampleLight(s, sample, tau, g);
-      radiance += g * std::exp(-tau * rayleigh) * mus / (4 * Pi) * sample.Length * std::exp(-(tauView + 0.5 * mus * sample.Length));
-      tauView += mus * sample.Length;
+      if (mus > 0)
+      {
+        double tau, g;
+        sampleLight(s, sample, rayleigh, band.Lambda, tau, g);
+        radiance += g * std::exp(-tau) * mus / (4 * Pi) * sample.Length *
+          std::exp(-(tauView + 0.5 * (mus + mua) * sample.Length));
+      }
+      tauView += (mus + mua) * sample.Length;
     }
     const double total = (transmitted * radiance + highlight * lightRadiance) * band.D65;
     pixel.XYZ[0] += total * band.X * band.Width;
@@ -753,7 +827,8 @@ Image renderOnce(const Setup& s, const std::vector<double>& highlight)
       viewSamples(volume, viewSegments(volume, origin, inward, viewExit(volume, origin, inward)), origin, inward, s.Substeps);
     if (view.Converged)
       for (Sample& sample : samples)
-        lightExact(volume, sample.Middle, s.Light, s.ApexDistance2, view.RefractiveIndex, sample.Tau, sample.G);
+        lightExact(volume, sample.Middle, s.Light, s.ApexDistance2, view.RefractiveIndex, sample.Tau, sample.TauAbsorption,
+          sample.G);
     const PixelResult result = shadePixel(s, samples, transmitted, highlight[pixel], lightRadiance);
     std::copy(result.XYZ.begin(), result.XYZ.end(), image.XYZ.begin() + static_cast<std::ptrdiff_t>(3 * pixel));
     image.Dominant[pixel] = result.Dominant;

@@ -6,7 +6,9 @@
 // matching. Where docs/design.md §4 amends the paper it follows the amendment:
 // 1/r^2 to the sample, the view transmittance at each step's midpoint, the
 // 1/pi on diffraction, domains counted once per crossing, the box band
-// averaged over each wavelength bin.
+// averaged over each wavelength bin. Beyond the paper (§2.10): absorption,
+// each voxel's mu_a(lambda) evaluated per wavelength, so extinction mu_s +
+// mu_a on every path, and domain voxels that scatter and absorb.
 //
 // Straightforward rather than clever: pixels spread over threads, no code shared with
 // the product, only the CIE tables (data files). Two modes: literal (the
@@ -34,6 +36,9 @@ struct Scene
   std::vector<int> DomainId;       // -1 or an index into Domains
   std::vector<float> SurfaceDistance;
   std::vector<std::array<double, 4>> Domains; // lattice normal x y z, plane spacing d (nm)
+  // Absorption (docs/design.md §2.10), empty for none: mu_a(550) in 1/mm and
+  // the exponent p of mu_a(lambda) = mu_a(550) (550/lambda)^p, per voxel.
+  std::vector<float> Absorption, AbsorptionExponent;
 };
 
 struct View

@@ -1,5 +1,5 @@
 // The reference renderer's scene from an Opal volume (vtkImageData with the
-// docs/design.md §2.5 arrays), for the oracle test and the speed bench. The domain
+// docs/design.md §2.5 arrays, absorption's where present), for the oracle test and the speed bench. The domain
 // table is rebuilt from the voxels: each domain's lattice normal and its FCC
 // (111) plane spacing d = sqrt(2/3) l (eq. 3).
 #pragma once
@@ -32,8 +32,15 @@ inline Scene sceneFromVolume(vtkImageData* volume)
   vtkDataArray* ids = pd->GetArray("DomainId");
   vtkDataArray* normals = pd->GetArray("Normal");
   vtkDataArray* diameters = pd->GetArray("ParticleDiameter");
+  vtkDataArray* absorption = pd->GetArray("AbsorptionCoefficient");
+  vtkDataArray* exponent = pd->GetArray("AbsorptionExponent");
   for (vtkIdType i = 0; i < volume->GetNumberOfPoints(); ++i)
   {
+    if (absorption && exponent)
+    {
+      scene.Absorption.push_back(static_cast<float>(absorption->GetComponent(i, 0)));
+      scene.AbsorptionExponent.push_back(static_cast<float>(exponent->GetComponent(i, 0)));
+    }
     scene.Scattering.push_back(static_cast<float>(scattering->GetComponent(i, 0)));
     scene.SurfaceDistance.push_back(static_cast<float>(distance->GetComponent(i, 0)));
     const int id = static_cast<int>(ids->GetComponent(i, 0));

@@ -90,6 +90,11 @@ std::string finiteError(const ModelParameters& p)
     { "VoronoiWeightSpread", { p.VoronoiWeightSpread } },
     { "OrderedFraction", { p.OrderedFraction } },
     { "DiameterCorrelationLength", { p.DiameterCorrelationLength } },
+    { "BodyAbsorption", { p.BodyAbsorption } },
+    { "BodyAbsorptionExponent", { p.BodyAbsorptionExponent } },
+    { "BackingThickness", { p.BackingThickness } },
+    { "BackingAbsorption", { p.BackingAbsorption } },
+    { "DomainScatteringCoefficient", { p.DomainScatteringCoefficient } },
   };
   for (const auto& [name, values] : reals)
   {
@@ -263,11 +268,44 @@ std::string grainsError(const ModelParameters& p)
   }
   return message.str();
 }
+
+// Absorption, the backing and domain scattering (docs/design.md §2.10).
+std::string opticsError(const ModelParameters& p)
+{
+  std::ostringstream message = messageStream();
+  for (const auto& [name, value] : { std::pair<const char*, double>{ "BodyAbsorption", p.BodyAbsorption },
+         { "BackingAbsorption", p.BackingAbsorption },
+         { "DomainScatteringCoefficient", p.DomainScatteringCoefficient } })
+  {
+    if (!(value >= 0 && value <= MaxCoefficientPerMm))
+    {
+      message << name << " must lie in [0, " << MaxCoefficientPerMm << "] 1/mm, got " << value << ".";
+      return message.str();
+    }
+  }
+  if (!(std::fabs(p.BodyAbsorptionExponent) <= MaxAbsorptionExponent))
+  {
+    message << "BodyAbsorptionExponent must lie in [" << -MaxAbsorptionExponent << ", " << MaxAbsorptionExponent
+            << "], got " << p.BodyAbsorptionExponent << ".";
+  }
+  else if (!(p.BackingThickness >= 0 && p.BackingThickness <= p.PhysicalSize[1]))
+  {
+    message << "BackingThickness must lie in [0, " << p.PhysicalSize[1] << "] mm (the box's height, PhysicalSize), got "
+            << p.BackingThickness << ".";
+  }
+  return message.str();
+}
 } // namespace
+
+bool ModelParameters::absorbs() const
+{
+  return this->BodyAbsorption > 0 || (this->BackingThickness > 0 && this->BackingAbsorption > 0);
+}
 
 std::string validate(const ModelParameters& p)
 {
-  return firstError(p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError, grainsError });
+  return firstError(
+    p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError, grainsError, opticsError });
 }
 
 std::string smallShapeWarning(const ModelParameters& p)

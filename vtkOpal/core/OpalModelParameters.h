@@ -44,7 +44,17 @@ struct ModelParameters
   // mm: the scattering diameters as a smooth random field of this length
   // (value noise on a lattice of this spacing); 0: independent voxels (the paper).
   double DiameterCorrelationLength = 0.0;
+  // Beyond the paper (docs/design.md §2.10), each 0 by default: the paper's
+  // opal absorbs nothing and its domains do not scatter.
+  double BodyAbsorption = 0.0;         // 1/mm at 550 nm, mu_a(lambda) = mu_a(550) (550/lambda)^p
+  double BodyAbsorptionExponent = 0.0; // p: 0 grey, > 0 absorbs blue (fire opal), < 0 absorbs red
+  double BackingThickness = 0.0;       // mm: the opal's voxels with y below it are the backing
+  double BackingAbsorption = 0.0;      // 1/mm, grey: the backing's absorption instead of the body's
+  double DomainScatteringCoefficient = 0.0; // 1/mm at 550 nm (lambda^-4) in the domain voxels
   std::uint32_t Seed = 1;
+
+  // True if any voxel absorbs: the volume then carries AbsorptionCoefficient.
+  bool absorbs() const;
 
   // Sets the parameters the paper varies between figures; false if the index is unknown.
   bool applyPreset(int presetIndex);
@@ -58,6 +68,11 @@ constexpr int MaxDomainCount = 100000;
 constexpr int MaxDomainVertices = 64;
 // Every process keeps the sites, their adjacency and each voxel's cell.
 constexpr int MaxVoronoiCellCount = 1000000;
+// The largest absorption and domain scattering coefficients (1/mm): 1e4 is
+// opaque within a tenth of a micrometre, far beyond any voxel.
+constexpr double MaxCoefficientPerMm = 1e4;
+// The largest |BodyAbsorptionExponent|: (550/380)^12 is 84 times the 550 nm value.
+constexpr double MaxAbsorptionExponent = 12.0;
 
 // Empty if the parameters are valid, else one sentence naming the parameter.
 std::string validate(const ModelParameters& parameters);

@@ -3,6 +3,7 @@
 #include "OpalDomainLayout.h"
 #include "OpalOptics.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace opal
@@ -12,6 +13,28 @@ std::size_t RenderVolume::voxelCount() const
 {
   return static_cast<std::size_t>(this->Dimensions[0]) * static_cast<std::size_t>(this->Dimensions[1]) *
     static_cast<std::size_t>(this->Dimensions[2]);
+}
+
+bool RenderVolume::absorbs() const
+{
+  if (!this->AbsorptionCoefficient)
+  {
+    return false;
+  }
+  return std::any_of(this->AbsorptionCoefficient, this->AbsorptionCoefficient + this->voxelCount(),
+    [](float absorption) { return absorption > 0.0f; });
+}
+
+float RenderVolume::colouredAbsorptionExponent() const
+{
+  for (std::size_t i = 0; this->AbsorptionCoefficient && i < this->voxelCount(); ++i)
+  {
+    if (this->AbsorptionCoefficient[i] > 0.0f && this->AbsorptionExponent[i] != 0.0f)
+    {
+      return this->AbsorptionExponent[i];
+    }
+  }
+  return 0.0f;
 }
 
 RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDiameter)
@@ -52,6 +75,36 @@ std::string checkVoxelValues(const RenderVolume& volume)
     if (!std::isfinite(distance))
     {
       return "SurfaceDistance at voxel " + std::to_string(i) + " is not finite.";
+    }
+  }
+  return {};
+}
+
+// AbsorptionCoefficient finite and >= 0, AbsorptionExponent finite, and the
+// absorbing voxels' exponents 0 or one other value; empty if so.
+std::string checkAbsorption(const RenderVolume& volume)
+{
+  if (!volume.AbsorptionCoefficient)
+  {
+    return {};
+  }
+  const float coloured = volume.colouredAbsorptionExponent();
+  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+  {
+    const float absorption = volume.AbsorptionCoefficient[i], exponent = volume.AbsorptionExponent[i];
+    if (!std::isfinite(absorption) || absorption < 0.0f)
+    {
+      return "AbsorptionCoefficient " + std::to_string(absorption) + " at voxel " + std::to_string(i) +
+        " is not a finite value >= 0 (1/mm).";
+    }
+    if (!std::isfinite(exponent))
+    {
+      return "AbsorptionExponent at voxel " + std::to_string(i) + " is not finite.";
+    }
+    if (absorption > 0.0f && exponent != 0.0f && exponent != coloured)
+    {
+      return "AbsorptionExponent " + std::to_string(exponent) + " at voxel " + std::to_string(i) +
+        " differs from " + std::to_string(coloured) + " elsewhere: the render takes one exponent besides 0 (grey).";
     }
   }
   return {};
@@ -99,8 +152,18 @@ std::string validate(const RenderVolume& volume)
   {
     return "The input volume lacks ScatteringCoefficient, DomainId or SurfaceDistance.";
   }
-  const std::string values = checkVoxelValues(volume);
-  return values.empty() ? checkDomains(volume) : values;
+  if (!volume.AbsorptionCoefficient != !volume.AbsorptionExponent)
+  {
+    return "The input volume has one of AbsorptionCoefficient and AbsorptionExponent without the other.";
+  }
+  for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume) })
+  {
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  return checkDomains(volume);
 }
 
 } // namespace opal

@@ -29,9 +29,18 @@ struct RenderVolume
   const float* ScatteringCoefficient = nullptr; // 1/mm at 550 nm
   const std::int32_t* DomainId = nullptr;       // -1 or an index into Domains
   const float* SurfaceDistance = nullptr;       // mm, negative inside
+  // Both or neither (docs/design.md §2.10); neither: nothing absorbs (the paper).
+  const float* AbsorptionCoefficient = nullptr; // 1/mm at 550 nm
+  const float* AbsorptionExponent = nullptr;    // p: mu_a(lambda) = mu_a(550) (550/lambda)^p
   std::vector<RenderDomain> Domains;
 
   std::size_t voxelCount() const;
+  // True if any voxel absorbs.
+  bool absorbs() const;
+  // The exponent of the absorbing voxels whose exponent is not 0 (the body's
+  // colour), or 0 if all are grey. The render carries two absorption depths,
+  // this exponent's and the grey one (docs/design.md §3.9).
+  float colouredAbsorptionExponent() const;
 };
 
 // A domain with this lattice normal and sphere diameter (nm), taken as the
@@ -45,6 +54,8 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 // Empty if the render can read the volume, else one sentence naming what is
 // wrong: dimensions and spacing positive, origin finite, the three fields
 // present, ScatteringCoefficient finite and >= 0, SurfaceDistance finite,
+// AbsorptionCoefficient (if any) finite and >= 0 with its AbsorptionExponent
+// finite, and at most one exponent other than 0 among the absorbing voxels,
 // every DomainId -1 or within the domain table, every domain a finite unit
 // normal and a positive plane spacing.
 std::string validate(const RenderVolume& volume);

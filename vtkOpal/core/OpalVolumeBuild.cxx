@@ -13,14 +13,21 @@ namespace
 // Share of the work spent placing domains; filling the voxels takes the rest.
 constexpr double LayoutShare = 0.1;
 
+template <typename T>
+T* dataOrNull(std::vector<T>& values)
+{
+  return values.empty() ? nullptr : values.data();
+}
+
 VolumeFields fieldsOf(BuiltVolume& volume)
 {
   return { volume.VoxelType.data(), volume.ParticleDiameter.data(), volume.Normal.data(), volume.DomainId.data(),
     volume.BraggLambdaMax.data(), volume.BraggLambdaMin.data(), volume.ScatteringCoefficient.data(),
-    volume.SurfaceDistance.data(), volume.CellId.empty() ? nullptr : volume.CellId.data() };
+    volume.SurfaceDistance.data(), dataOrNull(volume.CellId), dataOrNull(volume.AbsorptionCoefficient),
+    dataOrNull(volume.AbsorptionExponent) };
 }
 
-void allocate(BuiltVolume& volume)
+void allocate(BuiltVolume& volume, bool absorbs)
 {
   const auto voxels = static_cast<std::size_t>(volume.VoxelGrid.voxelCount());
   volume.VoxelType.resize(voxels);
@@ -35,6 +42,11 @@ void allocate(BuiltVolume& volume)
   {
     volume.CellId.resize(voxels);
   }
+  if (absorbs)
+  {
+    volume.AbsorptionCoefficient.resize(voxels);
+    volume.AbsorptionExponent.resize(voxels);
+  }
 }
 } // namespace
 
@@ -47,6 +59,11 @@ RenderVolume BuiltVolume::renderVolume() const
   volume.ScatteringCoefficient = this->ScatteringCoefficient.data();
   volume.DomainId = this->DomainId.data();
   volume.SurfaceDistance = this->SurfaceDistance.data();
+  if (!this->AbsorptionCoefficient.empty())
+  {
+    volume.AbsorptionCoefficient = this->AbsorptionCoefficient.data();
+    volume.AbsorptionExponent = this->AbsorptionExponent.data();
+  }
   volume.Domains = renderDomains(this->Layout);
   return volume;
 }
@@ -58,7 +75,8 @@ std::string volumeMemoryError(const ModelParameters& parameters)
   // A Voronoi layout keeps each voxel's cell (twice: layout and array) and
   // lists the ordered ones (16 bytes each, at most all).
   const std::uint64_t layoutBytes = parameters.DomainLayout == DomainLayoutKind::Voronoi ? 4 + 4 + 16 : 0;
-  const std::uint64_t needed = voxels * (VolumeBytesPerVoxel + layoutBytes);
+  const std::uint64_t absorptionBytes = parameters.absorbs() ? 4 + 4 : 0;
+  const std::uint64_t needed = voxels * (VolumeBytesPerVoxel + layoutBytes + absorptionBytes);
   const std::uint64_t available = physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {
@@ -79,7 +97,7 @@ std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const 
   {
     return std::nullopt;
   }
-  allocate(volume);
+  allocate(volume, parameters.absorbs());
   const VolumeFiller filler(parameters, volume.Layout);
   const std::array<int, 3>& dims = volume.VoxelGrid.Dimensions;
   const std::array<int, 6> extent{ 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };

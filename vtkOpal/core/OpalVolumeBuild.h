@@ -27,6 +27,7 @@ struct BuiltVolume
   std::vector<float> ParticleDiameter, Normal, BraggLambdaMax, BraggLambdaMin, ScatteringCoefficient, SurfaceDistance;
   std::vector<std::int32_t> DomainId;
   std::vector<std::int32_t> CellId; // Voronoi layout only, else empty
+  std::vector<float> AbsorptionCoefficient, AbsorptionExponent; // only if the model absorbs, else empty
 
   // The render's view of it (pointers into this object's arrays).
   RenderVolume renderVolume() const;

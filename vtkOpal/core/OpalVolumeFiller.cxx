@@ -79,10 +79,12 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
     if (domainVoxel != domainEnd && domainVoxel->Index == globalIndex)
     {
       this->fillDiffractionVoxel(o, this->Layout.domains()[static_cast<std::size_t>(domainVoxel->DomainId)], out);
+      this->fillAbsorption(o, j, out);
     }
     else if (this->Shape.contains(grid.position(i, j, k)))
     {
       this->fillScatteringVoxel(o, { i, j, k }, distance, out);
+      this->fillAbsorption(o, j, out);
     }
     else
     {
@@ -100,9 +102,30 @@ void VolumeFiller::clearVoxel(std::int64_t o, const VolumeFields& out)
   out.BraggLambdaMin[o] = 0.0f;
   out.ScatteringCoefficient[o] = 0.0f;
   out.ParticleDiameter[o] = 0.0f;
+  if (out.AbsorptionCoefficient)
+  {
+    out.AbsorptionCoefficient[o] = 0.0f;
+    out.AbsorptionExponent[o] = 0.0f;
+  }
 }
 
-// Diffraction voxel: FCC (111) planes, no scattering (paper §6.2).
+// Absorption of a voxel of the opal (docs/design.md §2.10): the backing's,
+// grey, below BackingThickness; the body's above, domains included (their
+// spheres are the body's silica).
+void VolumeFiller::fillAbsorption(std::int64_t o, int j, const VolumeFields& out) const
+{
+  if (!out.AbsorptionCoefficient)
+  {
+    return;
+  }
+  const bool backing = this->VoxelGrid.position(0, j, 0)[1] < this->Parameters.BackingThickness;
+  out.AbsorptionCoefficient[o] =
+    static_cast<float>(backing ? this->Parameters.BackingAbsorption : this->Parameters.BodyAbsorption);
+  out.AbsorptionExponent[o] = backing ? 0.0f : static_cast<float>(this->Parameters.BodyAbsorptionExponent);
+}
+
+// Diffraction voxel: FCC (111) planes; no scattering in the paper (§6.2),
+// DomainScatteringCoefficient beyond it (docs/design.md §2.10).
 void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, const VolumeFields& out) const
 {
   const double mu = this->Parameters.RefractiveIndex;
@@ -112,6 +135,7 @@ void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, co
   out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
   out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
   out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
+  out.ScatteringCoefficient[o] = static_cast<float>(this->Parameters.DomainScatteringCoefficient);
   for (std::size_t a = 0; a < 3; ++a)
   {
     out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(domain.Normal[a]);

@@ -34,6 +34,9 @@ struct VolumeFields
   float* ScatteringCoefficient; // 1/mm at 550 nm
   float* SurfaceDistance;       // mm, negative inside
   std::int32_t* CellId = nullptr; // the Voronoi cell (-1 outside the opal); only with a Voronoi layout
+  // Only when the model absorbs (ModelParameters::absorbs, docs/design.md §2.10):
+  float* AbsorptionCoefficient = nullptr; // 1/mm at 550 nm
+  float* AbsorptionExponent = nullptr;    // p of the voxel's mu_a(lambda) = mu_a(550) (550/lambda)^p
 };
 
 class VolumeFiller
@@ -50,6 +53,7 @@ private:
   void fillRow(const std::array<int, 6>& extent, int j, int k, const VolumeFields& out) const;
   static void clearVoxel(std::int64_t o, const VolumeFields& out);
   void fillDiffractionVoxel(std::int64_t o, const Domain& domain, const VolumeFields& out) const;
+  void fillAbsorption(std::int64_t o, int j, const VolumeFields& out) const;
   void fillScatteringVoxel(std::int64_t o, const std::array<int, 3>& ijk, double distance, const VolumeFields& out) const;
 
   ModelParameters Parameters;

@@ -38,8 +38,8 @@ bool RenderSession::sweepLightLayers(Progress& progress)
   // Every layer's queue of entry voxels empty, its indirect dispatch of none.
   auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
   std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
-  const ComputePipeline& sweep = *this->LightPasses.at(gpu::LightPassSweepFromAbove);
-  const ComputePipeline& enter = *this->LightPasses.at(gpu::LightPassMarchQueued);
+  const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove);
+  const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued);
   const int layersPerSubmit =
     static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
   for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
@@ -71,8 +71,8 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
     const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
     const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->LightPasses.at(gpu::LightPassMarchTowardsLight)
-        ->dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
+      this->lightPass(gpu::LightPassMarchTowardsLight)
+        .dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     });
     if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
     {
@@ -82,19 +82,35 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
   return true;
 }
 
+// A light pass's mode for the volume: with ABSORPTION if it absorbs (made on first use).
+ComputePipeline& RenderSession::lightPass(int mode)
+{
+  const bool absorbs = this->Volume->Absorbs;
+  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs }];
+  if (!pass)
+  {
+    const embedded::Spirv code = embedded::lightOpticalDepthShader();
+    pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
+      std::vector<std::int32_t>{ mode, absorbs ? 1 : 0 });
+  }
+  return *pass;
+}
+
 // The march for a wavelength count: the scattering spectrum on nodes, or at
-// every wavelength where nodes are off or would not be fewer than the bins.
+// every wavelength where nodes are off or would not be fewer than the bins;
+// with ABSORPTION if the volume absorbs.
 ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes)
 {
   const bool exact = spectralNodes == 0 || wavelengths <= spectralNodes;
   const int nodes = exact ? 4 : spectralNodes;
-  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes }];
+  const int absorbs = this->Volume->Absorbs ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
-    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING.
+    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION.
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0 });
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs });
   }
   return *march;
 }

@@ -46,6 +46,49 @@ std::vector<float> surfaceDistancePairs(const RenderVolume& volume)
   });
   return pairs;
 }
+
+// Skin cells take their source's values (docs/design.md §3.3).
+template <typename Cell>
+void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
+{
+  for (const SkinCell& cell : skin)
+  {
+    cells[static_cast<std::size_t>(cell.Index)] = cells[static_cast<std::size_t>(cell.Source)];
+  }
+}
+
+// A buffer in device-local memory, holding `values` if given: what only the
+// device reads and writes.
+std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
+  VulkanContext& context, std::uint64_t bytes, const char* what, const void* values = nullptr)
+{
+  auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
+  if (values)
+  {
+    buffer->upload(values, bytes);
+  }
+  return buffer;
+}
+
+// AbsorptionCoefficient as the shaders read it (AbsorptionCellBinding): per
+// voxel (coloured, grey) mu_a at 550 nm, a voxel of exponent 0 grey, the
+// skin filled like the cells (docs/design.md §3.9). Without absorption a
+// placeholder, bound but never read (the passes without ABSORPTION).
+std::unique_ptr<VulkanBuffer> absorptionCells(
+  VulkanContext& context, const RenderVolume& volume, const std::vector<SkinCell>& skin, bool absorbs)
+{
+  if (!absorbs)
+  {
+    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder");
+  }
+  std::vector<gpu::vec2> cells(volume.voxelCount());
+  forEachVoxel(volume, [&](std::size_t i) {
+    const float absorption = volume.AbsorptionCoefficient[i];
+    cells[i] = volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
+  });
+  fillSkin(cells, skin);
+  return deviceLocalBuffer(context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data());
+}
 } // namespace
 
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
@@ -63,10 +106,11 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
+  // constant_id 0: the mode, 1: ABSORPTION (pipelines with it made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[mode] = std::make_unique<ComputePipeline>(
-      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode });
+    this->LightPasses[{ mode, false }] = std::make_unique<ComputePipeline>(
+      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode, 0 });
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
@@ -95,8 +139,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->Volume.reset();
   this->LightField.reset();
   const std::size_t voxels = volume.voxelCount();
+  const bool absorbs = volume.absorbs();
   // Fields and light field, refused up front if too large.
-  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * DeviceBytesPerVoxel;
+  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs);
   if (bytes > this->Context->memoryBudget())
   {
     throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than the " +
@@ -105,27 +150,22 @@ void RenderSession::setVolume(const RenderVolume& volume)
   }
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  // What only the device reads and writes lives in device-local memory.
-  auto deviceLocal = [&](std::uint64_t bytes, const char* what, const void* values = nullptr) {
-    auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
-    if (values)
-    {
-      buffer->upload(values, bytes);
-    }
-    return buffer;
-  };
   // The medium reaches the smooth surface: skin cells filled from inside.
+  const std::vector<SkinCell> skin = skinCells(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
   forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
-  for (const SkinCell& skin : skinCells(volume))
-  {
-    cells[static_cast<std::size_t>(skin.Index)] = cells[static_cast<std::size_t>(skin.Source)];
-  }
-  uploaded->Cells = deviceLocal(voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
-  uploaded->SurfaceDistance =
-    deviceLocal(voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
-  uploaded->LightField = deviceLocal(voxels * sizeof(gpu::LightFieldPair), "light field");
-  uploaded->EntryVoxels = deviceLocal(voxels * sizeof(std::uint32_t), "light entry voxels");
+  fillSkin(cells, skin);
+  uploaded->Cells = deviceLocalBuffer(
+    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
+  uploaded->Absorbs = absorbs;
+  uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
+  uploaded->AbsorptionCells = absorptionCells(context, volume, skin, absorbs);
+  uploaded->LightAbsorption = deviceLocalBuffer(context,
+    absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field");
+  uploaded->SurfaceDistance = deviceLocalBuffer(
+    context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
+  uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->EntryVoxels = deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels");
   // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
@@ -135,13 +175,15 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
       domain.PlaneSpacing });
   }
-  uploaded->DomainTable =
-    deviceLocal(records.size() * sizeof(gpu::DomainRecord), "domain table", records.empty() ? nullptr : records.data());
+  uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
+    records.empty() ? nullptr : records.data());
   uploaded->Geometry = VolumeGeometry(volume);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
   uploaded->Shape.DomainId = nullptr;
   uploaded->Shape.SurfaceDistance = nullptr;
+  uploaded->Shape.AbsorptionCoefficient = nullptr;
+  uploaded->Shape.AbsorptionExponent = nullptr;
   this->Volume = std::move(uploaded);
   this->bindBuffers();
   this->PendingUploadSeconds = secondsSince(start);
@@ -270,6 +312,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.specularSamples = p.SpecularSamples;
   block.domainCount = static_cast<int>(shape.Domains.size());
   block.braggOrders = p.BraggOrders;
+  block.absorptionExponent = this->Volume->AbsorptionExponent;
   return setup;
 }
 
@@ -280,7 +323,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t wavelengths = setup.Bins.size();
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
-  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * DeviceBytesPerVoxel;
+  const std::uint64_t volumeBytes =
+    static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * deviceBytesPerVoxel(this->Volume->Absorbs);
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
     spectrumBytes;
@@ -399,6 +443,8 @@ void RenderSession::bindBuffers()
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();
+  buffers[gpu::AbsorptionCellBinding] = v.AbsorptionCells.get();
+  buffers[gpu::LightAbsorptionBinding] = v.LightAbsorption.get();
   this->Bindings->bind(buffers);
 }
 

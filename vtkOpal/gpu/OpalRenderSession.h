@@ -106,16 +106,18 @@ private:
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
   ComputePipeline& marchPipeline(int wavelengths, int spectralNodes);
+  ComputePipeline& lightPass(int mode);
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
-  // The light pass's three modes (shaders/opal_render_contract.h), by mode.
-  std::map<int, std::unique_ptr<ComputePipeline>> LightPasses;
+  // The light pass's three modes (shaders/opal_render_contract.h), by mode
+  // and whether the volume absorbs (docs/design.md §3.9).
+  std::map<std::pair<int, bool>, std::unique_ptr<ComputePipeline>> LightPasses;
   // The highlight pass's two modes (select and shade), by mode.
   std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
-  // By wavelength count and spectral nodes (0: every wavelength).
-  std::map<std::pair<int, int>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // By wavelength count, spectral nodes (0: every wavelength) and absorption (0 or 1).
+  std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> MarchPasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold

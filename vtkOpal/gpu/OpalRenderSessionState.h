@@ -29,8 +29,14 @@ constexpr std::int64_t MarchPixelsPerSubmit = 1 << 17;
 constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
 constexpr std::int64_t LightSweepVoxelsPerSubmit = 1 << 20;
 // On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8),
-// the light field's pair and a place in the light pass's entry queue.
+// the light field's pair and a place in the light pass's entry queue; with
+// absorption also its two coefficients and their light field's pair.
 constexpr std::uint64_t DeviceBytesPerVoxel = sizeof(gpu::VoxelCell) + 8 + sizeof(gpu::LightFieldPair) + 4;
+constexpr std::uint64_t AbsorptionBytesPerVoxel = 8 + sizeof(gpu::LightFieldPair);
+inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
+{
+  return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
+}
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
   sizeof(gpu::ColourRange) <= PushConstantBytes);
 
@@ -65,6 +71,11 @@ struct RenderSession::DeviceVolume
   std::unique_ptr<VulkanBuffer> Cells, SurfaceDistance, DomainTable;
   std::unique_ptr<VulkanBuffer> LightField;
   std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
+  // The absorption (docs/design.md §3.9): each voxel's (coloured, grey) mu_a
+  // and their light field; 16-byte placeholders when nothing absorbs.
+  std::unique_ptr<VulkanBuffer> AbsorptionCells, LightAbsorption;
+  bool Absorbs = false;
+  float AbsorptionExponent = 0.0f; // of the coloured part
 };
 
 // The per-frame buffers, kept while they are large enough.
