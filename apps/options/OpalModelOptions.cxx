@@ -2,9 +2,8 @@
 
 #include "OpalCliArrays.h"
 
+#include "OpalModelFields.h"
 #include "OpalPresets.h"
-
-
 
 void OpalModelOptions::addTo(CLI::App& app)
 {
@@ -40,9 +39,8 @@ void OpalModelOptions::addTo(CLI::App& app)
     app, "--domain-angle-range", p.DomainAngleRange, "Allowed interior angles MIN MAX in degrees (30 170)", "Model");
   addArrayOption(app, "--domain-rotation-range", p.DomainRotationRange,
     "Tilt of the domain normal from +y MIN MAX in degrees (0 30)", "Model");
-  this->keepIfGiven(addArrayOption(app, "--domain-diameter-range", p.DomainDiameterRange,
-                      "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model"),
-    &opal::ModelParameters::DomainDiameterRange);
+  addArrayOption(app, "--domain-diameter-range", p.DomainDiameterRange,
+    "Domain sphere diameters MIN MAX in nm (default: the preset's)", "Model");
   this->addGrainOptions(app);
   this->addAbsorptionOptions(app);
   app.add_option("--refractive-index", p.RefractiveIndex, "Refractive index of opal")
@@ -54,30 +52,30 @@ void OpalModelOptions::addTo(CLI::App& app)
   app.add_option("--seed", p.Seed, "Seed of every random choice of the model")
     ->capture_default_str()
     ->group("Model");
+  // Each flag of a value a preset may set wins over the preset when given.
+  for (const opal::ModelField& field : opal::presetModelFields())
+  {
+    this->GivenOverPreset.emplace_back(app.get_option(opal::flagOf(field.Property)), &field);
+  }
 }
 
 // The Voronoi layout and the diameter field (docs/design.md §2.3, §2.9).
 void OpalModelOptions::addGrainOptions(CLI::App& app)
 {
   opal::ModelParameters& p = this->Parameters;
-  this->keepIfGiven(addEnumOption(app, "--domain-layout", p.DomainLayout,
-                      { { "polygons", opal::DomainLayoutKind::Polygons }, { "voronoi", opal::DomainLayoutKind::Voronoi } },
-                      "Domains as the paper's polygons or as weighted Voronoi grains (polygons)", "Model"),
-    &opal::ModelParameters::DomainLayout);
-  this->keepIfGiven(app.add_option("--voronoi-cell-count", p.VoronoiCellCount, "Voronoi sites in the opal")
-                      ->capture_default_str()
-                      ->group("Model"),
-    &opal::ModelParameters::VoronoiCellCount);
-  this->keepIfGiven(app.add_option("--voronoi-weight-spread", p.VoronoiWeightSpread,
-                         "Additive weights of the Voronoi sites, uniform in [0, SPREAD] mm")
-                      ->capture_default_str()
-                      ->group("Model"),
-    &opal::ModelParameters::VoronoiWeightSpread);
-  this->keepIfGiven(app.add_option("--ordered-fraction", p.OrderedFraction,
-                         "Share of the Voronoi cells that are crystal domains, [0, 1]")
-                      ->capture_default_str()
-                      ->group("Model"),
-    &opal::ModelParameters::OrderedFraction);
+  addEnumOption(app, "--domain-layout", p.DomainLayout,
+    { { "polygons", opal::DomainLayoutKind::Polygons }, { "voronoi", opal::DomainLayoutKind::Voronoi } },
+    "Domains as the paper's polygons or as weighted Voronoi grains (polygons)", "Model");
+  app.add_option("--voronoi-cell-count", p.VoronoiCellCount, "Voronoi sites in the opal")
+    ->capture_default_str()
+    ->group("Model");
+  app.add_option("--voronoi-weight-spread", p.VoronoiWeightSpread,
+       "Additive weights of the Voronoi sites, uniform in [0, SPREAD] mm")
+    ->capture_default_str()
+    ->group("Model");
+  app.add_option("--ordered-fraction", p.OrderedFraction, "Share of the Voronoi cells that are crystal domains, [0, 1]")
+    ->capture_default_str()
+    ->group("Model");
   app.add_option("--diameter-correlation-length", p.DiameterCorrelationLength,
        "Correlation length of the scattering diameters in mm (0: independent voxels, the paper)")
     ->capture_default_str()
@@ -110,11 +108,11 @@ opal::ModelParameters OpalModelOptions::parameters() const
 {
   opal::ModelParameters resolved = this->Parameters;
   resolved.applyPreset(opal::presetIndexByName(this->Preset));
-  for (const auto& [option, keep] : this->GivenOverPreset)
+  for (const auto& [option, field] : this->GivenOverPreset)
   {
     if (option->count() > 0)
     {
-      keep(resolved, this->Parameters);
+      field->Set(resolved, field->Get(this->Parameters));
     }
   }
   return resolved;
@@ -122,8 +120,8 @@ opal::ModelParameters OpalModelOptions::parameters() const
 
 int OpalModelOptions::presetIndex() const
 {
-  // A flag that wins over the preset's value (--domain-diameter-range, the
-  // layout's): the volume is then recorded (and rebuilt by the source) as custom.
+  // A flag that wins over a value the preset sets (--domain-diameter-range,
+  // the layout's, ...): the volume is then recorded (and rebuilt by the source) as custom.
   bool overridden = false;
   for (const auto& given : this->GivenOverPreset)
   {

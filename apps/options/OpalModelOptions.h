@@ -3,11 +3,11 @@
 // Shared by the command-line programs and the argument fuzzer; no VTK here.
 #pragma once
 
+#include "OpalModelFields.h"
 #include "OpalModelParameters.h"
 
 #include <CLI/CLI.hpp>
 
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,16 +30,9 @@ public:
 private:
   void addGrainOptions(CLI::App& app);
   void addAbsorptionOptions(CLI::App& app);
-  // Registers a flag that a preset also sets: given explicitly, it wins.
-  template <typename T>
-  void keepIfGiven(CLI::Option* option, T opal::ModelParameters::*field)
-  {
-    this->GivenOverPreset.emplace_back(option,
-      [field](opal::ModelParameters& to, const opal::ModelParameters& from) { to.*field = from.*field; });
-  }
-
   opal::ModelParameters Parameters;
-  std::vector<std::pair<CLI::Option*, std::function<void(opal::ModelParameters&, const opal::ModelParameters&)>>>
-    GivenOverPreset;
+  // The flags of the values a preset may set (opal::presetModelFields): given
+  // explicitly, they win over the preset.
+  std::vector<std::pair<CLI::Option*, const opal::ModelField*>> GivenOverPreset;
   std::string Preset = "fig12";
 };

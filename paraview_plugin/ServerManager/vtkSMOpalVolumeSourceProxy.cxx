@@ -1,12 +1,15 @@
 #include "vtkSMOpalVolumeSourceProxy.h"
 
-#include "OpalModelParameters.h"
+#include "OpalModelFields.h"
 #include "OpalPresets.h"
 #include "vtkSMOpalPipelineWalk.h"
 #include "vtkSMOpalViewpointFilterProxy.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkSMIntVectorProperty.h"
 #include "vtkSMPropertyHelper.h"
+
+#include <vector>
 
 #include <cstring>
 
@@ -35,10 +38,9 @@ void vtkSMOpalVolumeSourceProxy::SetPropertyModifiedFlag(const char* name, int f
 void vtkSMOpalVolumeSourceProxy::FillFromPreset()
 {
   // While the proxy is being built its properties come one by one, empty.
-  for (const char* name : { "Preset", "DomainDiameterRange", "DomainLayout", "VoronoiCellCount",
-         "VoronoiWeightSpread", "OrderedFraction" })
+  for (const opal::ModelField& field : opal::presetModelFields())
   {
-    if (!this->GetProperty(name))
+    if (!this->GetProperty(field.Property))
     {
       return;
     }
@@ -51,13 +53,20 @@ void vtkSMOpalVolumeSourceProxy::FillFromPreset()
     return; // custom (or unknown: the source refuses it with a message)
   }
   this->Filling = true;
-  vtkSMPropertyHelper(this, "DomainDiameterRange").Set(preset->DomainDiameterRange.data(), 2);
-  if (preset->Voronoi)
+  for (const opal::PresetValue& value : preset->Model)
   {
-    vtkSMPropertyHelper(this, "DomainLayout").Set(static_cast<int>(opal::DomainLayoutKind::Voronoi));
-    vtkSMPropertyHelper(this, "VoronoiCellCount").Set(preset->Voronoi->CellCount);
-    vtkSMPropertyHelper(this, "VoronoiWeightSpread").Set(preset->Voronoi->WeightSpread);
-    vtkSMPropertyHelper(this, "OrderedFraction").Set(preset->Voronoi->OrderedFraction);
+    vtkSMPropertyHelper helper(this, value.Property);
+    const auto count = static_cast<unsigned int>(value.Values.size());
+    if (vtkSMIntVectorProperty::SafeDownCast(this->GetProperty(value.Property)))
+    {
+      // The helper sets an int property from ints only (enumerations, counts).
+      const std::vector<int> whole(value.Values.begin(), value.Values.end());
+      helper.Set(whole.data(), count);
+    }
+    else
+    {
+      helper.Set(value.Values.data(), count);
+    }
   }
   this->Filling = false;
 }

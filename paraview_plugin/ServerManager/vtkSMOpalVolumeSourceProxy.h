@@ -3,9 +3,7 @@
  * @brief The Opal Volume's proxy: choosing a preset fills in the values it sets.
  *
  * When the Preset property changes, this proxy sets the properties the preset
- * stands for (DomainDiameterRange; for harlequin and pinfire also
- * DomainLayout, VoronoiCellCount, VoronoiWeightSpread and OrderedFraction) to
- * the preset's values, so the panel shows what will be used and a value
+ * stands for (its values by property name, OpalPresets.h) to the preset's values, so the panel shows what will be used and a value
  * edited afterwards is used (docs/design.md §2.8) — the rule of the command
  * line and of vtkOpalSource::SetPreset. Custom sets nothing.
  */

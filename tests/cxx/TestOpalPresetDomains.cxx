@@ -3,6 +3,7 @@
 // with the preset's sphere diameters, and the domain polygons match.
 #include "OpalTestVolumes.h"
 
+#include "OpalModelFields.h"
 #include "OpalPresets.h"
 
 #include "vtkCellData.h"
@@ -18,13 +19,28 @@
 
 int TestOpalPresetDomains(int, char*[])
 {
+  // Every value a preset sets names a field of the table (OpalModelFields.h),
+  // with as many values as the field has, and applying the preset sets it.
   for (const opal::PresetSettings& preset : opal::presets())
   {
-    if (preset.Voronoi)
+    opal::ModelParameters applied;
+    applied.applyPreset(opal::presetIndexByName(preset.Name));
+    for (const opal::PresetValue& value : preset.Model)
+    {
+      const opal::ModelField* field = opal::presetModelField(value.Property);
+      OPAL_CHECK(field != nullptr, std::string(preset.Name) + " sets a known field, " + value.Property);
+      OPAL_CHECK(field && field->Get(applied) == value.Values,
+        std::string(preset.Name) + " sets " + value.Property + " to its values");
+    }
+  }
+  for (const opal::PresetSettings& preset : opal::presets())
+  {
+    if (preset.valuesOf("DomainLayout"))
     {
       continue;
     }
     const std::string name = preset.Name;
+    const std::vector<double>& diameterRange = *preset.valuesOf("DomainDiameterRange");
     vtkNew<vtkOpalSource> source;
     OPAL_CHECK(source->SetPresetByName(preset.Name), name + " is a known preset");
     OPAL_CHECK(source->GetExecutive()->Update() == 1, name + " builds");
@@ -42,7 +58,7 @@ int TestOpalPresetDomains(int, char*[])
     for (vtkIdType c = 0; cellDiameter && c < cellDiameter->GetNumberOfTuples(); ++c)
     {
       const double l = cellDiameter->GetComponent(c, 0);
-      inRange = inRange && l >= preset.DomainDiameterRange[0] - 1e-3 && l <= preset.DomainDiameterRange[1] + 1e-3;
+      inRange = inRange && l >= diameterRange[0] - 1e-3 && l <= diameterRange[1] + 1e-3;
     }
     OPAL_CHECK(inRange, name + " domain diameters within the preset's range");
     // Every polygon's domain has voxels in the volume.

@@ -1,6 +1,7 @@
 #include "OpalModelParameters.h"
 
 #include "OpalMessages.h"
+#include "OpalModelFields.h"
 #include "OpalPresets.h"
 
 #include <cmath>
@@ -18,13 +19,9 @@ bool ModelParameters::applyPreset(int presetIndex)
   {
     return presetIndex == CustomPreset;
   }
-  this->DomainDiameterRange = preset->DomainDiameterRange;
-  if (preset->Voronoi)
+  for (const PresetValue& value : preset->Model)
   {
-    this->DomainLayout = DomainLayoutKind::Voronoi;
-    this->VoronoiCellCount = preset->Voronoi->CellCount;
-    this->VoronoiWeightSpread = preset->Voronoi->WeightSpread;
-    this->OrderedFraction = preset->Voronoi->OrderedFraction;
+    presetModelField(value.Property)->Set(*this, value.Values); // every name is known: TestOpalPresetDomains
   }
   return true;
 }

@@ -1,24 +1,53 @@
 #include "OpalPresets.h"
 
+#include "OpalModelParameters.h"
+
+#include <utility>
+
 namespace opal
 {
+
+namespace
+{
+// A Voronoi preset's values (docs/design.md §2.9): the layout and its grains.
+std::vector<PresetValue> voronoi(
+  std::vector<double> diameterRange, int cellCount, double weightSpread, double orderedFraction)
+{
+  return { { "DomainDiameterRange", std::move(diameterRange) },
+    { "DomainLayout", { static_cast<double>(DomainLayoutKind::Voronoi) } },
+    { "VoronoiCellCount", { static_cast<double>(cellCount) } }, { "VoronoiWeightSpread", { weightSpread } },
+    { "OrderedFraction", { orderedFraction } } };
+}
+} // namespace
+
+const std::vector<double>* PresetSettings::valuesOf(const char* property) const
+{
+  for (const PresetValue& value : this->Model)
+  {
+    if (std::string(property) == value.Property)
+    {
+      return &value.Values;
+    }
+  }
+  return nullptr;
+}
 
 const std::vector<PresetSettings>& presets()
 {
   static const std::vector<PresetSettings> table = {
-    { "fig10", { 175.0, 175.0 }, { 640, 480 }, 0.0, std::nullopt },
-    { "fig11", { 190.0, 210.0 }, { 640, 480 }, 0.0, std::nullopt },
-    { "fig12", { 250.0, 350.0 }, { 640, 480 }, 0.0, std::nullopt },
-    { "fig13", { 250.0, 350.0 }, { 640, 480 }, 5.0, std::nullopt },
-    { "fig15", { 200.0, 235.0 }, { 300, 300 }, 0.0, std::nullopt },
-    { "fig17", { 220.0, 300.0 }, { 300, 300 }, 0.0, std::nullopt },
+    { "fig10", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 175.0, 175.0 } } } },
+    { "fig11", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 190.0, 210.0 } } } },
+    { "fig12", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 250.0, 350.0 } } } },
+    { "fig13", { 640, 480 }, 5.0, { { "DomainDiameterRange", { 250.0, 350.0 } } } },
+    { "fig15", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 200.0, 235.0 } } } },
+    { "fig17", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 220.0, 300.0 } } } },
     // Harlequin: a few large crystal grains in broad, angular patches (cells
     // ~2 mm across), ordered above the percolation threshold so patches join;
     // diameters for green to red play of colour.
-    { "harlequin", { 210.0, 300.0 }, { 640, 480 }, 0.0, VoronoiPresetSettings{ 150, 0.3, 0.5 } },
+    { "harlequin", { 640, 480 }, 0.0, voronoi({ 210.0, 300.0 }, 150, 0.3, 0.5) },
     // Pinfire: many small grains (~0.75 mm) strewn sparsely below the
     // threshold, so they stay isolated specks of every colour.
-    { "pinfire", { 200.0, 320.0 }, { 640, 480 }, 0.0, VoronoiPresetSettings{ 3000, 0.05, 0.12 } },
+    { "pinfire", { 640, 480 }, 0.0, voronoi({ 200.0, 320.0 }, 3000, 0.05, 0.12) },
   };
   return table;
 }

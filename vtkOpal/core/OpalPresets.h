@@ -4,28 +4,28 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace opal
 {
 
-// A Voronoi preset's grain structure: DomainLayout voronoi and these.
-struct VoronoiPresetSettings
+// A value a preset sets, by the property's name (OpalModelFields.h).
+struct PresetValue
 {
-  int CellCount;
-  double WeightSpread;    // mm
-  double OrderedFraction;
+  const char* Property;
+  std::vector<double> Values;
 };
 
 struct PresetSettings
 {
   const char* Name;
-  std::array<double, 2> DomainDiameterRange; // nm
-  std::array<int, 2> ImageSize;              // pixels, width x height
-  double RotateXDegrees;                     // the stone's placement: rotation about x
-  std::optional<VoronoiPresetSettings> Voronoi; // the paper's figures: none (the layout is left as set)
+  std::array<int, 2> ImageSize;   // pixels, width x height (a render setting)
+  double RotateXDegrees;          // the stone's placement: rotation about x (a render setting)
+  std::vector<PresetValue> Model; // the model parameters it sets; everything else keeps its value
+
+  // The values it sets for a property, or nullptr.
+  const std::vector<double>* valuesOf(const char* property) const;
 };
 
 // Index 0 of the preset enumeration is "custom" (no preset); presets are 1-based.
