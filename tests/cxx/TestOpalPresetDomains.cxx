@@ -1,5 +1,5 @@
-// Every paper preset (docs/design.md §2.8) places all 250 domains at paper scale,
-// (the Voronoi presets are TestOpalVoronoiGrains'),
+// Every polygon preset (docs/design.md §2.8, §2.11) places all its domains (250
+// unless it sets DomainCount) at paper scale (the Voronoi presets are TestOpalVoronoiGrains'),
 // with the preset's sphere diameters, and the domain polygons match.
 #include "OpalTestVolumes.h"
 
@@ -41,14 +41,16 @@ int TestOpalPresetDomains(int, char*[])
     }
     const std::string name = preset.Name;
     const std::vector<double>& diameterRange = *preset.valuesOf("DomainDiameterRange");
+    const int count = preset.valuesOf("DomainCount") ? static_cast<int>(preset.valuesOf("DomainCount")->at(0)) : 250;
+    const std::string counted = std::to_string(count);
     vtkNew<vtkOpalSource> source;
     OPAL_CHECK(source->SetPresetByName(preset.Name), name + " is a known preset");
     OPAL_CHECK(source->GetExecutive()->Update() == 1, name + " builds");
     vtkImageData* volume = source->GetOutput(0);
     vtkPolyData* polygons = vtkPolyData::SafeDownCast(source->GetOutputDataObject(1));
     const double placed = volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0);
-    OPAL_CHECK(placed == 250, name + " places all 250 domains, got " + std::to_string(placed));
-    OPAL_CHECK(polygons && polygons->GetNumberOfCells() == 250, name + " has 250 domain polygons");
+    OPAL_CHECK(placed == count, name + " places all " + counted + " domains, got " + std::to_string(placed));
+    OPAL_CHECK(polygons && polygons->GetNumberOfCells() == count, name + " has " + counted + " domain polygons");
     vtkDataArray* cellDiameter = polygons->GetCellData()->GetArray("ParticleDiameter");
     for (const char* array : { "DomainId", "ParticleDiameter", "Normal", "BraggLambdaMax" })
     {
@@ -63,11 +65,11 @@ int TestOpalPresetDomains(int, char*[])
     OPAL_CHECK(inRange, name + " domain diameters within the preset's range");
     // Every polygon's domain has voxels in the volume.
     vtkDataArray* ids = volume->GetPointData()->GetArray("DomainId");
-    std::vector<int> voxelsPerDomain(250, 0);
+    std::vector<int> voxelsPerDomain(static_cast<std::size_t>(count), 0);
     for (vtkIdType id = 0; id < ids->GetNumberOfTuples(); ++id)
     {
       const int d = static_cast<int>(ids->GetComponent(id, 0));
-      if (d >= 0 && d < 250)
+      if (d >= 0 && d < count)
       {
         ++voxelsPerDomain[static_cast<std::size_t>(d)];
       }

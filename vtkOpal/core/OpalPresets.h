@@ -1,6 +1,7 @@
 // The paper's figures as presets (docs/design.md §2.8): the parameters the paper
-// varies between its figures; and Voronoi opals (§2.9), which also set the
-// domain layout. Everything else keeps the model's defaults.
+// varies between its figures; Voronoi opals (§2.9), which also set the
+// domain layout; and the kinds of opal (§2.11), which set the body, its
+// absorption and backing. Everything else keeps the model's defaults.
 #pragma once
 
 #include <array>
