@@ -24,8 +24,11 @@ check(list(volume.DomainDiameterRange) == [200, 235], f"choosing fig15 shows 200
 volume.Preset = "harlequin"
 check(volume.DomainLayout == "voronoi" and volume.VoronoiCellCount == 150 and volume.OrderedFraction == 0.5,
       "choosing harlequin shows its Voronoi layout, 150 cells, half ordered")
+volume.Preset = "black-opal"
+check(volume.BackingThickness == 4 and volume.BackingAbsorption == 5 and volume.ScatteringVolumeFraction == 0.04,
+      "choosing black-opal shows its body and backing")
 volume.Preset = "custom"
-check(volume.VoronoiCellCount == 150, "choosing custom keeps the values shown")
+check(volume.VoronoiCellCount == 150 and volume.BackingThickness == 4, "choosing custom keeps the values shown")
 
 edited = OpalVolume(Preset="fig15", **small)  # noqa: F821
 edited.DomainDiameterRange = [400, 500]
