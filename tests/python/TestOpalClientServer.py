@@ -1,0 +1,77 @@
+"""pvpython: the live view in client-server runs (docs/design.md §5.2). A
+pvserver (1 rank, then 2 ranks under mpiexec) renders "Opal Spectral" for a
+pvpython client, and the client's screenshot equals the built-in session's:
+each server rank renders the whole stone from the whole volume and ParaView
+composites the ranks' frames by depth, which are equal."""
+import os
+import random
+import socket
+import subprocess
+import time
+
+import numpy
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+import opal_test_config as config
+from opal_test_support import check, child_environment, finish, run
+
+here = os.path.dirname(os.path.abspath(__file__))
+scene = os.path.join(here, "opal_client_server_scene.py")
+output = os.path.join(config.OUTPUT_DIRECTORY, "client_server")
+os.makedirs(output, exist_ok=True)
+
+
+def on_display(command):
+    return ["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 640x480x24"] + command
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+def pixels(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+
+def served(ranks):
+    """The screenshot a client takes of a pvserver with `ranks` ranks."""
+    port = free_port()
+    server = [config.PVSERVER, f"--server-port={port}"]
+    if ranks > 1:
+        server = [config.MPIEXEC, "-np", str(ranks)] + server
+    log_path = os.path.join(output, f"pvserver{ranks}.log")
+    with open(log_path, "w") as log:
+        process = subprocess.Popen(on_display(server), env=child_environment(), stdout=log, stderr=subprocess.STDOUT)
+    try:
+        for _ in range(600):  # up to 60 s for the server to listen
+            if "Accepting connection" in open(log_path).read() or process.poll() is not None:
+                break
+            time.sleep(0.1)
+        path = os.path.join(output, f"served{ranks}.png")
+        run(on_display([config.PVPYTHON, scene, config.PLUGIN, path, str(port)]), timeout=120)
+        return pixels(path)
+    finally:
+        process.terminate()
+        process.wait(timeout=30)
+
+
+builtin_path = os.path.join(output, "builtin.png")
+run(on_display([config.PVPYTHON, scene, config.PLUGIN, builtin_path]), timeout=120)
+builtin = pixels(builtin_path)
+background = builtin[0]
+stone = numpy.mean(numpy.any(numpy.abs(builtin - background) > 12, axis=1))
+check(0.1 < stone < 0.9, f"the built-in view shows the stone ({100 * stone:.0f}% of the view)")
+for ranks in (1, 2):
+    image = served(ranks)
+    differing = numpy.mean(numpy.any(numpy.abs(image - builtin) > 2, axis=1))
+    # Equal arithmetic on server and client: any pixel off by more than 2 levels is an error.
+    check(image.shape == builtin.shape and differing == 0,
+          f"pvserver with {ranks} rank(s): the client's view equals the built-in one "
+          f"({100 * differing:.2f}% of pixels differ)")
+finish("TestOpalClientServer")
