@@ -35,21 +35,25 @@ uniform sampler2D colourTexture;
 uniform sampler2D distanceTexture;
 // The ray through a point of the frame, in the camera's frame: (ndc * rayScale, -1).
 uniform vec2 rayScale;
+// The part of the frame this viewport shows: origin and size, in frame units
+// (0 1 1 1 untiled; a tile of a screenshot larger than the window otherwise).
+uniform vec4 tileOfFrame;
 // The projection's z and w rows, applied to (z_view, 1).
 uniform vec4 projectionZW;
 //VTK::Output::Dec
 void main()
 {
-  float distance = texture(distanceTexture, texCoord).r;
+  vec2 frameCoord = tileOfFrame.xy + texCoord * tileOfFrame.zw;
+  float distance = texture(distanceTexture, frameCoord).r;
   if (!(distance > 0.0))
   {
     discard;
   }
-  vec2 ndc = 2.0 * texCoord - 1.0;
+  vec2 ndc = 2.0 * frameCoord - 1.0;
   float zView = -distance / length(vec3(ndc * rayScale, 1.0));
   float zClip = projectionZW.x * zView + projectionZW.y;
   float wClip = projectionZW.z * zView + projectionZW.w;
-  gl_FragData[0] = vec4(texture(colourTexture, texCoord).rgb, 1.0);
+  gl_FragData[0] = vec4(texture(colourTexture, frameCoord).rgb, 1.0);
   gl_FragDepth = clamp(0.5 * zClip / wClip + 0.5, 0.0, 1.0);
 }
 )";
@@ -136,6 +140,12 @@ bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interact
 {
   int width = 0, height = 0;
   renderer->GetTiledSize(&width, &height);
+  // A screenshot larger than the window is drawn in tiles: the frame is the
+  // whole image (rendered once), each tile draws its part (DrawFrame).
+  int tileScale[2] = { 1, 1 };
+  renderer->GetRenderWindow()->GetTileScale(tileScale);
+  width *= tileScale[0];
+  height *= tileScale[1];
   vtkCamera* camera = renderer->GetActiveCamera();
   double up[3];
   // Nothing to draw from an eye in the stone's box (the render refuses an
@@ -154,12 +164,16 @@ bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interact
   this->Render->SetEyePosition(camera->GetPosition());
   this->Render->SetFocalPoint(camera->GetFocalPoint());
   this->Render->SetViewUp(up);
-  double angle = camera->GetViewAngle();
-  if (camera->GetUseHorizontalViewAngle())
+  // A tile's camera sees 1/scale of the image's angle, centred on the tile
+  // by its WindowCenter (ParaView's tiled screenshots): the whole frame's
+  // angle is scale times wider in tangent.
+  const bool horizontal = camera->GetUseHorizontalViewAngle();
+  double tangent = std::tan(vtkMath::RadiansFromDegrees(camera->GetViewAngle()) / 2) * tileScale[horizontal ? 0 : 1];
+  if (horizontal)
   {
-    const double radians = vtkMath::RadiansFromDegrees(angle);
-    angle = vtkMath::DegreesFromRadians(2 * std::atan(std::tan(radians / 2) * height / width));
+    tangent *= static_cast<double>(height) / width;
   }
+  const double angle = vtkMath::DegreesFromRadians(2 * std::atan(tangent));
   this->Render->SetViewAngle(angle);
   this->TanHalfViewAngle = std::tan(vtkMath::RadiansFromDegrees(angle) / 2);
   // The headlight follows the eye at still frames; a preview keeps the last
@@ -231,6 +245,11 @@ void vtkOpalSpectralImageActor::DrawFrame(vtkOpenGLRenderWindow* window, vtkCame
   const float rayScale[2] = { static_cast<float>(this->TanHalfViewAngle * this->FrameAspect),
     static_cast<float>(this->TanHalfViewAngle) };
   program->SetUniform2f("rayScale", rayScale);
+  double tile[4];
+  window->GetTileViewport(tile);
+  const float tileOfFrame[4] = { static_cast<float>(tile[0]), static_cast<float>(tile[1]),
+    static_cast<float>(tile[2] - tile[0]), static_cast<float>(tile[3] - tile[1]) };
+  program->SetUniform4f("tileOfFrame", tileOfFrame);
   vtkMatrix4x4* projection = camera->GetProjectionTransformMatrix(aspect, -1, 1);
   const float projectionZW[4] = { static_cast<float>(projection->GetElement(2, 2)),
     static_cast<float>(projection->GetElement(2, 3)), static_cast<float>(projection->GetElement(3, 2)),

@@ -12,6 +12,8 @@ what the view shows.
   not the still frame; the still render after it is final again.
 - Depth: a plane between the eye and the stone hides it; the same plane
   behind the stone is hidden by it.
+- A screenshot twice the view's size (drawn by ParaView in 2 x 2 tiles)
+  equals a screenshot of a view that size.
 
 Prints "opal_representation_scene: passed" or the failed checks.
 Usage: pvbatch opal_representation_scene.py PLUGIN OUTPUT_DIR"""
@@ -138,6 +140,27 @@ for y, where in ((20.0, "in front of"), (-1.0, "behind")):
     else:
         check(blue < 0.05, f"a plane {where} the stone is hidden by it ({100 * blue:.0f}% of the centre blue)")
 Hide(plane, view)
+
+# A screenshot larger than the view: ParaView renders it in tiles, each with
+# a narrower, off-centre camera; the stone must come out as in a view of that
+# size, not once per tile (the seams' texture sampling moves a few pixels).
+def shot_at(view_size, resolution, name):
+    view.ViewSize = view_size
+    Render(view)
+    path = os.path.join(output, name)
+    SaveScreenshot(path, view, ImageResolution=resolution)
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
+
+
+big = [2 * width, 2 * height]
+tiled = shot_at([width, height], big, "representation-tiled.png")
+whole = shot_at(big, big, "representation-whole.png")
+differing = numpy.mean(numpy.any(numpy.abs(tiled - whole) > 8, axis=1))
+check(differing < 0.01, f"a 2 x 2 tiled screenshot equals a view of its size ({100 * differing:.2f}% of pixels differ)")
+view.ViewSize = [width, height]
 # The verdict on stdout, for the test; the script ends normally (pvbatch
 # reports an X error when sys.exit ends it with a window open).
 print("opal_representation_scene:", "FAILED" if failures else "passed")
