@@ -42,61 +42,68 @@ float sphereFormFactor(float x)
   return 3.0 * (sin(x) - x * cos(x)) / (x * x * x);
 }
 
-// One plane family and order at one crossing: the glancing sine, the order's
-// period d/k (nm), |eps_kG|, n_bar and the coherent thickness L = N d (nm).
+// One plane family and order at one crossing, for a ray of glancing sine
+// sin theta2: what R(lambda) needs, computed once per family.
 struct CoupledWaveFamily
 {
-  float sinGlancing;
-  float period;
-  float fourier;
-  float thickness;
+  float braggWavelength; // lambda_B = 2 (d/k) n_bar sin theta2
+  float couplingLength;  // kappa_s lambda = pi |eps_kG| / (n_bar sin theta2); 0: reflects nothing
+  float polarisationP;   // kappa_p / kappa_s = |cos 2 theta_n| = |2 sin^2 theta2 - 1|
+  float detuningScale;   // pi k / d: delta = this x (lambda_B / lambda - 1)
+  float thickness;       // L = N d, nm
 };
 
-// The family's Bragg wavelength lambda_B = 2 (d/k) n_bar sin theta2.
-float coupledBraggWavelength(CoupledWaveFamily f)
+// Family of period d/k (nm), |eps_kG| and thickness L (nm) seen at glancing sine sin theta2.
+CoupledWaveFamily coupledWaveFamily(float sinGlancing, float period, float fourier, float thickness)
 {
-  return 2.0 * f.period * P.meanIndex * f.sinGlancing;
+  // Rays within 1e-6 of grazing, and crossings of no thickness, reflect nothing.
+  bool reflects = sinGlancing > CW_GRAZING_SIN && thickness > 0.0;
+  return CoupledWaveFamily(2.0 * period * P.meanIndex * sinGlancing,
+    reflects ? OPAL_PI * fourier / (P.meanIndex * sinGlancing) : 0.0,
+    abs(2.0 * sinGlancing * sinGlancing - 1.0), OPAL_PI / period, thickness);
 }
 
-// The detuning of wavelength lambda from the family's Bragg wavelength.
 float coupledWaveDetuning(CoupledWaveFamily f, float lambda)
 {
-  return (OPAL_PI / f.period) * (coupledBraggWavelength(f) / lambda - 1.0);
-}
-
-// The s-wave coupling at lambda_B.
-float coupledWaveCoupling(CoupledWaveFamily f)
-{
-  return OPAL_PI * f.fourier / (P.meanIndex * coupledBraggWavelength(f) * f.sinGlancing);
+  return f.detuningScale * (f.braggWavelength / lambda - 1.0);
 }
 
 // R(lambda), s and p averaged (OpalCoupledWave.cxx coupledWaveReflectance).
 float coupledWaveReflectance(CoupledWaveFamily f, float lambda)
 {
-  if (!(f.sinGlancing > CW_GRAZING_SIN && f.thickness > 0.0))
-  {
-    return 0.0;
-  }
   float delta = coupledWaveDetuning(f, lambda);
-  float kappaS = OPAL_PI * f.fourier / (P.meanIndex * lambda * f.sinGlancing);
-  float kappaP = kappaS * abs(2.0 * f.sinGlancing * f.sinGlancing - 1.0);
-  return 0.5 * (coupledModeReflectance(kappaS, delta, f.thickness) + coupledModeReflectance(kappaP, delta, f.thickness));
+  float kappaS = f.couplingLength / lambda;
+  return 0.5 * (coupledModeReflectance(kappaS, delta, f.thickness) +
+    coupledModeReflectance(kappaS * f.polarisationP, delta, f.thickness));
 }
 
-// R averaged over a wavelength bin: at CW_BIN_SAMPLES points where the bin
-// reaches within CW_BAND_KAPPAS couplings of the band (the stop band, about
-// 1.5% of lambda for silica in water, is narrower than a 10 nm bin, so one
-// sample could miss it); at the centre in the wings, where R <= (kappa/delta)^2
-// oscillates about half that faster than the bins resolve.
+// R averaged over the side lobes' phase: for fixed s = sqrt(delta^2 - kappa^2),
+// the mean over sL of kappa^2 sin^2 / (s^2 + kappa^2 sin^2) is 1 - s / |delta|.
+float sideLobeAverage(float kappa, float delta)
+{
+  return 1.0 - sqrt(max(1.0 - (kappa * kappa) / (delta * delta), 0.0));
+}
+
+// R averaged over a wavelength bin (docs/design.md §7.2). Where the bin comes
+// within CW_BAND_KAPPAS couplings of the band: at CW_BIN_SAMPLES points (the
+// stop band, about 1.5% of lambda for silica in water, is narrower than a
+// 10 nm bin, so one sample could miss it). In the wings: the side lobes'
+// phase average where the bin spans four of their periods or more (pi / L
+// each in delta), else the value at the centre.
 const int CW_BIN_SAMPLES = 4;
 const float CW_BAND_KAPPAS = 4.0;
 float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
 {
-  float reach = CW_BAND_KAPPAS * coupledWaveCoupling(f);
+  float reach = CW_BAND_KAPPAS * f.couplingLength / f.braggWavelength;
   float shortEdge = coupledWaveDetuning(f, centre - 0.5 * width), longEdge = coupledWaveDetuning(f, centre + 0.5 * width);
   if (longEdge > reach || shortEdge < -reach)
   {
-    return coupledWaveReflectance(f, centre);
+    if ((shortEdge - longEdge) * f.thickness < 4.0 * OPAL_PI)
+    {
+      return coupledWaveReflectance(f, centre);
+    }
+    float delta = coupledWaveDetuning(f, centre), kappaS = f.couplingLength / centre;
+    return 0.5 * (sideLobeAverage(kappaS, delta) + sideLobeAverage(kappaS * f.polarisationP, delta));
   }
   float sum = 0.0;
   for (int i = 0; i < CW_BIN_SAMPLES; ++i)
@@ -112,12 +119,11 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
 const float CW_WINDOW_KAPPAS = 35.0;
 
 // The wavelengths [lo, hi] within the window of family f: |delta| <= 35 kappa_s
-// where kappa_s ~ 1/lambda: |lambda_B - lambda| <= 35 kappa_s(lambda_B) (d/k) lambda_B / pi.
+// where kappa_s ~ 1/lambda: |lambda_B - lambda| <= 35 kappa_s lambda / detuningScale.
 vec2 coupledWaveWindow(CoupledWaveFamily f)
 {
-  float lambdaB = coupledBraggWavelength(f);
-  float relative = CW_WINDOW_KAPPAS * coupledWaveCoupling(f) * f.period / OPAL_PI;
-  return lambdaB * vec2(1.0 - relative, 1.0 + relative);
+  float reach = CW_WINDOW_KAPPAS * f.couplingLength / f.detuningScale;
+  return vec2(f.braggWavelength - reach, f.braggWavelength + reach);
 }
 
 // The FCC families in the crystal frame, in OpalLatticePlanes.cxx's order:
@@ -135,12 +141,15 @@ vec3 rotateByQuaternion(vec4 q, vec3 v)
 
 // The von Mises-Fisher lobe of angular deviation `spread` (radians) about the
 // unit direction `centre`, at the unit direction `at`: normalised on the
-// sphere (its integral over all directions is 1), peak ~ 1/(2 pi spread^2).
-// cos - 1 is written as -|at - centre|^2 / 2, exact near the peak.
+// sphere (its integral over all directions is 1), peak ~ 1/(2 pi spread^2);
+// 0 beyond 4.3 spread, where exp(-(4.3)^2 / 2) = 1e-4 of the peak (the tail
+// holds 1e-4 of the reflected light), so a family whose lobe misses the eye
+// costs no bin loop. cos - 1 is written as -|at - centre|^2 / 2, exact near the peak.
+const float CW_LOBE_CUT = 1e-4;
 float reflectedLobe(vec3 centre, vec3 at, float spread)
 {
   float concentration = 1.0 / (spread * spread);
   vec3 d = at - centre;
-  return concentration / (2.0 * OPAL_PI * (1.0 - exp(-2.0 * concentration))) *
-    exp(-0.5 * concentration * dot(d, d));
+  float shape = exp(-0.5 * concentration * dot(d, d));
+  return shape < CW_LOBE_CUT ? 0.0 : concentration / (2.0 * OPAL_PI * (1.0 - exp(-2.0 * concentration))) * shape;
 }

@@ -182,10 +182,9 @@ CoupledWaveFamily coupledFamily(DomainRecord lattice, vec3 normal, int f, int k,
   float spacing = lattice.planeSpacing * sqrt(3.0 / squaredMiller); // d_hkl = a / sqrt(h^2 + k^2 + l^2)
   // x = pi D / d_hkl, D = d_111 sqrt(3/2).
   float x = OPAL_PI * sqrt(1.5) * lattice.planeSpacing / spacing;
-  float sinGlancing = abs(dot(ray, normal));
   float layers = min(thicknessMm * 1e6 / spacing, P.coherentLayers);
-  return CoupledWaveFamily(sinGlancing, spacing / float(k), abs(P.permittivityContrast * sphereFormFactor(float(k) * x)),
-    layers * spacing);
+  return coupledWaveFamily(abs(dot(ray, normal)), spacing / float(k),
+    abs(P.permittivityContrast * sphereFormFactor(float(k) * x)), layers * spacing);
 }
 
 // The unit normal of family f in the model frame.
@@ -194,15 +193,25 @@ vec3 familyNormal(DomainRecord lattice, int f)
   return f == 0 ? lattice.latticeNormal : rotateByQuaternion(lattice.orientation, normalize(FCC_MILLER[f]));
 }
 
+// The first and last bin overlapping the wavelengths [window.x, window.y]
+// (the bins are one step wide, each beside the next: §3.6), so a narrow
+// window loops over its few bins only.
+ivec2 binsWithin(vec2 window)
+{
+  float start = bins[0].lambda - 0.5 * bins[0].width, step = bins[0].width;
+  int first = max(int(ceil((window.x - start) / step)) - 1, 0);
+  int last = min(int(floor((window.y - start) / step)), WAVELENGTHS - 1);
+  return ivec2(first, last);
+}
+
 // The reflected light of one family and order into the pixel: R(lambda) E
 // lobe, attenuated like the paper's diffraction and by the crossings in front.
 void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 tauView, vec2 tauAbsorption)
 {
-  vec2 window = coupledWaveWindow(family);
+  ivec2 range = binsWithin(coupledWaveWindow(family));
   float contributionY = 0.0;
-  for (int l = 0; l < WAVELENGTHS; ++l)
+  for (int l = range.x; l <= range.y; ++l)
   {
-    if (bins[l].lambda + 0.5 * bins[l].width < window.x || bins[l].lambda - 0.5 * bins[l].width > window.y) continue;
     float s = bins[l].rayleighScale;
     float value = weight * coupledWaveBinAverage(family, bins[l].lambda, bins[l].width) *
       exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * transmittedToEye(l);
@@ -212,17 +221,16 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
   if (contributionY > dominantY)
   {
     dominantY = contributionY;
-    dominantLambda = coupledBraggWavelength(family);
+    dominantLambda = family.braggWavelength;
   }
 }
 
 // The view ray's light from behind keeps 1 - R of the family and order.
 void transmitFamily(CoupledWaveFamily family)
 {
-  vec2 window = coupledWaveWindow(family);
-  for (int l = 0; l < WAVELENGTHS; ++l)
+  ivec2 range = binsWithin(coupledWaveWindow(family));
+  for (int l = range.x; l <= range.y; ++l)
   {
-    if (bins[l].lambda + 0.5 * bins[l].width < window.x || bins[l].lambda - 0.5 * bins[l].width > window.y) continue;
     viewTransmittance[l] *= 1.0 - coupledWaveBinAverage(family, bins[l].lambda, bins[l].width);
   }
 }
@@ -246,16 +254,16 @@ void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauVi
     // The lobe about the mirror image of the light's direction in the planes;
     // a family whose lobe misses the eye reflects nothing into this pixel.
     float weight = light.geometry * reflectedLobe(reflect(-towardLight, normal), towardEye, P.mosaicSpread);
-    for (int k = 1; weight > 1e-6 && k <= 64; ++k)
+    for (int k = 1; weight > 0.0 && k <= 64; ++k)
     {
       CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, towardLight, thicknessMm);
-      if (coupledBraggWavelength(family) < shortest) break;
+      if (family.braggWavelength < shortest) break;
       reflectFamily(family, weight, light.tau.x, tauView, tauAbsorption);
     }
     for (int k = 1; k <= 64; ++k)
     {
       CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, towardEye, thicknessMm);
-      if (coupledBraggWavelength(family) < shortest) break;
+      if (family.braggWavelength < shortest) break;
       transmitFamily(family);
     }
   }
