@@ -95,6 +95,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.BackingThickness = in.real(0, 32);
   p.BackingAbsorption = in.real(0, 20);
   p.DomainScatteringCoefficient = in.real(0, 5);
+  p.SphereRefractiveIndex = in.real(1.45, 5.0); // from the default (a zero byte) past the bound 4
+  p.MatrixRefractiveIndex = in.real(1.33, 0.0);  // from the default below the bound 1
 
   if (!opal::validate(p).empty())
   {
@@ -108,11 +110,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<float> diameter(count), normal(3 * count), lambdaMax(count), lambdaMin(count), scattering(count),
     distance(count);
   std::vector<std::int32_t> domain(count), cells(count);
-  std::vector<float> absorption(count), exponent(count);
+  std::vector<float> absorption(count), exponent(count), orientation(4 * count);
   const bool absorbs = p.absorbs();
   const opal::VolumeFields fields{ type.data(), diameter.data(), normal.data(), domain.data(), lambdaMax.data(),
     lambdaMin.data(), scattering.data(), distance.data(), layout.hasCells() ? cells.data() : nullptr,
-    absorbs ? absorption.data() : nullptr, absorbs ? exponent.data() : nullptr };
+    absorbs ? absorption.data() : nullptr, absorbs ? exponent.data() : nullptr, orientation.data() };
   const std::array<int, 6> extent{ 0, p.Dimensions[0] - 1, 0, p.Dimensions[1] - 1, 0, p.Dimensions[2] - 1 };
   opal::VolumeFiller(p, layout).fill(extent, 0, p.Dimensions[2], fields);
   for (std::size_t i = 0; i < count; ++i)
@@ -123,6 +125,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(std::isfinite(distance[i]), "finite SurfaceDistance");
     require(std::isfinite(absorption[i]) && absorption[i] >= 0, "finite AbsorptionCoefficient >= 0");
     require(std::isfinite(exponent[i]), "finite AbsorptionExponent");
+    const float* q = &orientation[4 * i];
+    const float norm = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+    require(domain[i] >= 0 ? std::fabs(norm - 1.0f) < 1e-5f : norm == 0.0f, "LatticeOrientation unit in domains, 0 outside");
     require(std::isfinite(lambdaMax[i]) && std::isfinite(lambdaMin[i]), "finite Bragg wavelengths");
     require(domain[i] >= -1 && domain[i] < layout.placedCount(), "DomainId -1 or a placed domain");
     require(!layout.hasCells() || (cells[i] >= -1 && cells[i] < layout.cellCount()), "CellId -1 or a cell");

@@ -22,6 +22,7 @@ namespace opal::gpu
 using uint = std::uint32_t;
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
+using vec4 = glm::vec4;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
 #define OPAL_CONSTANT constexpr
@@ -95,6 +96,11 @@ struct OPAL_ALIGNED RenderParameterBlock
   int domainCount;
   int braggOrders;                    // orders k = 1..braggOrders
   float absorptionExponent;           // p of the coloured absorption, mu_a(lambda) = mu_a(550) (550/lambda)^p
+  // The coupled-wave model (docs/design.md §7.2), read only by the march specialised on it:
+  float meanIndex;                    // n_bar = sqrt(f n_s^2 + (1 - f) n_m^2)
+  float permittivityContrast;         // f (n_s^2 - n_m^2): eps_G = this x 3 j1(x)/x
+  float coherentLayers;               // CoherentLayers, the most layers N
+  int latticeFamilies;                // 1: (111) only; 13: the FCC families
 };
 
 // One wavelength bin (core/OpalSpectralSampling.h): its centre and width,
@@ -128,12 +134,14 @@ struct OPAL_ALIGNED LightFieldPair
   vec2 nextVoxel;
 };
 
-// One diffraction domain: the (111) lattice-plane normal (y >= 0) and the
-// plane spacing d (nm, eq. 3).
+// One diffraction domain: the (111) lattice-plane normal (y >= 0), the
+// plane spacing d (nm, eq. 3) and the lattice orientation, crystal frame ->
+// model frame, as a unit quaternion stored (x, y, z, w) (docs/design.md §7.2).
 struct OPAL_ALIGNED DomainRecord
 {
   OPAL_ALIGNED vec3 latticeNormal;
   float planeSpacing;
+  OPAL_ALIGNED vec4 orientation;
 };
 
 // The view march's result per pixel: CIE XYZ and the distance from the eye to
@@ -206,7 +214,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 16 && sizeof(VoxelCell) == 8 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 32 && sizeof(VoxelCell) == 8 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

@@ -17,11 +17,17 @@ layout(constant_id = 1) const int SPECTRAL_NODES = 16;
 layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 // The volume absorbs: read the absorption cells and their light field.
 layout(constant_id = 3) const bool ABSORPTION = false;
+// The coupled-wave Bragg model instead of the paper's box band (docs/design.md §7.2).
+layout(constant_id = 4) const bool COUPLED_WAVE = false;
+// Crossings keep 1 - R of the light behind them on the view path (§7.2);
+// always with COUPLED_WAVE.
+layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
 
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"
+#include "opal_coupled_wave.glsl"
 #include "opal_voxel_walk.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
@@ -46,6 +52,15 @@ float scatterNodes[SPECTRAL_NODES];
 // (550/lambda)^p at the nodes' wavelengths, p the coloured absorption's
 // exponent (only with ABSORPTION).
 float absorptionNodes[SPECTRAL_NODES];
+// What the crossings in front pass of the light from behind them, per bin
+// (only with ENERGY_CONSERVATION): the product of their 1 - R(lambda).
+float viewTransmittance[WAVELENGTHS];
+
+// The view transmittance of bin l: 1 without ENERGY_CONSERVATION.
+float transmittedToEye(int l)
+{
+  return ENERGY_CONSERVATION ? viewTransmittance[l] : 1.0;
+}
 
 // A voxel's absorption at 550 nm, (coloured, grey); 0 without ABSORPTION.
 vec2 absorptionAt(int index)
@@ -130,7 +145,8 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
       if (band > 0.0)
       {
         float s = bins[l].rayleighScale;
-        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption);
+        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) *
+          transmittedToEye(l);
         radiance[l] += value;
         contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
       }
@@ -139,6 +155,116 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
     {
       dominantY = contributionY;
       dominantLambda = lambdaB;
+    }
+  }
+  if (ENERGY_CONSERVATION)
+  {
+    // The box band reflects all of the view ray's light within it (R = B).
+    float sinView = abs(dot(towardEye, lattice.latticeNormal));
+    for (int k = 1; k <= P.braggOrders; ++k)
+    {
+      float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinView, k);
+      for (int l = 0; l < WAVELENGTHS; ++l)
+      {
+        viewTransmittance[l] *= 1.0 - braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
+      }
+    }
+  }
+}
+
+// Family f of the domain at order k, its unit normal in the model frame
+// `normal`, for a ray of unit direction `ray`: its period, coupling and
+// coherent thickness, the crystal being thicknessMm thick along the normal
+// (docs/design.md §7.2).
+CoupledWaveFamily coupledFamily(DomainRecord lattice, vec3 normal, int f, int k, vec3 ray, float thicknessMm)
+{
+  float squaredMiller = dot(FCC_MILLER[f], FCC_MILLER[f]);
+  float spacing = lattice.planeSpacing * sqrt(3.0 / squaredMiller); // d_hkl = a / sqrt(h^2 + k^2 + l^2)
+  // x = pi D / d_hkl, D = d_111 sqrt(3/2).
+  float x = OPAL_PI * sqrt(1.5) * lattice.planeSpacing / spacing;
+  float layers = min(thicknessMm * 1e6 / spacing, P.coherentLayers);
+  return coupledWaveFamily(abs(dot(ray, normal)), spacing / float(k),
+    abs(P.permittivityContrast * sphereFormFactor(float(k) * x)), layers * spacing);
+}
+
+// The unit normal of family f in the model frame.
+vec3 familyNormal(DomainRecord lattice, int f)
+{
+  return f == 0 ? lattice.latticeNormal : rotateByQuaternion(lattice.orientation, normalize(FCC_MILLER[f]));
+}
+
+// The first and last bin overlapping the wavelengths [window.x, window.y]
+// (the bins are one step wide, each beside the next: §3.6), so a narrow
+// window loops over its few bins only.
+ivec2 binsWithin(vec2 window)
+{
+  float start = bins[0].lambda - 0.5 * bins[0].width, step = bins[0].width;
+  int first = max(int(ceil((window.x - start) / step)) - 1, 0);
+  int last = min(int(floor((window.y - start) / step)), WAVELENGTHS - 1);
+  return ivec2(first, last);
+}
+
+// The reflected light of one family and order into the pixel: R(lambda) E
+// lobe, attenuated like the paper's diffraction and by the crossings in front.
+void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 tauView, vec2 tauAbsorption)
+{
+  ivec2 range = binsWithin(coupledWaveWindow(family));
+  float contributionY = 0.0;
+  for (int l = range.x; l <= range.y; ++l)
+  {
+    float s = bins[l].rayleighScale;
+    float value = weight * coupledWaveBinAverage(family, bins[l].lambda, bins[l].width) *
+      exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * transmittedToEye(l);
+    radiance[l] += value;
+    contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+  }
+  if (contributionY > dominantY)
+  {
+    dominantY = contributionY;
+    dominantLambda = family.braggWavelength;
+  }
+}
+
+// The view ray's light from behind keeps 1 - R of the family and order.
+void transmitFamily(CoupledWaveFamily family)
+{
+  ivec2 range = binsWithin(coupledWaveWindow(family));
+  for (int l = range.x; l <= range.y; ++l)
+  {
+    viewTransmittance[l] *= 1.0 - coupledWaveBinAverage(family, bins[l].lambda, bins[l].width);
+  }
+}
+
+// Coupled-wave Bragg reflection at a crossing (docs/design.md §7.2): per plane
+// family and order while lambda_B reaches the shortest bin, R(lambda) of
+// N = min(thickness / d, CoherentLayers) layers into a normalised lobe about
+// the light's mirror direction; then the view ray keeps 1 - R.
+void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm)
+{
+  vec3 towardLight = normalize(P.light - at);
+  LightSample light = lightAt(at);
+  vec2 tauAbsorption = light.tau.yz + tauView.yz;
+  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  for (int f = 0; f < P.latticeFamilies; ++f)
+  {
+    vec3 normal = familyNormal(lattice, f);
+    // The crystal's thickness along the normal: the view ray's path in the
+    // domain projected on it (a slab's thickness for planes parallel to it).
+    float thicknessMm = lengthMm * abs(dot(towardEye, normal));
+    // The lobe about the mirror image of the light's direction in the planes;
+    // a family whose lobe misses the eye reflects nothing into this pixel.
+    float weight = light.geometry * reflectedLobe(reflect(-towardLight, normal), towardEye, P.mosaicSpread);
+    for (int k = 1; weight > 0.0 && k <= 64; ++k)
+    {
+      CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, towardLight, thicknessMm);
+      if (family.braggWavelength < shortest) break;
+      reflectFamily(family, weight, light.tau.x, tauView, tauAbsorption);
+    }
+    for (int k = 1; k <= 64; ++k)
+    {
+      CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, towardEye, thicknessMm);
+      if (family.braggWavelength < shortest) break;
+      transmitFamily(family);
     }
   }
 }
@@ -208,7 +334,8 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
       for (int l = 0; l < WAVELENGTHS; ++l)
       {
         float s = bins[l].rayleighScale;
-        radiance[l] += weight * s * exp(-tauTotal * s) * (coloured ? absorbedAt(s, vec2(tauAbsorption.x, 0.0)) : 1.0);
+        radiance[l] += weight * s * exp(-tauTotal * s) * (coloured ? absorbedAt(s, vec2(tauAbsorption.x, 0.0)) : 1.0) *
+          transmittedToEye(l);
       }
     }
     tauView += vec3(mus, absorption) * ds;
@@ -223,6 +350,7 @@ const int MAX_CROSSINGS = 8;
 vec3 crossingPoint[MAX_CROSSINGS];
 int crossingDomain[MAX_CROSSINGS];
 vec3 crossingDepth[MAX_CROSSINGS]; // view depths at the crossing (as LightSample's tau)
+float crossingLength[MAX_CROSSINGS]; // mm of the ray inside the domain (only with COUPLED_WAVE)
 
 // Where the walk stands between rounds.
 struct WalkState
@@ -237,10 +365,12 @@ struct WalkState
 // Walks the refracted ray on from `state`, gathering scattering and
 // recording domain crossings, until it leaves the opal at tExit or the record
 // is full; returns the number of crossings recorded.
+// With ENERGY_CONSERVATION a round records one crossing and ends where the
+// ray leaves its domain, so the crossing dims all that lies behind it.
 int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 {
   int count = 0;
-  for (int guard = 0; guard < 65536 && state.t < tExit && count < MAX_CROSSINGS; ++guard)
+  for (int guard = 0; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
     float tNext = min(cellExit(state.walk), tExit);
     float segment = tNext - state.t;
@@ -251,6 +381,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       int domain = cell.domainId;
       float mus = cell.scattering;
       vec2 absorption = absorptionAt(v);
+      if (ENERGY_CONSERVATION && count == 1 && domain != state.lastDomain) break;
       if (domain >= 0 && domain != state.lastDomain)
       {
         // The paper's domains neither scatter nor absorb; beyond it they may
@@ -258,8 +389,10 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
         crossingPoint[count] = origin + (state.t + 0.5 * segment) * inward;
         crossingDomain[count] = domain;
         crossingDepth[count] = state.tauView + 0.5 * segment * vec3(mus, absorption);
+        if (COUPLED_WAVE) crossingLength[count] = 0.0;
         ++count;
       }
+      if (COUPLED_WAVE && domain >= 0) crossingLength[count - 1] += segment;
       if (mus > 0.0)
       {
         state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView);
@@ -274,8 +407,21 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
     if (state.t >= tExit) break;
     stepWalk(state.walk);
   }
-  state.done = state.t >= tExit || count < MAX_CROSSINGS;
+  state.done = state.t >= tExit || (ENERGY_CONSERVATION ? count == 0 : count < MAX_CROSSINGS);
   return count;
+}
+
+// The body's scattering gathered on the nodes so far, into the bins through
+// the view transmittance of the crossings in front of it; the nodes restart
+// (ENERGY_CONSERVATION: the scattering behind the next crossing is dimmed by it).
+void flushScattering()
+{
+  if (EXACT_SCATTERING) return;
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    radiance[l] += viewTransmittance[l] * scatterAt(bins[l].rayleighScale);
+  }
+  for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
 }
 
 // The refracted ray from `origin` voxel by voxel to where it leaves the opal
@@ -288,9 +434,18 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
     int count = walkRecording(state, origin, inward, tExit);
     for (int c = 0; c < count; ++c)
     {
-      diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c]);
+      if (ENERGY_CONSERVATION) flushScattering();
+      if (COUPLED_WAVE)
+      {
+        reflectAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingLength[c]);
+      }
+      else
+      {
+        diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c]);
+      }
     }
   }
+  if (ENERGY_CONSERVATION) flushScattering();
 }
 
 // Spectral radiance: the light's normalised D65 scales every term; the view
@@ -340,6 +495,10 @@ void main()
     return;
   }
   for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
+  if (ENERGY_CONSERVATION)
+  {
+    for (int l = 0; l < WAVELENGTHS; ++l) viewTransmittance[l] = 1.0;
+  }
   for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
   if (ABSORPTION && !EXACT_SCATTERING)
   {

@@ -60,6 +60,8 @@ void AddModelParameters(
   addArray<vtkDoubleArray>(f, "BackingThickness", { p.BackingThickness });
   addArray<vtkDoubleArray>(f, "BackingAbsorption", { p.BackingAbsorption });
   addArray<vtkDoubleArray>(f, "DomainScatteringCoefficient", { p.DomainScatteringCoefficient });
+  addArray<vtkDoubleArray>(f, "SphereRefractiveIndex", { p.SphereRefractiveIndex });
+  addArray<vtkDoubleArray>(f, "MatrixRefractiveIndex", { p.MatrixRefractiveIndex });
   addArray<vtkDoubleArray>(f, "RefractiveIndex", { p.RefractiveIndex });
   addArray<vtkIntArray>(f, "MaxPlacementAttempts", { p.MaxPlacementAttempts });
   addArray<vtkIntArray>(f, "Seed", { static_cast<int>(p.Seed) });
@@ -81,12 +83,18 @@ void AddDomainTable(vtkDataObject* data, const opal::DomainLayout& layout)
   vtkNew<vtkFloatArray> diameters;
   diameters->SetName("DomainParticleDiameter");
   diameters->SetNumberOfTuples(count);
+  vtkNew<vtkFloatArray> orientations;
+  orientations->SetName("DomainOrientation");
+  orientations->SetNumberOfComponents(4);
+  orientations->SetNumberOfTuples(count);
   for (const opal::Domain& domain : layout.domains())
   {
     normals->SetTuple(domain.Id, domain.Normal.data());
     diameters->SetValue(domain.Id, static_cast<float>(domain.ParticleDiameter));
+    orientations->SetTuple(domain.Id, opal::latticeQuaternion(domain).data());
   }
   data->GetFieldData()->AddArray(normals);
   data->GetFieldData()->AddArray(diameters);
+  data->GetFieldData()->AddArray(orientations);
 }
 } // namespace vtkOpalFieldData

@@ -1,5 +1,6 @@
 #include "vtkOpalRenderInput.h"
 
+#include "OpalDomainLayout.h"
 #include "OpalPresets.h"
 #include "vtkOpalSource.h"
 
@@ -85,27 +86,57 @@ std::string readAbsorption(vtkImageData* input, opal::RenderVolume& volume, vtkO
   return {};
 }
 
-// The domain table from the field arrays DomainNormal and DomainParticleDiameter.
+// The domain table from the field arrays DomainNormal, DomainParticleDiameter
+// and DomainOrientation; without the last (a volume saved before it existed)
+// each lattice stands unspun on its normal (docs/design.md §2.6).
 std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>& domains)
 {
   vtkFieldData* fields = input->GetFieldData();
   vtkDataArray* normals = fields->GetArray("DomainNormal");
   vtkDataArray* diameters = fields->GetArray("DomainParticleDiameter");
+  vtkDataArray* orientations = fields->GetArray("DomainOrientation");
   if (!normals || !diameters || normals->GetNumberOfComponents() != 3 ||
     normals->GetNumberOfTuples() != diameters->GetNumberOfTuples())
   {
     return "The input lacks the domain table (field arrays DomainNormal and DomainParticleDiameter); "
            "connect an Opal Volume.";
   }
+  if (orientations &&
+    (orientations->GetNumberOfComponents() != 4 || orientations->GetNumberOfTuples() != normals->GetNumberOfTuples()))
+  {
+    return "The field array DomainOrientation needs 4 components (w, x, y, z) per domain.";
+  }
   domains.resize(static_cast<std::size_t>(normals->GetNumberOfTuples()));
   for (vtkIdType d = 0; d < normals->GetNumberOfTuples(); ++d)
   {
-    std::array<double, 3> normal;
-    normals->GetTuple(d, normal.data());
-    domains[static_cast<std::size_t>(d)] = opal::renderDomain(normal, diameters->GetComponent(d, 0));
+    opal::Domain domain;
+    normals->GetTuple(d, domain.Normal.data());
+    std::array<double, 4> orientation = opal::latticeQuaternion(domain);
+    if (orientations)
+    {
+      orientations->GetTuple(d, orientation.data());
+    }
+    domains[static_cast<std::size_t>(d)] =
+      opal::renderDomain(domain.Normal, diameters->GetComponent(d, 0), orientation);
   }
   return {};
 }
+
+// The coupled-wave model's crystal from the field data (docs/design.md §7.2);
+// the defaults where a volume does not record it.
+void readCrystal(vtkFieldData* fields, opal::RenderVolume& volume)
+{
+  for (auto [name, index] : { std::pair<const char*, double*>{ "SphereRefractiveIndex", &volume.SphereRefractiveIndex },
+         { "MatrixRefractiveIndex", &volume.MatrixRefractiveIndex } })
+  {
+    vtkDataArray* array = fields->GetArray(name);
+    if (array && array->GetNumberOfTuples() > 0)
+    {
+      *index = array->GetComponent(0, 0);
+    }
+  }
+}
+
 // The output information of the nearest vtkOpalSource upstream: the input's
 // own, or that of a producer a few pass-through filters up (ParaView puts a
 // post filter after every source). nullptr if there is none.
@@ -175,6 +206,7 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
   volume.DomainId = contiguousValues(domainIds, storage.DomainId);
   volume.SurfaceDistance = contiguousValues(distance, storage.SurfaceDistance);
   error = readAbsorption(input, volume, storage);
+  readCrystal(input->GetFieldData(), volume);
   return error.empty() ? readDomainTable(input, volume.Domains) : error;
 }
 

@@ -96,6 +96,8 @@ opal::ModelParameters vtkOpalSource::GetModelParameters() const
   p.BackingThickness = this->BackingThickness;
   p.BackingAbsorption = this->BackingAbsorption;
   p.DomainScatteringCoefficient = this->DomainScatteringCoefficient;
+  p.SphereRefractiveIndex = this->SphereRefractiveIndex;
+  p.MatrixRefractiveIndex = this->MatrixRefractiveIndex;
   p.RefractiveIndex = this->RefractiveIndex;
   p.MaxPlacementAttempts = this->MaxPlacementAttempts;
   p.Seed = static_cast<std::uint32_t>(this->Seed);
@@ -138,6 +140,8 @@ void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
   this->BackingThickness = p.BackingThickness;
   this->BackingAbsorption = p.BackingAbsorption;
   this->DomainScatteringCoefficient = p.DomainScatteringCoefficient;
+  this->SphereRefractiveIndex = p.SphereRefractiveIndex;
+  this->MatrixRefractiveIndex = p.MatrixRefractiveIndex;
   this->RefractiveIndex = p.RefractiveIndex;
   this->MaxPlacementAttempts = p.MaxPlacementAttempts;
   this->Seed = static_cast<int>(p.Seed);
@@ -203,7 +207,7 @@ vtkNew<ArrayT> makePointArray(const char* name, int components, vtkIdType tuples
 }
 
 // The cell data of the domain geometry: each cell's domain's DomainId,
-// ParticleDiameter, Normal and BraggLambdaMax.
+// ParticleDiameter, Normal, BraggLambdaMax and LatticeOrientation (w, x, y, z).
 void addDomainCellData(
   vtkPolyData* output, const opal::DomainLayout& layout, const std::vector<int>& cellDomain, double refractiveIndex)
 {
@@ -212,6 +216,7 @@ void addDomainCellData(
   auto diameters = makePointArray<vtkFloatArray>("ParticleDiameter", 1, cells);
   auto normals = makePointArray<vtkFloatArray>("Normal", 3, cells);
   auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, cells);
+  auto orientations = makePointArray<vtkFloatArray>("LatticeOrientation", 4, cells);
   for (vtkIdType c = 0; c < cells; ++c)
   {
     const opal::Domain& domain = layout.domains()[static_cast<std::size_t>(cellDomain[static_cast<std::size_t>(c)])];
@@ -219,11 +224,14 @@ void addDomainCellData(
     diameters->SetValue(c, static_cast<float>(domain.ParticleDiameter));
     normals->SetTuple(c, domain.Normal.data());
     lambdaMax->SetValue(c, static_cast<float>(opal::braggLambdaMax(domain.ParticleDiameter, refractiveIndex)));
+    orientations->SetTuple(c, opal::latticeQuaternion(domain).data());
   }
-  output->GetCellData()->AddArray(ids);
-  output->GetCellData()->AddArray(diameters);
-  output->GetCellData()->AddArray(normals);
-  output->GetCellData()->AddArray(lambdaMax);
+  for (vtkDataArray* array : { static_cast<vtkDataArray*>(ids), static_cast<vtkDataArray*>(diameters),
+         static_cast<vtkDataArray*>(normals), static_cast<vtkDataArray*>(lambdaMax),
+         static_cast<vtkDataArray*>(orientations) })
+  {
+    output->GetCellData()->AddArray(array);
+  }
   // Shown first coloured by the longest wavelength each domain diffracts
   // (ParaView colours by the active scalars), in the "Visible spectrum" map.
   output->GetCellData()->SetActiveScalars("BraggLambdaMax");
@@ -314,6 +322,7 @@ bool vtkOpalSource::FillVolume(
   auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
   auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
   auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
+  auto orientation = makePointArray<vtkFloatArray>("LatticeOrientation", 4, count);
   // Only with a Voronoi layout, only when the model absorbs (docs/design.md §2.9, §2.10).
   auto cellId = makePointArray<vtkIntArray>("CellId", 1, layout.hasCells() ? count : 0);
   const bool absorbs = parameters.absorbs();
@@ -322,7 +331,8 @@ bool vtkOpalSource::FillVolume(
   const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0), normal->GetPointer(0),
     domainId->GetPointer(0), lambdaMax->GetPointer(0), lambdaMin->GetPointer(0), scattering->GetPointer(0),
     distance->GetPointer(0), layout.hasCells() ? cellId->GetPointer(0) : nullptr,
-    absorbs ? absorption->GetPointer(0) : nullptr, absorbs ? exponent->GetPointer(0) : nullptr };
+    absorbs ? absorption->GetPointer(0) : nullptr, absorbs ? exponent->GetPointer(0) : nullptr,
+    orientation->GetPointer(0) };
 
   // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
   const opal::VolumeFiller filler(parameters, layout);
@@ -346,7 +356,7 @@ bool vtkOpalSource::FillVolume(
   pointData->SetNormals(normal);
   for (vtkDataArray* array : { static_cast<vtkDataArray*>(domainId), static_cast<vtkDataArray*>(lambdaMax),
          static_cast<vtkDataArray*>(lambdaMin), static_cast<vtkDataArray*>(scattering),
-         static_cast<vtkDataArray*>(distance) })
+         static_cast<vtkDataArray*>(distance), static_cast<vtkDataArray*>(orientation) })
   {
     pointData->AddArray(array);
   }
@@ -450,6 +460,8 @@ void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackingThickness: " << this->BackingThickness << "\n";
   os << indent << "BackingAbsorption: " << this->BackingAbsorption << "\n";
   os << indent << "DomainScatteringCoefficient: " << this->DomainScatteringCoefficient << "\n";
+  os << indent << "SphereRefractiveIndex: " << this->SphereRefractiveIndex << "\n";
+  os << indent << "MatrixRefractiveIndex: " << this->MatrixRefractiveIndex << "\n";
   os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
   os << indent << "MaxPlacementAttempts: " << this->MaxPlacementAttempts << "\n";
   os << indent << "Seed: " << this->Seed << "\n";

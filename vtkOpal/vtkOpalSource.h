@@ -179,6 +179,14 @@ public:
   /// like the body's); 0 (default): the paper's domains do not scatter.
   vtkSetMacro(DomainScatteringCoefficient, double);
   vtkGetMacro(DomainScatteringCoefficient, double);
+  /// The crystal of the coupled-wave Bragg model (docs/design.md §7.2):
+  /// close-packed spheres of SphereRefractiveIndex (default 1.45, silica) in
+  /// a matrix of MatrixRefractiveIndex (default 1.33, water). Only the render's
+  /// coupled-wave model reads them (field data).
+  vtkSetMacro(SphereRefractiveIndex, double);
+  vtkGetMacro(SphereRefractiveIndex, double);
+  vtkSetMacro(MatrixRefractiveIndex, double);
+  vtkGetMacro(MatrixRefractiveIndex, double);
   ///@}
 
   ///@{
@@ -254,6 +262,8 @@ protected:
   double BackingThickness;
   double BackingAbsorption;
   double DomainScatteringCoefficient;
+  double SphereRefractiveIndex;
+  double MatrixRefractiveIndex;
   double RefractiveIndex;
   int MaxPlacementAttempts;
   int Seed;

@@ -96,6 +96,10 @@ opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
   p.DiffractionGain = this->DiffractionGain;
   p.BraggOrders = this->BraggOrders;
   p.MosaicSpread = this->MosaicSpread;
+  p.BraggModel = static_cast<opal::BraggModelKind>(this->BraggModel);
+  p.LatticePlanes = static_cast<opal::LatticePlaneSet>(this->LatticePlanes);
+  p.CoherentLayers = this->CoherentLayers;
+  p.EnergyConservation = this->EnergyConservation;
   p.Exposure = this->Exposure;
   copy(this->Background, p.Background);
   p.StepSize = this->StepSize;
@@ -126,6 +130,10 @@ void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
   this->DiffractionGain = p.DiffractionGain;
   this->BraggOrders = p.BraggOrders;
   this->MosaicSpread = p.MosaicSpread;
+  this->BraggModel = static_cast<int>(p.BraggModel);
+  this->LatticePlanes = static_cast<int>(p.LatticePlanes);
+  this->CoherentLayers = p.CoherentLayers;
+  this->EnergyConservation = p.EnergyConservation;
   this->Exposure = p.Exposure;
   copy(p.Background, this->Background);
   this->StepSize = p.StepSize;
@@ -365,6 +373,10 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   print("DiffractionGain", &this->DiffractionGain, 1);
   print("BraggOrders", &this->BraggOrders, 1);
   print("MosaicSpread", &this->MosaicSpread, 1);
+  print("BraggModel", &this->BraggModel, 1);
+  print("LatticePlanes", &this->LatticePlanes, 1);
+  print("CoherentLayers", &this->CoherentLayers, 1);
+  print("EnergyConservation", &this->EnergyConservation, 1);
   print("Exposure", &this->Exposure, 1);
   print("Background", this->Background, 3);
   print("StepSize", &this->StepSize, 1);

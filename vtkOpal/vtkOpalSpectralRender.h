@@ -113,6 +113,21 @@ public:
   /// Angular spread in degrees gating diffraction towards the mirror direction; 0 = off (paper).
   vtkSetMacro(MosaicSpread, double);
   vtkGetMacro(MosaicSpread, double);
+  /// The Bragg reflection (docs/design.md §7.2): 0 paper (default; the box band
+  /// of gain G), 1 coupled-wave (the reflectance of the lattice layers into a
+  /// lobe of MosaicSpread, 3 degrees where that is 0).
+  vtkSetClampMacro(BraggModel, int, 0, 1);
+  vtkGetMacro(BraggModel, int);
+  /// 0 the (111) stacking planes (default), 1 all 13 FCC families (coupled-wave only).
+  vtkSetClampMacro(LatticePlanes, int, 0, 1);
+  vtkGetMacro(LatticePlanes, int);
+  /// The most lattice layers that reflect coherently. Default 200.
+  vtkSetMacro(CoherentLayers, int);
+  vtkGetMacro(CoherentLayers, int);
+  /// Light behind a domain keeps 1 - R of it on the view path; always with coupled-wave. Default off.
+  vtkSetMacro(EnergyConservation, bool);
+  vtkGetMacro(EnergyConservation, bool);
+  vtkBooleanMacro(EnergyConservation, bool);
   /// Exposure multiplier; 0 = automatic (median body luminance to 0.18).
   vtkSetMacro(Exposure, double);
   vtkGetMacro(Exposure, double);
@@ -195,6 +210,10 @@ protected:
   double DiffractionGain;
   int BraggOrders;
   double MosaicSpread;
+  int BraggModel;
+  int LatticePlanes;
+  int CoherentLayers;
+  bool EnergyConservation;
   double Exposure;
   double Background[3];
   double StepSize;

@@ -82,7 +82,8 @@ void OpalModelOptions::addGrainOptions(CLI::App& app)
     ->group("Model");
 }
 
-// Absorption, the backing layer and scattering inside domains (docs/design.md §2.10).
+// Absorption, the backing layer and scattering inside domains (docs/design.md §2.10), and the
+// crystal's indices (§7.2).
 void OpalModelOptions::addAbsorptionOptions(CLI::App& app)
 {
   opal::ModelParameters& p = this->Parameters;
@@ -97,6 +98,9 @@ void OpalModelOptions::addAbsorptionOptions(CLI::App& app)
     { "--domain-scattering-coefficient",
       { &p.DomainScatteringCoefficient,
         "Scattering inside the domains in 1/mm at 550 nm, as lambda^-4 (0: none, the paper)" } },
+    // The crystal of the coupled-wave Bragg model (docs/design.md §7.2).
+    { "--sphere-refractive-index", { &p.SphereRefractiveIndex, "Index of the crystal's spheres (silica)" } },
+    { "--matrix-refractive-index", { &p.MatrixRefractiveIndex, "Index of the matrix between them (water)" } },
   };
   for (const auto& [flag, target] : options)
   {

@@ -63,11 +63,31 @@ void OpalRenderOptions::addTo(CLI::App& app)
   app.add_flag("--light-falloff-at-entry", p.LightFalloffAtEntry,
        "The paper's eq. 6: stop the 1/r^2 fall-off at the light's entry point")
     ->group(group);
+  this->addBraggModelOptions(app);
   app.add_option("--device", this->DeviceIndex, "Vulkan device index (-1: OPAL_VULKAN_DEVICE or the best)")
     ->capture_default_str()
     ->group(group);
   app.add_option("--device-memory-limit", this->DeviceMemoryLimit, "Refuse device memory beyond this many MB (0: none)")
     ->capture_default_str()
+    ->group(group);
+}
+
+// The coupled-wave Bragg model and the lattice planes (docs/design.md §7.2).
+void OpalRenderOptions::addBraggModelOptions(CLI::App& app)
+{
+  opal::RenderParameters& p = this->Parameters;
+  const std::string group = "Render";
+  addEnumOption(app, "--bragg-model", p.BraggModel,
+    { { "paper", opal::BraggModelKind::Paper }, { "coupled-wave", opal::BraggModelKind::CoupledWave } },
+    "paper (the box band of gain G) or coupled-wave (the reflectance of the lattice layers into a lobe)", group);
+  addEnumOption(app, "--lattice-planes", p.LatticePlanes,
+    { { "111", opal::LatticePlaneSet::Stacking111 }, { "fcc", opal::LatticePlaneSet::Fcc } },
+    "111 (the stacking planes, the paper) or fcc (all 13 families; needs --bragg-model coupled-wave)", group);
+  app.add_option("--coherent-layers", p.CoherentLayers, "The most lattice layers that reflect coherently")
+    ->capture_default_str()
+    ->group(group);
+  app.add_flag("--energy-conservation", p.EnergyConservation,
+       "Light behind a domain keeps 1 - R of what it reflects (always with coupled-wave)")
     ->group(group);
 }
 

@@ -22,6 +22,8 @@ public:
   int deviceMemoryLimit() const { return this->DeviceMemoryLimit; }
 
 private:
+  void addBraggModelOptions(CLI::App& app);
+
   opal::RenderParameters Parameters;
   int DeviceIndex = -1;
   int DeviceMemoryLimit = 0;

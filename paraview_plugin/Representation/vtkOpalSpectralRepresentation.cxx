@@ -166,6 +166,26 @@ void vtkOpalSpectralRepresentation::SetMosaicSpread(double value)
   this->Render->SetMosaicSpread(value);
 }
 
+void vtkOpalSpectralRepresentation::SetBraggModel(int value)
+{
+  this->Render->SetBraggModel(value);
+}
+
+void vtkOpalSpectralRepresentation::SetLatticePlanes(int value)
+{
+  this->Render->SetLatticePlanes(value);
+}
+
+void vtkOpalSpectralRepresentation::SetCoherentLayers(int value)
+{
+  this->Render->SetCoherentLayers(value);
+}
+
+void vtkOpalSpectralRepresentation::SetEnergyConservation(int value)
+{
+  this->Render->SetEnergyConservation(value != 0);
+}
+
 void vtkOpalSpectralRepresentation::SetLightRadius(double value)
 {
   this->Render->SetLightRadius(value);
@@ -217,6 +237,10 @@ void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "DiffractionGain: " << r->GetDiffractionGain() << "\n";
   os << indent << "BraggOrders: " << r->GetBraggOrders() << "\n";
   os << indent << "MosaicSpread: " << r->GetMosaicSpread() << "\n";
+  os << indent << "BraggModel: " << r->GetBraggModel() << "\n";
+  os << indent << "LatticePlanes: " << r->GetLatticePlanes() << "\n";
+  os << indent << "CoherentLayers: " << r->GetCoherentLayers() << "\n";
+  os << indent << "EnergyConservation: " << r->GetEnergyConservation() << "\n";
   os << indent << "LightRadius: " << r->GetLightRadius() << "\n";
   os << indent << "LightFalloffAtEntry: " << r->GetLightFalloffAtEntry() << "\n";
   os << indent << "Exposure: " << r->GetExposure() << "\n";

@@ -14,7 +14,8 @@
  * volume: the representation asks its input for the whole extent.
  *
  * The optics are the render filter's settings, with its defaults
- * (opal::RenderParameters): RefractiveIndex, BraggBandwidth, DiffractionGain,
+ * (opal::RenderParameters): RefractiveIndex, BraggBandwidth, DiffractionGain, BraggModel,
+ * LatticePlanes, CoherentLayers, EnergyConservation,
  * BraggOrders, MosaicSpread, LightRadius, LightFalloffAtEntry, Exposure,
  * WavelengthStep and ModelRotation, forwarded to the filter. The light is a
  * headlight (the paper's set-up) or LightPosition.
@@ -56,6 +57,10 @@ public:
   void SetDiffractionGain(double value);
   void SetBraggOrders(int value);
   void SetMosaicSpread(double value);
+  void SetBraggModel(int value);
+  void SetLatticePlanes(int value);
+  void SetCoherentLayers(int value);
+  void SetEnergyConservation(int value);
   void SetLightRadius(double value);
   void SetLightFalloffAtEntry(int value);
   void SetExposure(double value);

@@ -42,6 +42,11 @@ grep -q "preset custom" g.txt || fail "an overridden preset is recorded as custo
   --domain-scattering-coefficient 0.5 --save-volume absorbing.vti -o absorbing.png >/dev/null 2>&1 || fail "an absorbing render exits 0"
 grep -q 'Name="AbsorptionCoefficient"' absorbing.vti || fail "the absorbing volume carries AbsorptionCoefficient"
 
+# The coupled-wave model with every lattice plane family (docs/design.md §7.2).
+"$render" "${small[@]}" --bragg-model coupled-wave --lattice-planes fcc --coherent-layers 100 --mosaic-spread 4 \
+  --sphere-refractive-index 1.45 --matrix-refractive-index 1.0 -o coupled.png >/dev/null 2>&1 \
+  || fail "a coupled-wave render with fcc planes exits 0"
+
 # Each bad argument: one line on stderr, non-zero exit, nothing written.
 expect_one_line() {
   local name=$1 pattern=$2; shift 2
@@ -69,6 +74,10 @@ expect_one_line "NaN absorption exponent" "BodyAbsorptionExponent" "$volume" --b
 expect_one_line "backing thicker than the box" "BackingThickness" "$volume" --backing-thickness 9 -o x.vti
 expect_one_line "negative backing absorption" "BackingAbsorption" "$volume" --backing-absorption -1 -o x.vti
 expect_one_line "negative domain scattering" "DomainScatteringCoefficient" "$render" "${small[@]}" --domain-scattering-coefficient -1 -o x.png
+expect_one_line "unknown Bragg model" "--bragg-model" "$render" "${small[@]}" --bragg-model sinc -o x.png
+expect_one_line "fcc with the paper's model" "LatticePlanes" "$render" "${small[@]}" --lattice-planes fcc -o x.png
+expect_one_line "no coherent layers" "CoherentLayers" "$render" "${small[@]}" --bragg-model coupled-wave --coherent-layers 0 -o x.png
+expect_one_line "sphere index below 1" "SphereRefractiveIndex" "$volume" --sphere-refractive-index 0.5 -o x.vti
 expect_one_line "width beyond an int" "from -2147483648 to 2147483647" "$render" --width 99999999999 -o x.png
 expect_one_line "negative seed" "from 0 to 18446744073709551615" "$render" --seed -1 -o x.png
 # Enough digits to tell the value from the bound; one refractive-index rule for volume and render.

@@ -6,6 +6,7 @@
 
 #include "OpalDomainLayout.h"
 #include "OpalGrid.h"
+#include "OpalLatticePlanes.h"
 #include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
 
@@ -113,6 +114,7 @@ struct SlabScene
   glm::dvec3 DomainNormal{ 0.0, 1.0, 0.0 };
   double DomainHalfSize = 2.5;             // mm, a square
   double PlaneSpacing = 200.0;             // nm, FCC (111) d
+  double DomainSpin = 0.0;                 // radians: the lattice's turn about DomainNormal
 
   std::vector<float> ScatteringField, DistanceField, AbsorptionField, ExponentField;
   std::vector<std::int32_t> DomainField;
@@ -163,8 +165,10 @@ struct SlabScene
         this->DomainField[index] = 0;
         this->ScatteringField[index] = 0.0f; // no scattering in domains (paper §6.2)
       }
-      volume.Domains.push_back(
-        { { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) }, static_cast<float>(this->PlaneSpacing) });
+      const glm::dquat q = opal::latticeOrientation(n, this->DomainSpin);
+      volume.Domains.push_back({ { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) },
+        static_cast<float>(this->PlaneSpacing),
+        { static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z) } });
     }
     volume.ScatteringCoefficient = this->ScatteringField.data();
     volume.DomainId = this->DomainField.data();

@@ -16,10 +16,11 @@ namespace opaltest
 {
 
 // The array names of docs/design.md §2.5: the interface users and tests rely on.
-inline const std::array<const char*, 8>& volumeArrayNames()
+inline const std::array<const char*, 9>& volumeArrayNames()
 {
-  static const std::array<const char*, 8> names = { "VoxelType", "ParticleDiameter", "Normal",
-    "DomainId", "BraggLambdaMax", "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance" };
+  static const std::array<const char*, 9> names = { "VoxelType", "ParticleDiameter", "Normal",
+    "DomainId", "BraggLambdaMax", "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance",
+    "LatticeOrientation" };
   return names;
 }
 

@@ -82,6 +82,9 @@ int TestOpalBadInput(int, char*[])
       "DomainScatteringCoefficient" },
     { "huge domain scattering", [](vtkOpalSource* s) { s->SetDomainScatteringCoefficient(1e9); },
       "DomainScatteringCoefficient" },
+    { "sphere index below 1", [](vtkOpalSource* s) { s->SetSphereRefractiveIndex(0.9); }, "SphereRefractiveIndex" },
+    { "NaN matrix index", [](vtkOpalSource* s) { s->SetMatrixRefractiveIndex(std::nan("")); }, "MatrixRefractiveIndex" },
+    { "matrix index 4", [](vtkOpalSource* s) { s->SetMatrixRefractiveIndex(4.0); }, "MatrixRefractiveIndex" },
     { "more voxels than memory", [](vtkOpalSource* s) { s->SetDimensions(4000, 4000, 4000); }, "of memory" },
   };
 

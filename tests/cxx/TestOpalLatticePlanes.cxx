@@ -11,6 +11,7 @@
 #include "OpalTestHarness.h"
 
 #include "OpalCoupledWave.h"
+#include "OpalDomainLayout.h"
 #include "OpalLatticePlanes.h"
 #include "OpalOptics.h"
 
@@ -297,8 +298,41 @@ void checkAnglesAndLimits()
 }
 } // namespace
 
+// Each placed domain's lattice orientation (docs/design.md §2.4 step 6) stands
+// [111]/sqrt(3) on its drawn normal, spun by its own draw from the LatticeSpin
+// stream, for polygons and Voronoi grains; the spins differ between domains.
+void checkDomainSpins()
+{
+  for (opal::DomainLayoutKind kind : { opal::DomainLayoutKind::Polygons, opal::DomainLayoutKind::Voronoi })
+  {
+    opal::ModelParameters p;
+    p.Dimensions = { 40, 20, 50 };
+    p.DomainCount = 30;
+    p.DomainLayout = kind;
+    p.VoronoiCellCount = 80;
+    const opal::DomainLayout layout = opal::DomainLayout::build(p);
+    double worst = 0.0, smallestGap = 1.0;
+    for (const opal::Domain& domain : layout.domains())
+    {
+      const std::array<double, 4> q = opal::latticeQuaternion(domain);
+      const glm::dvec3 n111 = glm::dquat(q[0], q[1], q[2], q[3]) * (glm::dvec3(1.0) / std::sqrt(3.0));
+      worst = std::max(worst, glm::length(n111 - glm::dvec3(domain.Normal[0], domain.Normal[1], domain.Normal[2])));
+      OPAL_CHECK(domain.LatticeSpin >= 0.0 && domain.LatticeSpin < 2.0 * opal::Pi, "spin within [0, 2 pi)");
+      if (domain.Id > 0)
+      {
+        smallestGap = std::min(smallestGap,
+          std::fabs(domain.LatticeSpin - layout.domains()[static_cast<std::size_t>(domain.Id - 1)].LatticeSpin));
+      }
+    }
+    OPAL_CHECK(layout.placedCount() > 1, "the layout places domains");
+    OPAL_CHECK(worst < 1e-12, "each orientation takes [111] to the domain's normal");
+    OPAL_CHECK(smallestGap > 0.0, "neighbouring domains have their own spins");
+  }
+}
+
 int TestOpalLatticePlanes(int, char*[])
 {
+  checkDomainSpins();
   checkFourierRatios();
   checkSpacings();
   checkAngles(opal::modelFrameNormals(opal::fccLatticePlanes(DiameterNm), glm::dquat(1, 0, 0, 0)), "crystal frame");

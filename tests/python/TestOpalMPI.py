@@ -49,7 +49,7 @@ check(parallel_reader.GetNumberOfPieces() == ranks,
 check(serial_data.GetDimensions() == parallel_data.GetDimensions(), "same grid")
 if kind in ("volume", "voronoi"):
     exact = ["VoxelType", "ParticleDiameter", "Normal", "DomainId", "BraggLambdaMax",
-             "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance"] + (["CellId"] if kind == "voronoi" else [])
+             "BraggLambdaMin", "ScatteringCoefficient", "SurfaceDistance", "LatticeOrientation"] + (["CellId"] if kind == "voronoi" else [])
     close = []
 else:
     exact = ["RGB"]

@@ -21,6 +21,7 @@ ARRAYS = {
     "BraggLambdaMin": "vtkFloatArray",
     "ScatteringCoefficient": "vtkFloatArray",
     "SurfaceDistance": "vtkFloatArray",
+    "LatticeOrientation": "vtkFloatArray",
 }
 
 

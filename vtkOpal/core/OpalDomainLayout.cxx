@@ -1,6 +1,7 @@
 #include "OpalDomainLayout.h"
 
 #include "OpalHalfEllipsoid.h"
+#include "OpalLatticePlanes.h"
 #include "OpalOptics.h"
 #include "OpalRandom.h"
 
@@ -155,7 +156,23 @@ bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>
 
 DomainLayout DomainLayout::build(const ModelParameters& p, const std::function<bool(double)>& progress)
 {
-  return p.DomainLayout == DomainLayoutKind::Voronoi ? buildVoronoi(p, progress) : buildPolygons(p, progress);
+  DomainLayout layout =
+    p.DomainLayout == DomainLayoutKind::Voronoi ? buildVoronoi(p, progress) : buildPolygons(p, progress);
+  // Step 6 (docs/design.md §2.4): the spin from a stream of its own, counter =
+  // the domain's id, so the layout's own draws (and today's volumes) stay as they were.
+  for (Domain& domain : layout.Domains)
+  {
+    domain.LatticeSpin =
+      2.0 * Pi * unitFromHash(hashCounter(p.Seed, RandomStream::LatticeSpin, static_cast<std::uint64_t>(domain.Id)));
+  }
+  return layout;
+}
+
+std::array<double, 4> latticeQuaternion(const Domain& domain)
+{
+  const glm::dquat q =
+    latticeOrientation(glm::dvec3(domain.Normal[0], domain.Normal[1], domain.Normal[2]), domain.LatticeSpin);
+  return { q.w, q.x, q.y, q.z };
 }
 
 DomainLayout DomainLayout::buildPolygons(const ModelParameters& p, const std::function<bool(double)>& progress)

@@ -23,7 +23,13 @@ struct Domain
   std::vector<std::array<double, 3>> Vertices; // world coordinates, mm (none for a Voronoi cell)
   std::array<double, 3> Normal{}; // FCC (111) lattice-plane normal, y >= 0
   double ParticleDiameter = 0;    // nm
+  double LatticeSpin = 0;         // radians about Normal: the lattice's turn (docs/design.md §2.4, step 6)
 };
+
+// The domain's lattice orientation as a unit quaternion (w, x, y, z): the
+// rotation from the crystal's cubic frame to the model frame that stands
+// [111]/sqrt(3) on Normal and turns it by LatticeSpin (latticeOrientation).
+std::array<double, 4> latticeQuaternion(const Domain& domain);
 
 // One diffraction voxel: its global linear index and its domain.
 struct DomainVoxel

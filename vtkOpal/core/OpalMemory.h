@@ -15,6 +15,6 @@ std::uint64_t physicalMemoryBytes();
 std::string formatBytes(std::uint64_t bytes);
 
 // Bytes per voxel of the volume's point arrays (docs/design.md §2.5 fields).
-constexpr std::uint64_t VolumeBytesPerVoxel = 1 + 4 + 12 + 4 + 4 + 4 + 4 + 4;
+constexpr std::uint64_t VolumeBytesPerVoxel = 1 + 4 + 12 + 4 + 4 + 4 + 4 + 4 + 16; // LatticeOrientation last
 
 } // namespace opal

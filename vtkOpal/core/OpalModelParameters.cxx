@@ -92,6 +92,8 @@ std::string finiteError(const ModelParameters& p)
     { "BackingThickness", { p.BackingThickness } },
     { "BackingAbsorption", { p.BackingAbsorption } },
     { "DomainScatteringCoefficient", { p.DomainScatteringCoefficient } },
+    { "SphereRefractiveIndex", { p.SphereRefractiveIndex } },
+    { "MatrixRefractiveIndex", { p.MatrixRefractiveIndex } },
   };
   for (const auto& [name, values] : reals)
   {
@@ -289,6 +291,14 @@ std::string opticsError(const ModelParameters& p)
   {
     message << "BackingThickness must lie in [0, " << p.PhysicalSize[1] << "] mm (the box's height, PhysicalSize), got "
             << p.BackingThickness << ".";
+  }
+  else if (!(p.SphereRefractiveIndex >= 1 && p.SphereRefractiveIndex < 4))
+  {
+    message << "SphereRefractiveIndex must lie in [1, 4), got " << p.SphereRefractiveIndex << ".";
+  }
+  else if (!(p.MatrixRefractiveIndex >= 1 && p.MatrixRefractiveIndex < 4))
+  {
+    message << "MatrixRefractiveIndex must lie in [1, 4), got " << p.MatrixRefractiveIndex << ".";
   }
   return message.str();
 }

@@ -51,6 +51,10 @@ struct ModelParameters
   double BackingThickness = 0.0;       // mm: the opal's voxels with y below it are the backing
   double BackingAbsorption = 0.0;      // 1/mm, grey: the backing's absorption instead of the body's
   double DomainScatteringCoefficient = 0.0; // 1/mm at 550 nm (lambda^-4) in the domain voxels
+  // The crystal of the coupled-wave Bragg model (docs/design.md §7.2): close-packed
+  // spheres of one index in a matrix of another; only that render model reads them.
+  double SphereRefractiveIndex = 1.45; // n_s, silica
+  double MatrixRefractiveIndex = 1.33; // n_m, water (hydrated silica in natural opal)
   std::uint32_t Seed = 1;
 
   // True if any voxel absorbs: the volume then carries AbsorptionCoefficient.

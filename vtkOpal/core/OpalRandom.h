@@ -24,6 +24,7 @@ enum class RandomStream : std::uint64_t
   DomainLayout = 2,       // sequential draws of the domain placement
   VoronoiCells = 3,       // sequential draws of the Voronoi sites, clusters and domains
   DiameterField = 4,      // per lattice node of the correlated diameter field
+  LatticeSpin = 5,        // per domain, counter = domain id: the lattice's spin about its (111) normal
 };
 
 constexpr std::uint64_t hashCounter(std::uint64_t seed, RandomStream stream, std::uint64_t counter)

@@ -15,6 +15,17 @@ int wavelengthCount(const RenderParameters& p)
   return wavelengthBinCount(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
 }
 
+bool conservesEnergy(const RenderParameters& p)
+{
+  return p.EnergyConservation || p.BraggModel == BraggModelKind::CoupledWave;
+}
+
+double effectiveMosaicSpread(const RenderParameters& p)
+{
+  return p.BraggModel == BraggModelKind::CoupledWave && p.MosaicSpread == 0.0 ? CoupledWaveDefaultSpread
+                                                                                : p.MosaicSpread;
+}
+
 RenderParameters withQuality(const RenderParameters& p)
 {
   RenderParameters q = p;
@@ -161,6 +172,30 @@ std::string opticsError(const RenderParameters& p)
   return m.str();
 }
 
+// The settings beyond the paper (docs/design.md §7.2).
+std::string braggModelError(const RenderParameters& p)
+{
+  std::ostringstream m = messageStream();
+  if (p.BraggModel != BraggModelKind::Paper && p.BraggModel != BraggModelKind::CoupledWave)
+  {
+    m << "BraggModel must be 0 (paper) or 1 (coupled-wave), got " << static_cast<int>(p.BraggModel) << ".";
+  }
+  else if (p.LatticePlanes != LatticePlaneSet::Stacking111 && p.LatticePlanes != LatticePlaneSet::Fcc)
+  {
+    m << "LatticePlanes must be 0 (111) or 1 (fcc), got " << static_cast<int>(p.LatticePlanes) << ".";
+  }
+  else if (p.LatticePlanes == LatticePlaneSet::Fcc && p.BraggModel != BraggModelKind::CoupledWave)
+  {
+    // The paper's box band has no strength per family to give the others.
+    m << "LatticePlanes fcc needs BraggModel coupled-wave.";
+  }
+  else if (p.CoherentLayers < 1 || p.CoherentLayers > MaxCoherentLayers)
+  {
+    m << "CoherentLayers must be 1-" << MaxCoherentLayers << ", got " << p.CoherentLayers << ".";
+  }
+  return m.str();
+}
+
 std::string samplingError(const RenderParameters& p)
 {
   std::ostringstream m = messageStream();
@@ -190,7 +225,7 @@ std::string samplingError(const RenderParameters& p)
 
 std::string validate(const RenderParameters& p)
 {
-  return firstError(p, { imageError, cameraError, spectrumError, opticsError, samplingError });
+  return firstError(p, { imageError, cameraError, spectrumError, opticsError, braggModelError, samplingError });
 }
 
 } // namespace opal

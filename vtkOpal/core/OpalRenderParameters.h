@@ -27,6 +27,30 @@ enum class RenderQuality : int
   Preview = 1,
 };
 
+// The Bragg reflection of a domain crossing (docs/design.md §7.2): the
+// paper's box band of gain G, or the coupled-wave reflectance of the lattice
+// layers into a normalised lobe about the mirror direction.
+enum class BraggModelKind : int
+{
+  Paper = 0,
+  CoupledWave = 1,
+};
+
+// Which lattice planes reflect (docs/design.md §7.2): the (111) stacking
+// planes (the paper's), or all 13 families of the FCC lattice (orders k while
+// lambda_B >= the shortest rendered wavelength).
+enum class LatticePlaneSet : int
+{
+  Stacking111 = 0,
+  Fcc = 1,
+};
+
+// MosaicSpread's value in the coupled-wave model when MosaicSpread is 0
+// (degrees): a lobe must have a width (docs/design.md §7.2).
+constexpr double CoupledWaveDefaultSpread = 3.0;
+// The largest CoherentLayers: tanh^2(kappa L) is 1 in float long before.
+constexpr int MaxCoherentLayers = 100000;
+
 struct RenderParameters
 {
   std::array<int, 2> ImageSize{ 640, 480 };            // pixels
@@ -54,6 +78,11 @@ struct RenderParameters
   int SpectralNodes = 16;                              // nodes of the body's scattering spectrum; 0: every
                                                        // wavelength (docs/design.md §3.4)
   bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
+  // Beyond the paper (docs/design.md §7.2), off by default:
+  BraggModelKind BraggModel = BraggModelKind::Paper;
+  LatticePlaneSet LatticePlanes = LatticePlaneSet::Stacking111;
+  int CoherentLayers = 200;                            // the most lattice layers reflecting coherently
+  bool EnergyConservation = false;                     // 1 - R behind a crossing (always with coupled-wave)
   bool WriteSpectrum = false;                          // fill the Spectrum output
   RenderQuality Quality = RenderQuality::Final;
   LightSpectrum Illuminant = LightSpectrum::D65;
@@ -71,6 +100,13 @@ std::string validate(const RenderParameters& parameters);
 // halved (rounded up), WavelengthStep at least 20 nm, SpectralNodes 8 (0
 // stays 0) and SpecularSamples at most 2.
 RenderParameters withQuality(const RenderParameters& parameters);
+
+// True if crossings keep 1 - R of the light: EnergyConservation, or the coupled-wave model.
+bool conservesEnergy(const RenderParameters& parameters);
+
+// The lobe's angular deviation in degrees: MosaicSpread, or with the
+// coupled-wave model CoupledWaveDefaultSpread where MosaicSpread is 0.
+double effectiveMosaicSpread(const RenderParameters& parameters);
 
 // Number of wavelength bins the parameters give.
 int wavelengthCount(const RenderParameters& parameters);

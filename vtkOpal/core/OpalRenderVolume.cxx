@@ -37,12 +37,17 @@ float RenderVolume::colouredAbsorptionExponent() const
   return 0.0f;
 }
 
-RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDiameter)
+RenderDomain renderDomain(
+  const std::array<double, 3>& normal, double particleDiameter, const std::array<double, 4>& orientation)
 {
   RenderDomain domain;
   for (std::size_t a = 0; a < 3; ++a)
   {
     domain.LatticeNormal[a] = static_cast<float>(normal[a]);
+  }
+  for (std::size_t a = 0; a < 4; ++a)
+  {
+    domain.Orientation[a] = static_cast<float>(orientation[a]);
   }
   domain.PlaneSpacing = static_cast<float>(fccPlaneSpacing(static_cast<float>(particleDiameter)));
   return domain;
@@ -53,7 +58,7 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
   std::vector<RenderDomain> table(layout.domains().size());
   for (const Domain& domain : layout.domains())
   {
-    table[static_cast<std::size_t>(domain.Id)] = renderDomain(domain.Normal, domain.ParticleDiameter);
+    table[static_cast<std::size_t>(domain.Id)] = renderDomain(domain.Normal, domain.ParticleDiameter, latticeQuaternion(domain));
   }
   return table;
 }
@@ -133,6 +138,26 @@ std::string checkDomains(const RenderVolume& volume)
       return "Domain " + std::to_string(d) + " of the domain table needs a finite unit DomainNormal and a positive "
         "DomainParticleDiameter.";
     }
+    const auto& q = volume.Domains[d].Orientation;
+    const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!std::isfinite(norm) || !(norm > 0.99f && norm < 1.01f))
+    {
+      return "Domain " + std::to_string(d) + " of the domain table needs a finite unit DomainOrientation.";
+    }
+  }
+  return {};
+}
+
+// The coupled-wave model's crystal (docs/design.md §7.2); empty if valid.
+std::string checkCrystal(const RenderVolume& volume)
+{
+  for (const auto& [name, index] : { std::pair<const char*, double>{ "SphereRefractiveIndex", volume.SphereRefractiveIndex },
+         { "MatrixRefractiveIndex", volume.MatrixRefractiveIndex } })
+  {
+    if (!(index >= 1 && index < 4))
+    {
+      return std::string("The input volume's ") + name + " must lie in [1, 4), got " + std::to_string(index) + ".";
+    }
   }
   return {};
 }
@@ -156,7 +181,7 @@ std::string validate(const RenderVolume& volume)
   {
     return "The input volume has one of AbsorptionCoefficient and AbsorptionExponent without the other.";
   }
-  for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume) })
+  for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume), checkCrystal(volume) })
   {
     if (!error.empty())
     {

@@ -19,6 +19,9 @@ struct RenderDomain
 {
   std::array<float, 3> LatticeNormal{ 0.0f, 1.0f, 0.0f }; // FCC (111) plane normal, y >= 0
   float PlaneSpacing = 0.0f;                              // d in nm (eq. 3)
+  // The lattice orientation (w, x, y, z): crystal frame -> model frame, taking
+  // [111]/sqrt(3) to LatticeNormal (docs/design.md §2.4, the fcc planes of §7.2).
+  std::array<float, 4> Orientation{ 1.0f, 0.0f, 0.0f, 0.0f };
 };
 
 struct RenderVolume
@@ -33,6 +36,10 @@ struct RenderVolume
   const float* AbsorptionCoefficient = nullptr; // 1/mm at 550 nm
   const float* AbsorptionExponent = nullptr;    // p: mu_a(lambda) = mu_a(550) (550/lambda)^p
   std::vector<RenderDomain> Domains;
+  // The crystal of the coupled-wave model (docs/design.md §7.2): the model's
+  // SphereRefractiveIndex and MatrixRefractiveIndex.
+  double SphereRefractiveIndex = 1.45;
+  double MatrixRefractiveIndex = 1.33;
 
   std::size_t voxelCount() const;
   // True if any voxel absorbs.
@@ -46,7 +53,9 @@ struct RenderVolume
 // A domain with this lattice normal and sphere diameter (nm), taken as the
 // volume's float arrays hold it, so a table built from a layout and one read
 // back from a volume's field data are the same.
-RenderDomain renderDomain(const std::array<double, 3>& normal, double particleDiameter);
+// orientation (w, x, y, z) as latticeQuaternion gives it.
+RenderDomain renderDomain(
+  const std::array<double, 3>& normal, double particleDiameter, const std::array<double, 4>& orientation);
 
 // Domain i of the layout as RenderDomain i.
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
@@ -57,7 +66,8 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 // AbsorptionCoefficient (if any) finite and >= 0 with its AbsorptionExponent
 // finite, and at most one exponent other than 0 among the absorbing voxels,
 // every DomainId -1 or within the domain table, every domain a finite unit
-// normal and a positive plane spacing.
+// normal, a positive plane spacing and a finite unit orientation, the
+// crystal's indices within [1, 4).
 std::string validate(const RenderVolume& volume);
 
 } // namespace opal

@@ -24,7 +24,7 @@ VolumeFields fieldsOf(BuiltVolume& volume)
   return { volume.VoxelType.data(), volume.ParticleDiameter.data(), volume.Normal.data(), volume.DomainId.data(),
     volume.BraggLambdaMax.data(), volume.BraggLambdaMin.data(), volume.ScatteringCoefficient.data(),
     volume.SurfaceDistance.data(), dataOrNull(volume.CellId), dataOrNull(volume.AbsorptionCoefficient),
-    dataOrNull(volume.AbsorptionExponent) };
+    dataOrNull(volume.AbsorptionExponent), volume.LatticeOrientation.data() };
 }
 
 void allocate(BuiltVolume& volume, bool absorbs)
@@ -33,6 +33,7 @@ void allocate(BuiltVolume& volume, bool absorbs)
   volume.VoxelType.resize(voxels);
   volume.ParticleDiameter.resize(voxels);
   volume.Normal.resize(3 * voxels);
+  volume.LatticeOrientation.resize(4 * voxels);
   volume.DomainId.resize(voxels);
   volume.BraggLambdaMax.resize(voxels);
   volume.BraggLambdaMin.resize(voxels);
@@ -65,6 +66,8 @@ RenderVolume BuiltVolume::renderVolume() const
     volume.AbsorptionExponent = this->AbsorptionExponent.data();
   }
   volume.Domains = renderDomains(this->Layout);
+  volume.SphereRefractiveIndex = this->SphereRefractiveIndex;
+  volume.MatrixRefractiveIndex = this->MatrixRefractiveIndex;
   return volume;
 }
 
@@ -92,6 +95,8 @@ std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const 
   auto report = [&progress](double fraction) { return !progress || progress(fraction); };
   BuiltVolume volume;
   volume.VoxelGrid = Grid::fromParameters(parameters);
+  volume.SphereRefractiveIndex = parameters.SphereRefractiveIndex;
+  volume.MatrixRefractiveIndex = parameters.MatrixRefractiveIndex;
   volume.Layout = DomainLayout::build(parameters, [&report](double f) { return report(LayoutShare * f); });
   if (volume.Layout.aborted())
   {

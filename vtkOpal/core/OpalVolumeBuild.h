@@ -28,6 +28,8 @@ struct BuiltVolume
   std::vector<std::int32_t> DomainId;
   std::vector<std::int32_t> CellId; // Voronoi layout only, else empty
   std::vector<float> AbsorptionCoefficient, AbsorptionExponent; // only if the model absorbs, else empty
+  std::vector<float> LatticeOrientation;                        // 4 per voxel (w, x, y, z)
+  double SphereRefractiveIndex = 1.45, MatrixRefractiveIndex = 1.33; // the model's crystal (§7.2)
 
   // The render's view of it (pointers into this object's arrays).
   RenderVolume renderVolume() const;

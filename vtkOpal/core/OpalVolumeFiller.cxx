@@ -17,6 +17,12 @@ VolumeFiller::VolumeFiller(const ModelParameters& parameters, const DomainLayout
       rayleighScatteringPerMm(1.0, parameters.ScatteringVolumeFraction, ReferenceWavelengthNm))
   , MaxSpacing(*std::max_element(this->VoxelGrid.Spacing.begin(), this->VoxelGrid.Spacing.end()))
 {
+  for (const Domain& domain : layout.domains())
+  {
+    const std::array<double, 4> q = latticeQuaternion(domain);
+    this->Orientations.push_back({ static_cast<float>(q[0]), static_cast<float>(q[1]), static_cast<float>(q[2]),
+      static_cast<float>(q[3]) });
+  }
 }
 
 bool VolumeFiller::isSurfaceVoxel(int i, int j, int k) const
@@ -102,6 +108,10 @@ void VolumeFiller::clearVoxel(std::int64_t o, const VolumeFields& out)
   out.BraggLambdaMin[o] = 0.0f;
   out.ScatteringCoefficient[o] = 0.0f;
   out.ParticleDiameter[o] = 0.0f;
+  if (out.LatticeOrientation)
+  {
+    std::fill_n(out.LatticeOrientation + 4 * o, 4, 0.0f);
+  }
   if (out.AbsorptionCoefficient)
   {
     out.AbsorptionCoefficient[o] = 0.0f;
@@ -139,6 +149,11 @@ void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, co
   for (std::size_t a = 0; a < 3; ++a)
   {
     out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(domain.Normal[a]);
+  }
+  if (out.LatticeOrientation)
+  {
+    const std::array<float, 4>& q = this->Orientations[static_cast<std::size_t>(domain.Id)];
+    std::copy(q.begin(), q.end(), out.LatticeOrientation + 4 * o);
   }
 }
 

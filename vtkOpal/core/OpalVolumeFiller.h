@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 namespace opal
 {
@@ -37,6 +38,9 @@ struct VolumeFields
   // Only when the model absorbs (ModelParameters::absorbs, docs/design.md §2.10):
   float* AbsorptionCoefficient = nullptr; // 1/mm at 550 nm
   float* AbsorptionExponent = nullptr;    // p of the voxel's mu_a(lambda) = mu_a(550) (550/lambda)^p
+  // 4 components (w, x, y, z): the domain's lattice orientation, 0 outside
+  // domains (docs/design.md §2.5); null: not written.
+  float* LatticeOrientation = nullptr;
 };
 
 class VolumeFiller
@@ -63,6 +67,7 @@ private:
   DiameterField Diameters;
   double RayleighPerCubicNm; // mu_s(550) / l^3: eq. 1 with n = 6 phi / (pi l^3)
   double MaxSpacing;
+  std::vector<std::array<float, 4>> Orientations; // latticeQuaternion of each domain
 };
 
 } // namespace opal

@@ -98,19 +98,23 @@ ComputePipeline& RenderSession::lightPass(int mode)
 
 // The march for a wavelength count: the scattering spectrum on nodes, or at
 // every wavelength where nodes are off or would not be fewer than the bins;
-// with ABSORPTION if the volume absorbs.
-ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes)
+// with ABSORPTION if the volume absorbs; with the Bragg model of `bragg`.
+ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg)
 {
   const bool exact = spectralNodes == 0 || wavelengths <= spectralNodes;
   const int nodes = exact ? 4 : spectralNodes;
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
-  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs }];
+  const int coupled = bragg.BraggModel == BraggModelKind::CoupledWave ? 1 : 0;
+  const int energy = conservesEnergy(bragg) ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& march =
+    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
-    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION.
+    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION,
+    // 4: COUPLED_WAVE, 5: ENERGY_CONSERVATION (docs/design.md §7.2).
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs });
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy });
   }
   return *march;
 }
@@ -127,7 +131,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   block.rectSize = gpu::ivec2(rect[2], rect[3]);
   block.writeSpectrum = spectrum ? 1 : 0;
   this->Buffers->Parameters->upload(&block, sizeof(block));
-  ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes);
+  ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes, setup.Parameters);
   const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
   const int rowsPerSubmit = static_cast<int>(

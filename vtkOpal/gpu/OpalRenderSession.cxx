@@ -1,5 +1,8 @@
 #include "OpalRenderSession.h"
 
+#include "OpalCoupledWave.h"
+#include "OpalLatticePlanes.h"
+
 #include "OpalEmbeddedShaders.h"
 #include "OpalMemory.h"
 #include "OpalOptics.h"
@@ -59,6 +62,20 @@ void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
 
 // A buffer in device-local memory, holding `values` if given: what only the
 // device reads and writes.
+// The coupled-wave model's settings (docs/design.md §7.2): the crystal's mean
+// index and permittivity contrast, the layers and the plane families.
+void setCoupledWave(gpu::RenderParameterBlock& block, const RenderParameters& p, const RenderVolume& volume)
+{
+  ColloidalCrystal crystal;
+  crystal.SphereIndex = volume.SphereRefractiveIndex;
+  crystal.MatrixIndex = volume.MatrixRefractiveIndex;
+  block.meanIndex = static_cast<float>(meanIndex(crystal));
+  // eps_G = f (n_s^2 - n_m^2) 3 j1(x)/x: the contrast at x = 0.
+  block.permittivityContrast = static_cast<float>(permittivityFourierComponent(crystal, 0.0));
+  block.coherentLayers = static_cast<float>(p.CoherentLayers);
+  block.latticeFamilies = p.LatticePlanes == LatticePlaneSet::Fcc ? FccPlaneCount : 1;
+}
+
 std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
   VulkanContext& context, std::uint64_t bytes, const char* what, const void* values = nullptr)
 {
@@ -172,8 +189,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   std::vector<gpu::DomainRecord> records;
   for (const RenderDomain& domain : volume.Domains)
   {
+    const auto& q = domain.Orientation; // (w, x, y, z) -> the contract's (x, y, z, w)
     records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
-      domain.PlaneSpacing });
+      domain.PlaneSpacing, gpu::vec4(q[1], q[2], q[3], q[0]) });
   }
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
@@ -301,7 +319,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.refractiveIndex = static_cast<float>(p.RefractiveIndex);
   block.braggBandwidth = static_cast<float>(p.BraggBandwidth);
   block.diffractionGain = static_cast<float>(p.DiffractionGain);
-  block.mosaicSpread = static_cast<float>(glm::radians(p.MosaicSpread));
+  block.mosaicSpread = static_cast<float>(glm::radians(effectiveMosaicSpread(p)));
   // Irradiance 1 at the apex: intensity = apex distance^2; the light's
   // radiance spreads that intensity over its disc, pi r^2.
   const glm::dvec3 toApex = setup.Camera.Light - geometry.apex();
@@ -313,6 +331,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.domainCount = static_cast<int>(shape.Domains.size());
   block.braggOrders = p.BraggOrders;
   block.absorptionExponent = this->Volume->AbsorptionExponent;
+  setCoupledWave(block, p, shape);
   return setup;
 }
 

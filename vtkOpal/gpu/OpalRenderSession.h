@@ -105,7 +105,7 @@ private:
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
-  ComputePipeline& marchPipeline(int wavelengths, int spectralNodes);
+  ComputePipeline& marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg);
   ComputePipeline& lightPass(int mode);
 
   std::unique_ptr<VulkanContext> Context;
@@ -117,7 +117,7 @@ private:
   std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength) and absorption (0 or 1).
-  std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  std::map<std::array<int, 5>, std::unique_ptr<ComputePipeline>> MarchPasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold

@@ -1,0 +1,285 @@
+// The render's coupled-wave Bragg model (docs/design.md §7.2) on synthetic
+// slab scenes, with the Vulkan validation layer on: a flat domain under the
+// light reflects R(lambda) of OpalCore's coupledWaveReflectance into the
+// lobe's peak (GPU against CPU, bin by bin) and peaks at lambda_B = 2 d n_bar;
+// the view ray through the domain keeps 1 - R, so reflected + transmitted =
+// incident within 0.1% per bin (and with the paper's box band and
+// EnergyConservation); moving the eye a few degrees changes which
+// of two tilted domains is bright; the fcc planes reflect where (111) cannot.
+#include "OpalCoupledWave.h"
+#include "OpalOptics.h"
+#include "OpalRenderScenes.h"
+#include "OpalTestHarness.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <string>
+
+namespace
+{
+constexpr double Mu = 1.45;
+constexpr int Centre = 16; // the centre pixel of slabView's 33 x 33
+constexpr double Spacing111 = 200.0;
+constexpr int Layers = 50; // unsaturated: R = tanh^2(kappa L) ~ 0.67 at lambda_B
+
+using opaltest::SceneRenderer;
+using opaltest::SlabScene;
+
+opal::RenderImage renderChecked(
+  SceneRenderer& renderer, SlabScene& scene, const opal::RenderParameters& p, const std::string& what)
+{
+  opal::RenderImage image = renderer.render(scene.build(), p);
+  OPAL_CHECK(opaltest::allFinite(image), what + ": no NaN or Inf in any output");
+  const auto messages = renderer.context().validationMessages();
+  OPAL_CHECK(messages.empty(), what + ": the validation layer is silent" +
+      (messages.empty() ? std::string() : ", first message: " + messages.front()));
+  return image;
+}
+
+// The coupled-wave model over the slab: unit spectral irradiance, the spectrum kept.
+opal::RenderParameters coupledView()
+{
+  opal::RenderParameters p = opaltest::slabView();
+  p.RefractiveIndex = Mu;
+  p.BraggModel = opal::BraggModelKind::CoupledWave;
+  p.CoherentLayers = Layers;
+  p.Illuminant = opal::LightSpectrum::None;
+  p.WriteSpectrum = true;
+  return p;
+}
+
+// R of the crossing of a flat domain at normal incidence averaged over a bin
+// as the march samples it (docs/design.md §7.2: 4 points where the bin comes
+// within 4 kappa of the band; in the wings the side lobes' phase average
+// where the bin spans 4 of their periods, else its centre), from OpalCore.
+double binReflectance(double centre, double width, int layers = Layers)
+{
+  const opal::ColloidalCrystal crystal;
+  opal::CoupledWaveInput in;
+  in.SpacingNm = Spacing111;
+  in.MeanIndex = opal::meanIndex(crystal);
+  in.FourierComponent = opal::permittivityFourierComponent(crystal, opal::Pi * std::sqrt(1.5));
+  in.Layers = layers; // the one-voxel domain is 500 layers thick: CoherentLayers limits
+  const double lambdaB = 2.0 * Spacing111 * in.MeanIndex;
+  const double kappaLambda = opal::Pi * std::fabs(in.FourierComponent) / in.MeanIndex;
+  auto detuning = [&](double lambda) { return (opal::Pi / Spacing111) * (lambdaB / lambda - 1.0); };
+  const double shortEdge = detuning(centre - 0.5 * width), longEdge = detuning(centre + 0.5 * width);
+  const double reach = 4.0 * kappaLambda / lambdaB;
+  if (longEdge > reach || shortEdge < -reach)
+  {
+    if ((shortEdge - longEdge) * layers * Spacing111 >= 4.0 * opal::Pi)
+    {
+      const double x = std::pow(kappaLambda / centre / detuning(centre), 2); // s and p alike at normal incidence
+      return 1.0 - std::sqrt(1.0 - x);
+    }
+    in.WavelengthNm = centre;
+    return opal::coupledWaveReflectance(in).average();
+  }
+  double sum = 0.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    in.WavelengthNm = centre + width * ((i + 0.5) / 4.0 - 0.5);
+    sum += opal::coupledWaveReflectance(in).average();
+  }
+  return sum / 4.0;
+}
+
+std::vector<double> spectrumAt(const opal::RenderImage& image, int x, int y)
+{
+  const std::size_t bins = image.Wavelengths.size();
+  const std::size_t i = opaltest::pixelIndex(image, x, y);
+  return std::vector<double>(image.Spectrum.begin() + static_cast<long>(i * bins),
+    image.Spectrum.begin() + static_cast<long>((i + 1) * bins));
+}
+
+// A flat domain, light at the eye: the centre pixel sees the lobe's peak, so
+// its spectrum less the slab's without the domain (the highlight) is
+// (1 - F) g peak R(lambda), g = (1 - F)(28/29)^2 (irradiance 1 at the top).
+void checkReflectance(SceneRenderer& renderer)
+{
+  const opal::RenderParameters p = coupledView();
+  std::vector<double> spectrum, highlight;
+  for (bool withDomain : { true, false })
+  {
+    SlabScene scene;
+    scene.WithDomain = withDomain;
+    scene.PlaneSpacing = Spacing111;
+    const opal::RenderImage image = renderChecked(renderer, scene, p, "coupled-wave flat domain");
+    (withDomain ? spectrum : highlight) = spectrumAt(image, Centre, Centre);
+  }
+  const double fresnel = std::pow((Mu - 1) / (Mu + 1), 2);
+  const double concentration = 1.0 / std::pow(opal::CoupledWaveDefaultSpread * opal::Pi / 180.0, 2);
+  const double peak = concentration / (2.0 * opal::Pi * (1.0 - std::exp(-2.0 * concentration)));
+  const double factor = (1 - fresnel) * (1 - fresnel) * std::pow(28.0 / 29.0, 2) * peak;
+  double worst = 0.0;
+  std::size_t brightest = 0;
+  for (std::size_t l = 0; l < spectrum.size(); ++l)
+  {
+    spectrum[l] -= highlight[l];
+    const double expected = factor * binReflectance(p.WavelengthRange[0] + p.WavelengthStep * l, p.WavelengthStep);
+    if (expected > 0.01 * factor)
+    {
+      worst = std::max(worst, std::fabs(spectrum[l] / expected - 1.0));
+    }
+    brightest = spectrum[l] > spectrum[brightest] ? l : brightest;
+  }
+  std::cout << "coupled-wave R against OpalCore, bins with R > 1%: worst " << worst << std::endl;
+  OPAL_CHECK(worst < 0.01, "the rendered reflectance matches OpalCore's coupledWaveReflectance within 1%");
+  const double lambdaB = 2.0 * Spacing111 * opal::meanIndex(opal::ColloidalCrystal());
+  const double peakLambda = p.WavelengthRange[0] + p.WavelengthStep * static_cast<double>(brightest);
+  OPAL_CHECK(std::fabs(peakLambda - lambdaB) <= 0.5 * p.WavelengthStep,
+    "the spectrum peaks at lambda_B = 2 d n_bar = " + std::to_string(lambdaB) + " nm, got " +
+      std::to_string(peakLambda));
+}
+
+// Scattering only below the domain, light beside the eye (its lobe misses the
+// eye): what the body sends up through the domain keeps 1 - R(lambda), so the
+// domain's R (`reflectance` of a bin's centre and width) and the measured
+// transmittance add up to 1 (no absorption).
+void checkEnergy(SceneRenderer& renderer, opal::RenderParameters p,
+  const std::function<double(double, double)>& reflectance, const std::string& what)
+{
+  p.LightPosition = { 20.0, 30.0, 0.0 };
+  std::vector<double> through, open;
+  for (bool withDomain : { true, false })
+  {
+    SlabScene scene;
+    scene.WithDomain = withDomain;
+    scene.PlaneSpacing = Spacing111;
+    scene.Scattering = 0.3;
+    opal::RenderVolume volume = scene.build();
+    for (int k = 0; k < scene.Dimensions[2]; ++k)
+      for (int j = 9; j < scene.Dimensions[1]; ++j) // y > 0.9: nothing scatters in or above the domain's layer
+        for (int i = 0; i < scene.Dimensions[0]; ++i)
+          scene.ScatteringField[static_cast<std::size_t>(scene.VoxelGrid.linearIndex(i, j, k))] = 0.0f;
+    const opal::RenderImage image = renderer.render(volume, p);
+    OPAL_CHECK(opaltest::allFinite(image) && renderer.context().validationMessages().empty(),
+      what + ": renders finite with the validation layer silent");
+    (withDomain ? through : open) = spectrumAt(image, Centre, Centre);
+  }
+  double worst = 0.0;
+  for (std::size_t l = 0; l < open.size(); ++l)
+  {
+    const double transmitted = through[l] / open[l];
+    worst = std::max(worst,
+      std::fabs(reflectance(p.WavelengthRange[0] + p.WavelengthStep * l, p.WavelengthStep) + transmitted - 1.0));
+  }
+  std::cout << "energy, " << what << ": worst |R + T - 1| over the bins " << worst << std::endl;
+  OPAL_CHECK(worst < 1e-3, what + ": reflected + transmitted equals incident within 0.1% in every bin");
+}
+
+// The coupled-wave model at 50 layers (side lobes sampled at the bins'
+// centres) and 200 (their phase average); the paper's model with
+// EnergyConservation, whose R is the box band at lambda_B = 2 d mu.
+void checkEnergies(SceneRenderer& renderer)
+{
+  for (int layers : { Layers, 200 })
+  {
+    opal::RenderParameters p = coupledView();
+    p.CoherentLayers = layers;
+    checkEnergy(renderer, p, [layers](double c, double w) { return binReflectance(c, w, layers); },
+      "coupled-wave, " + std::to_string(layers) + " layers");
+  }
+  opal::RenderParameters p = coupledView();
+  p.BraggModel = opal::BraggModelKind::Paper;
+  p.EnergyConservation = true;
+  p.MosaicSpread = 1.0; // gates the box band's reflection of the light aside away from the eye
+  const double lambdaB = 2.0 * Spacing111 * Mu, half = 0.5 * p.BraggBandwidth * lambdaB;
+  checkEnergy(renderer, p,
+    [&](double c, double w) {
+      return std::max(0.0, std::min(c + 0.5 * w, lambdaB + half) - std::max(c - 0.5 * w, lambdaB - half)) / w;
+    },
+    "paper model with EnergyConservation");
+}
+
+// Two domains tilted 3 degrees either way about z, light above: the lobe of
+// each leaves 6 degrees (8.7 outside) to its side, so an eye moved 8.5 degrees
+// one way sees one domain bright and the other dark, and the reverse.
+double domainLuminance(SceneRenderer& renderer, double tiltDegrees, double eyeX)
+{
+  opal::RenderParameters p = opaltest::slabView();
+  p.RefractiveIndex = Mu;
+  p.BraggModel = opal::BraggModelKind::CoupledWave;
+  p.MosaicSpread = 2.0;
+  p.EyePosition = { eyeX, 30.0, 0.0 };
+  double sum[2] = { 0.0, 0.0 };
+  for (bool withDomain : { true, false })
+  {
+    SlabScene scene;
+    scene.WithDomain = withDomain;
+    scene.PlaneSpacing = Spacing111;
+    const double tilt = tiltDegrees * opal::Pi / 180.0;
+    scene.DomainNormal = glm::dvec3(std::sin(tilt), std::cos(tilt), 0.0);
+    const opal::RenderImage image = renderChecked(renderer, scene, p, "view dependence");
+    for (std::size_t i = 1; i < image.XYZ.size(); i += 3) sum[withDomain ? 0 : 1] += image.XYZ[i];
+  }
+  return sum[0] - sum[1]; // the domain's light: the highlight and nothing else cancel
+}
+
+void checkViewDependence(SceneRenderer& renderer)
+{
+  const double eyeX = 29.0 * std::tan(8.7 * opal::Pi / 180.0);
+  const double aLeft = domainLuminance(renderer, 3.0, eyeX), aRight = domainLuminance(renderer, 3.0, -eyeX);
+  const double bLeft = domainLuminance(renderer, -3.0, eyeX), bRight = domainLuminance(renderer, -3.0, -eyeX);
+  std::cout << "view dependence: domain +3 deg " << aLeft << " / " << aRight << ", domain -3 deg " << bLeft
+            << " / " << bRight << std::endl;
+  OPAL_CHECK(aLeft > 20.0 * std::max(aRight, 1e-9) && bRight > 20.0 * std::max(bLeft, 1e-9),
+    "moving the eye 17 degrees swaps which domain is bright");
+}
+
+// A domain whose (111) normal stands 35.26 degrees from +y, spun so that a
+// (220) family's normal points up: under the light at the eye only fcc
+// reflects into it, at lambda_B = 2 d_220 n_bar.
+void checkFccPlanes(SceneRenderer& renderer)
+{
+  const double tilt = std::acos(std::sqrt(2.0 / 3.0)); // 35.26 degrees
+  SlabScene scene;
+  scene.WithDomain = true;
+  scene.PlaneSpacing = 300.0;
+  scene.DomainHalfSize = 1.0;
+  scene.DomainNormal = glm::dvec3(std::sin(tilt), std::cos(tilt), 0.0);
+  double best = -1.0;
+  for (int step = 0; step < 36000; ++step)
+  {
+    const double spin = step * opal::Pi / 18000.0;
+    const glm::dvec3 n220 = opal::latticeOrientation(scene.DomainNormal, spin) * glm::normalize(glm::dvec3(1, 1, 0));
+    if (std::fabs(n220.y) > best)
+    {
+      best = std::fabs(n220.y);
+      scene.DomainSpin = spin;
+    }
+  }
+  opal::RenderParameters p = coupledView();
+  p.CoherentLayers = 200;
+  double bragg[2] = { 0.0, 0.0 };
+  for (opal::LatticePlaneSet planes : { opal::LatticePlaneSet::Stacking111, opal::LatticePlaneSet::Fcc })
+  {
+    p.LatticePlanes = planes;
+    const opal::RenderImage image = renderChecked(renderer, scene, p, "lattice planes");
+    const std::size_t i = opaltest::pixelIndex(image, Centre, Centre);
+    bragg[planes == opal::LatticePlaneSet::Fcc ? 1 : 0] = image.DominantBraggWavelength[i];
+  }
+  const double d220 = 300.0 * std::sqrt(1.5) / 2.0;
+  const double lambda220 = 2.0 * d220 * opal::meanIndex(opal::ColloidalCrystal());
+  std::cout << "fcc: (220) normal up within " << std::acos(best) * 180.0 / opal::Pi << " deg; dominant lambda "
+            << bragg[0] << " (111) / " << bragg[1] << " (fcc), expected " << lambda220 << std::endl;
+  OPAL_CHECK(bragg[0] == 0.0, "(111) alone reflects nothing into the eye");
+  OPAL_CHECK(std::fabs(bragg[1] - lambda220) < 5.0, "fcc reflects the (220) family's lambda_B into the eye");
+}
+} // namespace
+
+int TestOpalCoupledWaveRender(int, char*[])
+{
+  if (!opaltest::vulkanDeviceAvailable())
+  {
+    return opaltest::noDeviceReturnCode();
+  }
+  auto renderer = opaltest::makeRenderer();
+  checkReflectance(*renderer);
+  checkEnergies(*renderer);
+  checkViewDependence(*renderer);
+  checkFccPlanes(*renderer);
+  return opaltest::finish("TestOpalCoupledWaveRender");
+}
