@@ -392,7 +392,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
         if (COUPLED_WAVE) crossingLength[count] = 0.0;
         ++count;
       }
-      if (COUPLED_WAVE && domain >= 0) crossingLength[count - 1] += segment;
+      if (COUPLED_WAVE && domain >= 0 && count > 0) crossingLength[count - 1] += segment;
       if (mus > 0.0)
       {
         state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView);
