@@ -77,10 +77,10 @@ void OpalRenderOptions::addBraggModelOptions(CLI::App& app)
 {
   opal::RenderParameters& p = this->Parameters;
   const std::string group = "Render";
-  addEnumOption(app, "--bragg-model", p.BraggModel,
+  this->BraggModelOption = addEnumOption(app, "--bragg-model", p.BraggModel,
     { { "paper", opal::BraggModelKind::Paper }, { "coupled-wave", opal::BraggModelKind::CoupledWave } },
     "paper (the box band of gain G) or coupled-wave (the reflectance of the lattice layers into a lobe)", group);
-  addEnumOption(app, "--lattice-planes", p.LatticePlanes,
+  this->LatticePlanesOption = addEnumOption(app, "--lattice-planes", p.LatticePlanes,
     { { "111", opal::LatticePlaneSet::Stacking111 }, { "fcc", opal::LatticePlaneSet::Fcc } },
     "111 (the stacking planes, the paper) or fcc (all 13 families; needs --bragg-model coupled-wave)", group);
   app.add_option("--coherent-layers", p.CoherentLayers, "The most lattice layers that reflect coherently")
@@ -105,6 +105,15 @@ opal::RenderParameters OpalRenderOptions::parameters(const std::string& presetNa
       p.ImageSize[1] = preset->ImageSize[1];
     }
     p.PresetRotation = { preset->RotateXDegrees, 0.0, 0.0 };
+    // The kinds of opal set the Bragg model and planes (docs/design.md §2.11).
+    if (this->BraggModelOption->count() == 0)
+    {
+      p.BraggModel = preset->BraggModel;
+    }
+    if (this->LatticePlanesOption->count() == 0)
+    {
+      p.LatticePlanes = preset->LatticePlanes;
+    }
   }
   p.RefractiveIndex = refractiveIndex;
   return p;

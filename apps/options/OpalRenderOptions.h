@@ -29,4 +29,6 @@ private:
   int DeviceMemoryLimit = 0;
   CLI::Option* WidthOption = nullptr;
   CLI::Option* HeightOption = nullptr;
+  CLI::Option* BraggModelOption = nullptr;
+  CLI::Option* LatticePlanesOption = nullptr;
 };

@@ -81,6 +81,12 @@ void vtkSMOpalViewpointFilterProxy::FillFromVolumePreset()
     vtkSMPropertyHelper(this, "ImageSize").Set(preset->ImageSize.data(), 2);
     vtkSMPropertyHelper(this, "PresetPlacement").Set(0); // ModelRotation now holds the placement
   }
+  // The kinds of opal's Bragg model and planes (docs/design.md §2.11).
+  if (this->GetProperty("BraggModel") && this->GetProperty("LatticePlanes"))
+  {
+    vtkSMPropertyHelper(this, "BraggModel").Set(static_cast<int>(preset->BraggModel));
+    vtkSMPropertyHelper(this, "LatticePlanes").Set(static_cast<int>(preset->LatticePlanes));
+  }
 }
 
 void vtkSMOpalViewpointFilterProxy::ShareViewpoint(vtkSMProxy* volume)

@@ -53,19 +53,24 @@ void vtkSMOpalVolumeSourceProxy::FillFromPreset()
     return; // custom (or unknown: the source refuses it with a message)
   }
   this->Filling = true;
-  for (const opal::PresetValue& value : preset->Model)
+  // Every field a preset may set (its value, else the model's default), as
+  // ModelParameters::applyPreset does.
+  opal::ModelParameters applied;
+  applied.applyPreset(presetProperty.GetAsInt());
+  for (const opal::ModelField& field : opal::presetModelFields())
   {
-    vtkSMPropertyHelper helper(this, value.Property);
-    const auto count = static_cast<unsigned int>(value.Values.size());
-    if (vtkSMIntVectorProperty::SafeDownCast(this->GetProperty(value.Property)))
+    const std::vector<double> values = field.Get(applied);
+    vtkSMPropertyHelper helper(this, field.Property);
+    const auto count = static_cast<unsigned int>(values.size());
+    if (vtkSMIntVectorProperty::SafeDownCast(this->GetProperty(field.Property)))
     {
       // The helper sets an int property from ints only (enumerations, counts).
-      const std::vector<int> whole(value.Values.begin(), value.Values.end());
+      const std::vector<int> whole(values.begin(), values.end());
       helper.Set(whole.data(), count);
     }
     else
     {
-      helper.Set(value.Values.data(), count);
+      helper.Set(values.data(), count);
     }
   }
   this->Filling = false;

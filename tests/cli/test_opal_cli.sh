@@ -46,6 +46,14 @@ grep -q 'Name="AbsorptionCoefficient"' absorbing.vti || fail "the absorbing volu
 "$render" "${small[@]}" --bragg-model coupled-wave --lattice-planes fcc --coherent-layers 100 --mosaic-spread 4 \
   --sphere-refractive-index 1.45 --matrix-refractive-index 1.0 -o coupled.png >/dev/null 2>&1 \
   || fail "a coupled-wave render with fcc planes exits 0"
+# A kind of opal sets the coupled-wave model and fcc planes (docs/design.md §2.11); the flag wins.
+"$render" "${small[@]}" --preset black-opal -o black.png >/dev/null 2>&1 || fail "a black-opal render exits 0"
+"$render" "${small[@]}" --preset black-opal --bragg-model coupled-wave --lattice-planes fcc -o black-cw.png \
+  >/dev/null 2>&1 || fail "black-opal with its Bragg model named exits 0"
+"$render" "${small[@]}" --preset black-opal --bragg-model paper --lattice-planes 111 -o black-paper.png \
+  >/dev/null 2>&1 || fail "black-opal with the paper's Bragg model exits 0"
+cmp -s black.png black-cw.png || fail "black-opal renders with the coupled-wave model and fcc planes"
+cmp -s black.png black-paper.png && fail "a --bragg-model given wins over the preset's"
 
 # Each bad argument: one line on stderr, non-zero exit, nothing written.
 expect_one_line() {

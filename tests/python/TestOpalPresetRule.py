@@ -27,8 +27,10 @@ check(volume.DomainLayout == "voronoi" and volume.VoronoiCellCount == 150 and vo
 volume.Preset = "black-opal"
 check(volume.BackingThickness == 4 and volume.BackingAbsorption == 5 and volume.ScatteringVolumeFraction == 0.04,
       "choosing black-opal shows its body and backing")
+check(volume.DomainLayout == "polygons" and volume.VoronoiCellCount == 1000,
+      "a preset sets the model's defaults for what it does not list: black-opal after harlequin has polygons")
 volume.Preset = "custom"
-check(volume.VoronoiCellCount == 150 and volume.BackingThickness == 4, "choosing custom keeps the values shown")
+check(volume.BackingThickness == 4 and volume.ScatteringVolumeFraction == 0.04, "choosing custom keeps the values shown")
 
 edited = OpalVolume(Preset="fig15", **small)  # noqa: F821
 edited.DomainDiameterRange = [400, 500]

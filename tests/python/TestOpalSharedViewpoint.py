@@ -33,7 +33,12 @@ volume.Preset = "fig15"
 check(list(render.ImageSize) == [300, 300] and list(render.ModelRotation) == [0, 0, 0],
       f"choosing fig15 on the volume fills in its size and placement: {list(render.ImageSize)}, "
       f"{list(render.ModelRotation)}")
+volume.Preset = "black-opal"
+check(render.BraggModel == "coupled-wave" and render.LatticePlanes == "fcc",
+      f"choosing black-opal fills in its Bragg model and planes: {render.BraggModel}, {render.LatticePlanes}")
 volume.Preset = "fig13"
+check(render.BraggModel == "paper" and render.LatticePlanes == "111", "fig13 the paper's Bragg model")
+volume.DomainCount = 30  # a preset sets the model's 250 (docs/design.md §2.8): small again
 render.ImageSize = [64, 48]
 render.UpdatePipeline()
 image = sm.Fetch(render)

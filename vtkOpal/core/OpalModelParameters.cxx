@@ -19,9 +19,13 @@ bool ModelParameters::applyPreset(int presetIndex)
   {
     return presetIndex == CustomPreset;
   }
-  for (const PresetValue& value : preset->Model)
+  // Every field a preset may set: its value, else the model's default, so a
+  // preset gives the same volume whichever preset came before (docs/design.md §2.8).
+  const ModelParameters defaults;
+  for (const ModelField& field : presetModelFields())
   {
-    presetModelField(value.Property)->Set(*this, value.Values); // every name is known: TestOpalPresetDomains
+    const std::vector<double>* values = preset->valuesOf(field.Property);
+    field.Set(*this, values ? *values : field.Get(defaults));
   }
   return true;
 }

@@ -49,28 +49,34 @@ const std::vector<PresetSettings>& presets()
     // threshold, so they stay isolated specks of every colour.
     { "pinfire", { 640, 480 }, 0.0, voronoi({ 200.0, 320.0 }, 3000, 0.05, 0.12) },
     // The kinds of opal (docs/design.md §2.11): the body's scattering and
-    // absorption, the backing and the domains' spheres.
+    // absorption, the backing and the domains' spheres; rendered with the
+    // coupled-wave reflectance of every FCC plane family (§7.2).
     // White opal (Coober Pedy): a milky body, pastel play of colour.
     { "white-opal", { 640, 480 }, 0.0, { { "ScatteringVolumeFraction", { 0.2 } },
-      { "DomainDiameterRange", { 200.0, 300.0 } } } },
+      { "DomainDiameterRange", { 200.0, 300.0 } } },
+      BraggModelKind::CoupledWave, LatticePlaneSet::Fcc },
     // Black opal (Lightning Ridge): a thin, nearly clear colour bar on dark
     // potch; large domains flash over broad patches.
     { "black-opal", { 640, 480 }, 0.0, { { "ScatteringVolumeFraction", { 0.04 } }, { "BodyAbsorption", { 0.25 } },
       { "BackingThickness", { 4.0 } }, { "BackingAbsorption", { 5.0 } },
-      { "DomainDiameterRange", { 230.0, 320.0 } }, { "DomainRadiusRange", { 0.8, 2.0 } } } },
+      { "DomainDiameterRange", { 230.0, 320.0 } }, { "DomainRadiusRange", { 0.8, 2.0 } } },
+      BraggModelKind::CoupledWave, LatticePlaneSet::Fcc },
     // Crystal opal: a transparent body, colour seen deep inside.
     { "crystal-opal", { 640, 480 }, 0.0, { { "ScatteringVolumeFraction", { 0.03 } },
-      { "DomainDiameterRange", { 200.0, 300.0 } } } },
+      { "DomainDiameterRange", { 200.0, 300.0 } } },
+      BraggModelKind::CoupledWave, LatticePlaneSet::Fcc },
     // Fire opal (Mexico): a clear body coloured orange by iron oxides that
     // absorb blue (mu_a ~ lambda^-6), little play of colour.
     { "fire-opal", { 640, 480 }, 0.0, { { "ScatteringVolumeFraction", { 0.05 } }, { "BodyAbsorption", { 0.4 } },
-      { "BodyAbsorptionExponent", { 6 } }, { "DomainCount", { 80.0 } },
-      { "DomainDiameterRange", { 240.0, 320.0 } } } },
+      { "BodyAbsorptionExponent", { 6.0 } }, { "DomainCount", { 80.0 } },
+      { "DomainDiameterRange", { 240.0, 320.0 } } },
+      BraggModelKind::CoupledWave, LatticePlaneSet::Fcc },
     // Boulder opal (Queensland): a seam of opal on brown ironstone: a thick
     // dark backing under a thin, slightly milky layer.
     { "boulder-opal", { 640, 480 }, 0.0, { { "ScatteringVolumeFraction", { 0.1 } }, { "BodyAbsorption", { 0.05 } },
       { "BackingThickness", { 5.5 } }, { "BackingAbsorption", { 4.0 } },
-      { "DomainDiameterRange", { 220.0, 330.0 } } } },
+      { "DomainDiameterRange", { 220.0, 330.0 } } },
+      BraggModelKind::CoupledWave, LatticePlaneSet::Fcc },
   };
   return table;
 }

@@ -4,6 +4,8 @@
 // absorption and backing. Everything else keeps the model's defaults.
 #pragma once
 
+#include "OpalRenderParameters.h"
+
 #include <array>
 #include <string>
 #include <vector>
@@ -24,6 +26,9 @@ struct PresetSettings
   std::array<int, 2> ImageSize;   // pixels, width x height (a render setting)
   double RotateXDegrees;          // the stone's placement: rotation about x (a render setting)
   std::vector<PresetValue> Model; // the model parameters it sets; everything else keeps its value
+  // The render's Bragg model and planes (the kinds of opal: docs/design.md §2.11).
+  BraggModelKind BraggModel = BraggModelKind::Paper;
+  LatticePlaneSet LatticePlanes = LatticePlaneSet::Stacking111;
 
   // The values it sets for a property, or nullptr.
   const std::vector<double>* valuesOf(const char* property) const;
