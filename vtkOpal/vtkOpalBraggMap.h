@@ -10,16 +10,27 @@
  * times the mosaic weight towards the eye when MosaicSpread > 0; else 0) and
  * BraggColor (uint8 x 3, the sRGB colour of lambda_B). Outside domains all
  * three are 0.
+ *
+ * With BraggModel coupled-wave (docs/design.md §7.3) lambda_B is the
+ * coupled-wave model's, 2 d n_bar sin theta2 / k with n_bar from the volume's
+ * SphereRefractiveIndex and MatrixRefractiveIndex, and BraggPeakReflectance
+ * is the (111) family's reflectance of CoherentLayers layers at its lambda_B;
+ * with LatticePlanes fcc also FamilyBraggWavelength and FamilyPeakReflectance
+ * (13 components, the families in OpalLatticePlanes' order), which need the
+ * volume's LatticeOrientation.
  */
 #pragma once
 
 #include "vtkOpalModule.h" // for export macro
 #include "vtkPassInputTypeAlgorithm.h"
 
+#include <string> // for SettingsError
+
 namespace opal
 {
 struct BraggMapSettings;
 }
+
 
 class VTKOPAL_EXPORT vtkOpalBraggMap : public vtkPassInputTypeAlgorithm
 {
@@ -48,6 +59,16 @@ public:
   /// Angular spread in degrees of the mosaic weight; 0 = off (the paper).
   vtkSetMacro(MosaicSpread, double);
   vtkGetMacro(MosaicSpread, double);
+  /// 0: the paper's Bragg-Snell wavelength; 1: the coupled-wave model's, with
+  /// the peak reflectance. Default 0, as the render's BraggModel.
+  vtkSetMacro(BraggModel, int);
+  vtkGetMacro(BraggModel, int);
+  /// 0: the (111) planes; 1: all 13 FCC families (needs BraggModel 1). Default 0.
+  vtkSetMacro(LatticePlanes, int);
+  vtkGetMacro(LatticePlanes, int);
+  /// The lattice layers that reflect coherently, N of the peak reflectance. Default 200.
+  vtkSetMacro(CoherentLayers, int);
+  vtkGetMacro(CoherentLayers, int);
 
 protected:
   vtkOpalBraggMap();
@@ -62,9 +83,14 @@ protected:
   double RefractiveIndex;
   int BraggOrder;
   double MosaicSpread;
+  int BraggModel;
+  int LatticePlanes;
+  int CoherentLayers;
 
 private:
   opal::BraggMapSettings GetSettings() const;
+  // Empty, or a sentence naming the property that is out of range.
+  std::string SettingsError() const;
 
   vtkOpalBraggMap(const vtkOpalBraggMap&) = delete;
   void operator=(const vtkOpalBraggMap&) = delete;

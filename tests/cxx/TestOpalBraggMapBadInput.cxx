@@ -2,7 +2,7 @@
 // naming the missing array; a light inside the opal is refused by name; a
 // domain's NaN or zero Normal, NaN or negative ParticleDiameter and a
 // one-component Normal are refused naming the array; the filter works again
-// once fixed.
+// once fixed; the coupled-wave settings out of range are refused by name.
 #include "OpalTestHarness.h"
 #include "OpalTestVolumes.h"
 #include "vtkOpalBraggMap.h"
@@ -81,6 +81,27 @@ int TestOpalBraggMapBadInput(int, char*[])
     checkBadDomainValue(good, "zero normal", setNormal(0.0), "Normal");
     checkBadDomainValue(good, "NaN particle diameter", setDiameter(NAN), "ParticleDiameter");
     checkBadDomainValue(good, "negative particle diameter", setDiameter(-5.0), "ParticleDiameter");
+    // The coupled-wave settings (docs/design.md §7.3): fcc needs coupled-wave
+    // and the volume's LatticeOrientation; CoherentLayers at least 1.
+    auto refuses = [&](const std::string& what, const std::function<void(vtkOpalBraggMap*)>& set,
+                     vtkImageData* input, const std::string& expected) {
+      vtkNew<vtkOpalBraggMap> coupled;
+      coupled->SetInputData(input);
+      set(coupled);
+      vtkNew<opaltest::MessageRecorder> watched;
+      watched->watch(coupled);
+      OPAL_CHECK(coupled->GetExecutive()->Update() == 0, what + ": the request fails");
+      OPAL_CHECK(watched->anyContains(watched->Errors, expected), what + ": the message names " + expected);
+    };
+    refuses("fcc with the paper's model", [](vtkOpalBraggMap* m) { m->SetLatticePlanes(1); }, good, "LatticePlanes");
+    refuses("no coherent layers", [](vtkOpalBraggMap* m) { m->SetBraggModel(1); m->SetCoherentLayers(0); }, good,
+      "CoherentLayers");
+    refuses("an unknown Bragg model", [](vtkOpalBraggMap* m) { m->SetBraggModel(7); }, good, "BraggModel");
+    vtkNew<vtkImageData> unoriented;
+    unoriented->DeepCopy(good);
+    unoriented->GetPointData()->RemoveArray("LatticeOrientation");
+    refuses("fcc without the lattice orientation", [](vtkOpalBraggMap* m) { m->SetBraggModel(1); m->SetLatticePlanes(1); },
+      unoriented, "LatticeOrientation");
     checkBadDomainValue(good, "one-component normal", [](vtkImageData* v, vtkIdType) {
       vtkNew<vtkFloatArray> flat;
       flat->SetName("Normal");

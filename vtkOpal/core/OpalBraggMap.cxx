@@ -28,7 +28,9 @@ BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array
   // The glancing angle theta1 between the light and the lattice planes.
   const double glancing = std::asin(std::min(1.0, std::fabs(glm::dot(towardLight, n))));
   BraggMapValue value;
-  value.Wavelength = braggSnellWavelength(diameterNm, s.RefractiveIndex, glancing, s.BraggOrder);
+  value.Wavelength = s.CoupledWaveMeanIndex > 0
+    ? 2.0 * diameterNm * std::sqrt(2.0 / 3.0) * s.CoupledWaveMeanIndex * std::sin(glancing) / s.BraggOrder
+    : braggSnellWavelength(diameterNm, s.RefractiveIndex, glancing, s.BraggOrder);
   const bool visible = value.Wavelength >= s.VisibleRange[0] && value.Wavelength <= s.VisibleRange[1];
   double weight = 1.0;
   if (s.MosaicSpread > 0)

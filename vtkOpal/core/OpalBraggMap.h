@@ -21,6 +21,9 @@ struct BraggMapSettings
   int BraggOrder = 1;                                     // Bragg order k
   double MosaicSpread = 0.0;                           // degrees; 0 = off
   std::array<double, 2> VisibleRange{ 380.0, 780.0 };  // nm
+  // n_bar of the coupled-wave model (docs/design.md §7.2): lambda_B = 2 d n_bar
+  // sin theta2 / k with no refraction at the planes; 0: the paper's Bragg-Snell with RefractiveIndex.
+  double CoupledWaveMeanIndex = 0.0;
 };
 
 struct BraggMapValue
