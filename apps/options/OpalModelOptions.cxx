@@ -124,12 +124,19 @@ opal::ModelParameters OpalModelOptions::parameters() const
 
 int OpalModelOptions::presetIndex() const
 {
-  // A flag that wins over a value the preset sets (--domain-diameter-range,
-  // the layout's, ...): the volume is then recorded (and rebuilt by the source) as custom.
-  bool overridden = false;
-  for (const auto& given : this->GivenOverPreset)
+  // A flag that wins over a value the preset lists (fig15's
+  // --domain-diameter-range, harlequin's layout, ...): the volume is then
+  // recorded (and rebuilt by the source) as custom. A flag for a field the
+  // preset only resets to the model's default (--domain-count with fig13)
+  // keeps the preset's name: its placement and image size still apply.
+  const int index = opal::presetIndexByName(this->Preset);
+  const opal::PresetSettings* preset = opal::presetByIndex(index);
+  for (const auto& [option, field] : this->GivenOverPreset)
   {
-    overridden = overridden || given.first->count() > 0;
+    if (preset && option->count() > 0 && preset->valuesOf(field->Property))
+    {
+      return opal::CustomPreset;
+    }
   }
-  return overridden ? opal::CustomPreset : opal::presetIndexByName(this->Preset);
+  return index;
 }

@@ -34,7 +34,7 @@ plugin, output = sys.argv[1], sys.argv[2]
 LoadPlugin(plugin, remote=False, ns=globals())
 width, height = 160, 120
 
-volume = OpalVolume(Dimensions=[80, 40, 100], DomainCount=120, Preset="fig11")  # noqa: F821
+volume = OpalVolume(Preset="fig11", Dimensions=[80, 40, 100], DomainCount=120)  # noqa: F821 (the preset first: it sets DomainCount)
 view = CreateView("RenderView")
 view.ViewSize = [width, height]
 view.OrientationAxesVisibility = 0
