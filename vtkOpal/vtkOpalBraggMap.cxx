@@ -242,7 +242,7 @@ struct DomainMapping
     arrays.set(i, opal::braggMapAt(position, normal, diameter, this->Settings));
     if (this->CoupledWave)
     {
-      const std::array<double, 3> light = opal::inStoneFrame(this->Settings.LightPosition, this->Settings);
+      const std::array<double, 3>& light = this->Settings.LightPosition; // in the stone's frame
       const glm::dvec3 toward = glm::normalize(glm::dvec3(light[0], light[1], light[2]) -
         glm::dvec3(position[0], position[1], position[2]));
       arrays.setFamilies(i, opal::braggFamiliesAt(this->orientationAt(i, normal), diameter,
@@ -354,13 +354,13 @@ int vtkOpalBraggMap::RequestData(
     vtkErrorMacro(<< error);
     return 0;
   }
-  opal::BraggMapSettings settings = this->GetSettings();
+  opal::BraggMapSettings settings = opal::inStoneFrame(this->GetSettings()); // light and eye turned once
   // The volume carries the domains on its points, the layout on its cells.
   const bool onPoints = input->GetPointData()->GetArray("DomainId") != nullptr;
   vtkDataSetAttributes* attributes =
     onPoints ? static_cast<vtkDataSetAttributes*>(input->GetPointData()) : input->GetCellData();
   const std::string error =
-    checkInput(input, attributes, onPoints, opal::inStoneFrame(settings.LightPosition, settings).data());
+    checkInput(input, attributes, onPoints, settings.LightPosition.data());
   if (!error.empty())
   {
     vtkErrorMacro(<< error);

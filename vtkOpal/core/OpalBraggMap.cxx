@@ -11,11 +11,18 @@
 namespace opal
 {
 
-std::array<double, 3> inStoneFrame(const std::array<double, 3>& scenePosition, const BraggMapSettings& settings)
+BraggMapSettings inStoneFrame(const BraggMapSettings& settings)
 {
-  const glm::dvec3 turned = glm::transpose(rotationOfDegrees(settings.ModelRotation)) *
-    glm::dvec3(scenePosition[0], scenePosition[1], scenePosition[2]);
-  return { turned.x, turned.y, turned.z };
+  const glm::dmat3 toStone = glm::transpose(rotationOfDegrees(settings.ModelRotation));
+  const auto turn = [&toStone](const std::array<double, 3>& p) {
+    const glm::dvec3 turned = toStone * glm::dvec3(p[0], p[1], p[2]);
+    return std::array<double, 3>{ turned.x, turned.y, turned.z };
+  };
+  BraggMapSettings turned = settings;
+  turned.LightPosition = turn(settings.LightPosition);
+  turned.EyePosition = turn(settings.EyePosition);
+  turned.ModelRotation = { 0.0, 0.0, 0.0 };
+  return turned;
 }
 
 BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array<double, 3>& normal,
@@ -23,8 +30,8 @@ BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array
 {
   const glm::dvec3 p(position[0], position[1], position[2]);
   const glm::dvec3 n = glm::normalize(glm::dvec3(normal[0], normal[1], normal[2]));
-  const std::array<double, 3> light = inStoneFrame(s.LightPosition, s);
-  const glm::dvec3 towardLight = glm::normalize(glm::dvec3(light[0], light[1], light[2]) - p);
+  const glm::dvec3 towardLight =
+    glm::normalize(glm::dvec3(s.LightPosition[0], s.LightPosition[1], s.LightPosition[2]) - p);
   // The glancing angle theta1 between the light and the lattice planes.
   const double glancing = std::asin(std::min(1.0, std::fabs(glm::dot(towardLight, n))));
   BraggMapValue value;
@@ -37,8 +44,7 @@ BraggMapValue braggMapAt(const std::array<double, 3>& position, const std::array
   {
     // Gaussian in the angle between the lattice normal and the bisector of
     // the directions to light and eye (as the render's mosaicWeight).
-    const std::array<double, 3> eye = inStoneFrame(s.EyePosition, s);
-    const glm::dvec3 towardEye = glm::normalize(glm::dvec3(eye[0], eye[1], eye[2]) - p);
+    const glm::dvec3 towardEye = glm::normalize(glm::dvec3(s.EyePosition[0], s.EyePosition[1], s.EyePosition[2]) - p);
     const glm::dvec3 bisector = glm::normalize(towardLight + towardEye);
     const double angle = std::acos(std::min(1.0, std::fabs(glm::dot(n, bisector))));
     const double spread = s.MosaicSpread * Pi / 180.0;

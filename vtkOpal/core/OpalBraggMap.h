@@ -15,7 +15,8 @@ struct BraggMapSettings
   std::array<double, 3> EyePosition{ 0.0, 60.0, 0.0 };   // mm
   // The stone's turn under a fixed light and eye, as the render's ModelRotation
   // (degrees about x, then y, then z): light and eye are turned back into the
-  // stone's frame, so a render and a Bragg map can share one light and eye.
+  // stone's frame (inStoneFrame), so a render and a Bragg map can share one
+  // light and eye. braggMapAt reads the light and eye as in the stone's frame.
   std::array<double, 3> ModelRotation{ 0.0, 0.0, 0.0 };
   double RefractiveIndex = 1.45;
   int BraggOrder = 1;                                     // Bragg order k
@@ -33,8 +34,9 @@ struct BraggMapValue
   std::array<std::uint8_t, 3> Colour{};   // sRGB of lambda_B, black if not visible
 };
 
-// A position given in the scene (light, eye) in the stone's frame: turned back by ModelRotation.
-std::array<double, 3> inStoneFrame(const std::array<double, 3>& scenePosition, const BraggMapSettings& settings);
+// The settings with the light and eye turned back by ModelRotation into the
+// stone's frame (and no rotation left): turned once per map, not per domain.
+BraggMapSettings inStoneFrame(const BraggMapSettings& settings);
 
 // For a domain at `position` with lattice-plane normal `normal` and spheres
 // of diameter `diameterNm`.
