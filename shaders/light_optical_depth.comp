@@ -19,6 +19,9 @@
 // are queued and walked by a dispatch of their own (LightPassWalkQueued), so
 // the sweep carries none of that work, which a CPU driver would pay for every
 // voxel. Otherwise each voxel walks to the light (LightPassWalkTowardsLight).
+// With BRAGG_SHADOW (energy conservation, docs/design.md §7.2) each voxel
+// also records the Bragg shadow it sits in: the nearest other domain on its
+// path to the light and the path's length there (LightShadow).
 // The mode is a specialisation constant: each pipeline holds only its own code.
 #extension GL_GOOGLE_include_directive : require
 
@@ -27,6 +30,7 @@
 layout(local_size_x = LightPassGroupSize) in;
 layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 layout(constant_id = 1) const bool ABSORPTION = false;
+layout(constant_id = 2) const bool BRAGG_SHADOW = false;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"
@@ -34,6 +38,7 @@ layout(constant_id = 1) const bool ABSORPTION = false;
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
+layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
 
 layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueues { DispatchQueue queues[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
@@ -59,11 +64,55 @@ struct LightSample
   float geometry;
 };
 
+// The Bragg shadow found along a path walked from a voxel towards the light
+// (BRAGG_SHADOW): first the run in the voxel's own domain (phase 0), then
+// cells of no other domain (1), then the first other domain's run (2), and
+// nothing after it (3).
+struct ShadowWalk
+{
+  LightShadow record;
+  int own; // the voxel's domain, -1 outside domains
+  int phase;
+};
+
+ShadowWalk startShadow(int own)
+{
+  return ShadowWalk(LightShadow(-1, 0.0, 0.0), own, 0);
+}
+
+// The walk's next `length` mm lie in `domain` (-1: none).
+void followShadow(inout ShadowWalk w, int domain, float length)
+{
+  if (w.phase == 0 && domain >= 0 && domain == w.own)
+  {
+    w.record.ownLengthMm += length;
+    return;
+  }
+  w.phase = max(w.phase, 1);
+  if (w.phase == 1 && domain >= 0 && domain != w.own)
+  {
+    w.phase = 2;
+    w.record.domain = domain;
+  }
+  if (w.phase == 2)
+  {
+    w.record.lengthMm += domain == w.record.domain ? length : 0.0;
+    w.phase = domain == w.record.domain ? 2 : 3;
+  }
+}
+
+int domainIn(ivec3 cell)
+{
+  return insideGrid(cell) ? voxelCells[voxelIndex(cell)].domainId : -1;
+}
+
 // Stores a voxel's (optical depth, geometry factor) where the light field
 // keeps them: in its own pair, and as the +x neighbour in the pair before it
-// (in its own pair too at the end of a row); its absorption depths likewise.
-void storeLight(int index, LightSample light)
+// (in its own pair too at the end of a row); its absorption depths likewise;
+// its Bragg shadow with BRAGG_SHADOW.
+void storeLight(int index, LightSample light, ShadowWalk shadow)
 {
+  if (BRAGG_SHADOW) lightShadow[index] = shadow.record;
   int x = index % P.gridDimensions.x;
   vec2 field = vec2(light.tau.x, light.geometry);
   lightField[index].voxel = field;
@@ -100,7 +149,7 @@ float skinDepth()
 // returns where the path leaves the surface (bisected), or tEnd. The surface
 // is tested only beyond the distance known to be safe, as sphere tracing
 // does (a distance field changes at most as fast as one moves).
-float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau)
+float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, inout ShadowWalk shadow)
 {
   vec3 origin = p + t * direction;
   float span = tEnd - t;
@@ -118,11 +167,13 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau)
       {
         float sOut = bisectSurface(origin, direction, sNext, s);
         tau += medium * max(sOut - s, 0.0);
+        if (BRAGG_SHADOW) followShadow(shadow, domainIn(walk.cell), max(sOut - s, 0.0));
         return t + sOut;
       }
       safe = sNext - 0.9 * d;
     }
     tau += medium * (sNext - s);
+    if (BRAGG_SHADOW) followShadow(shadow, domainIn(walk.cell), sNext - s);
     s = sNext;
     stepWalk(walk);
   }
@@ -138,7 +189,7 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau)
 // point just inside (unattenuated light there would brighten the
 // terminator). From the voxel's own distance and the field's slope along the
 // path: no search, which a CPU driver would pay for every skin voxel.
-LightSample continuedFromInside(vec3 p, vec3 direction, float d)
+LightSample continuedFromInside(vec3 p, vec3 direction, float d, inout ShadowWalk shadow)
 {
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
@@ -159,7 +210,7 @@ LightSample continuedFromInside(vec3 p, vec3 direction, float d)
   }
   vec3 towardLight = normalize(P.light - q);
   vec3 tau = vec3(0.0);
-  float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau);
+  float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau, shadow);
   return LightSample(tau, entryGeometry(p, q + exit * towardLight, towardLight));
 }
 
@@ -168,7 +219,7 @@ LightSample continuedFromInside(vec3 p, vec3 direction, float d)
 // enters where the stretch nearest the light leaves it (L_in). An outside
 // p behind the opal thus gets the light through it, one beside it the
 // continuation above.
-LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP)
+LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP, inout ShadowWalk shadow)
 {
   float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
   vec3 tau = vec3(0.0);
@@ -182,13 +233,14 @@ LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float 
       t = traceSurfaceEntry(p, direction, t, tEnd, 0.5 * P.smallestSpacing);
       if (t < 0.0) break;
     }
-    lightEntry = walkInside(p, direction, t, tEnd, tau);
+    lightEntry = walkInside(p, direction, t, tEnd, tau, shadow);
+    if (BRAGG_SHADOW) followShadow(shadow, -1, 0.0); // outside between stretches
     t = lightEntry + 0.5 * P.smallestSpacing;
     inside = false;
   }
   if (lightEntry < 0.0)
   {
-    return continuedFromInside(p, direction, surfaceDistanceAtP);
+    return continuedFromInside(p, direction, surfaceDistanceAtP, shadow);
   }
   return LightSample(tau, entryGeometry(p, p + lightEntry * direction, direction));
 }
@@ -204,6 +256,19 @@ void queueVoxel(int index, int y)
   {
     atomicAdd(queues[y].groupsX, 1u);
   }
+}
+
+// The Bragg shadow of a voxel in domain `own` whose path to the light reaches,
+// `length` mm on, a voxel in domain `upDomain` whose shadow is `up`: within
+// one domain the run grows; leaving a domain, that domain casts the shadow.
+LightShadow shadowFromAbove(LightShadow up, int upDomain, int own, float length)
+{
+  float ownLength = own >= 0 ? length : 0.0;
+  if (upDomain == own)
+  {
+    return LightShadow(up.domain, up.lengthMm, up.ownLengthMm + ownLength);
+  }
+  return upDomain >= 0 ? LightShadow(upDomain, up.ownLengthMm, ownLength) : LightShadow(up.domain, up.lengthMm, ownLength);
 }
 
 // LightPassSweepFromAbove: the path from p to the light crosses the plane of
@@ -245,8 +310,15 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   vec3 segment = 0.5 * step * (mediumAt(index) + mediumIn(voxelOf(p + 0.75 * step * direction)));
   // Along one light path the Fresnel factor is constant: rescale the fall-off from q to p.
   float rq = distance(P.light, q), rp = distance(P.light, p);
+  ShadowWalk shadow = startShadow(-1);
+  if (BRAGG_SHADOW)
+  {
+    // The nearest of q's corners carries its shadow on (domain ids do not interpolate).
+    int nearest = voxelIndex(ivec3(f.x < 0.5 ? c0.x : c1.x, above, f.y < 0.5 ? c0.y : c1.y));
+    shadow.record = shadowFromAbove(lightShadow[nearest], voxelCells[nearest].domainId, voxelCells[index].domainId, step);
+  }
   storeLight(index, LightSample(vec3(lightQ.x, absorptionQ) + segment,
-    P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)));
+    P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)), shadow);
 }
 
 // The voxel this invocation lights, or -1.
@@ -281,7 +353,8 @@ void main()
   if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
   {
     // Outside beyond the skin: nothing inside reads it; unattenuated light.
-    storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)));
+    storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)),
+      startShadow(-1));
     return;
   }
   if (LIGHT_PASS_MODE == LightPassSweepFromAbove)
@@ -289,5 +362,7 @@ void main()
     sweepFromLayerAbove(index, c, p, direction);
     return;
   }
-  storeLight(index, lightAlongPath(p, direction, distanceToLight, d));
+  ShadowWalk shadow = startShadow(BRAGG_SHADOW ? voxelCells[index].domainId : -1);
+  LightSample light = lightAlongPath(p, direction, distanceToLight, d, shadow);
+  storeLight(index, light, shadow);
 }

@@ -54,7 +54,10 @@ OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue: the pixels 
 // (ABSORPTION); without absorption both hold a placeholder.
 OPAL_CONSTANT int AbsorptionCellBinding = 16;   // vec2 per voxel: mu_a at 550 nm, coloured and grey (1/mm)
 OPAL_CONSTANT int LightAbsorptionBinding = 17;  // LightFieldPair per voxel: absorption depths to the light, coloured and grey
-OPAL_CONSTANT int BindingCount = 18;
+// Energy conservation on the light path (docs/design.md §7.2), written by the
+// light pass and read by the march specialised on it; else a placeholder.
+OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
+OPAL_CONSTANT int BindingCount = 19;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -132,6 +135,17 @@ struct OPAL_ALIGNED LightFieldPair
 {
   vec2 voxel;
   vec2 nextVoxel;
+};
+
+// The Bragg shadow a voxel sits in (docs/design.md §7.2): the nearest domain
+// other than its own that the straight path to the light crosses (-1: none)
+// and the path's length in it; and the path's length in the voxel's own
+// domain before it (0 outside domains), which the sweep carries on.
+struct LightShadow
+{
+  int domain;
+  float lengthMm;
+  float ownLengthMm;
 };
 
 // One diffraction domain: the (111) lattice-plane normal (y >= 0), the
@@ -214,7 +228,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 32 && sizeof(VoxelCell) == 8 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 32 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

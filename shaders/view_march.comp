@@ -19,7 +19,8 @@ layout(constant_id = 2) const bool EXACT_SCATTERING = false;
 layout(constant_id = 3) const bool ABSORPTION = false;
 // The coupled-wave Bragg model instead of the paper's box band (docs/design.md §7.2).
 layout(constant_id = 4) const bool COUPLED_WAVE = false;
-// Crossings keep 1 - R of the light behind them on the view path (§7.2);
+// Crossings keep 1 - R of the light behind them on the view path, and of the
+// light passing them on the light path (the light pass's Bragg shadows, §7.2);
 // always with COUPLED_WAVE.
 layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
 
@@ -34,6 +35,7 @@ layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField 
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
+layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
 // Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
@@ -55,6 +57,14 @@ float absorptionNodes[SPECTRAL_NODES];
 // What the crossings in front pass of the light from behind them, per bin
 // (only with ENERGY_CONSERVATION): the product of their 1 - R(lambda).
 float viewTransmittance[WAVELENGTHS];
+// The scattering gathered in the Bragg shadow of the round's domain (only
+// with ENERGY_CONSERVATION): on nodes like scatterNodes, or per bin with
+// EXACT_SCATTERING; flushed through that domain's 1 - R for the light.
+float shadowNodes[SPECTRAL_NODES];
+float shadowRadiance[WAVELENGTHS];
+// What one domain passes per bin, the product of its 1 - R(lambda)
+// (passThroughDomain): the light's Bragg shadow, or the view ray's crossing.
+float passed[WAVELENGTHS];
 
 // The view transmittance of bin l: 1 without ENERGY_CONSERVATION.
 float transmittedToEye(int l)
@@ -122,54 +132,11 @@ LightSample lightAt(vec3 p)
 float dominantLambda;
 float dominantY;
 
-// Bragg diffraction at a domain crossing (eq. 4, 9): lambda_B from the
-// glancing angle of the light on the lattice planes; the box band B averaged
-// per bin; gain G and 1/pi turn the reflected irradiance into radiance.
-// tauView: the view path's depths at 550 nm, as LightSample's tau.
-void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView)
+// What the light keeps in bin l after the Bragg shadow passLight computed
+// into `passed`: 1 without ENERGY_CONSERVATION.
+float lightKept(int l)
 {
-  vec3 towardLight = normalize(P.light - at);
-  float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
-  LightSample light = lightAt(at);
-  float tauLight = light.tau.x;
-  vec2 tauAbsorption = light.tau.yz + tauView.yz;
-  float weight = P.diffractionGain * light.geometry *
-    mosaicWeight(lattice.latticeNormal, towardLight, towardEye, P.mosaicSpread) / OPAL_PI;
-  for (int k = 1; k <= P.braggOrders; ++k)
-  {
-    float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
-    float contributionY = 0.0;
-    for (int l = 0; l < WAVELENGTHS; ++l)
-    {
-      float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
-      if (band > 0.0)
-      {
-        float s = bins[l].rayleighScale;
-        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) *
-          transmittedToEye(l);
-        radiance[l] += value;
-        contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
-      }
-    }
-    if (contributionY > dominantY)
-    {
-      dominantY = contributionY;
-      dominantLambda = lambdaB;
-    }
-  }
-  if (ENERGY_CONSERVATION)
-  {
-    // The box band reflects all of the view ray's light within it (R = B).
-    float sinView = abs(dot(towardEye, lattice.latticeNormal));
-    for (int k = 1; k <= P.braggOrders; ++k)
-    {
-      float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinView, k);
-      for (int l = 0; l < WAVELENGTHS; ++l)
-      {
-        viewTransmittance[l] *= 1.0 - braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
-      }
-    }
-  }
+  return ENERGY_CONSERVATION ? passed[l] : 1.0;
 }
 
 // Family f of the domain at order k, its unit normal in the model frame
@@ -214,7 +181,7 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
   {
     float s = bins[l].rayleighScale;
     float value = weight * coupledWaveBinAverage(family, bins[l].lambda, bins[l].width) *
-      exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * transmittedToEye(l);
+      exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * lightKept(l) * transmittedToEye(l);
     radiance[l] += value;
     contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
   }
@@ -225,23 +192,121 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
   }
 }
 
-// The view ray's light from behind keeps 1 - R of the family and order.
+// What passes the domain keeps 1 - R of the family and order.
 void transmitFamily(CoupledWaveFamily family)
 {
   ivec2 range = binsWithin(coupledWaveWindow(family));
   for (int l = range.x; l <= range.y; ++l)
   {
-    viewTransmittance[l] *= 1.0 - coupledWaveBinAverage(family, bins[l].lambda, bins[l].width);
+    passed[l] *= 1.0 - coupledWaveBinAverage(family, bins[l].lambda, bins[l].width);
   }
+}
+
+// What a ray of unit direction `ray` keeps per bin after lengthMm of it in a
+// domain (docs/design.md §7.2), into `passed`: 1 - R of every family and
+// order in the coupled-wave model; 1 - B of each order's box band in the
+// paper's (R = B: the band reflects all the light within it).
+void passThroughDomain(DomainRecord lattice, vec3 ray, float lengthMm)
+{
+  for (int l = 0; l < WAVELENGTHS; ++l) passed[l] = 1.0;
+  if (!COUPLED_WAVE)
+  {
+    float sinGlancing = abs(dot(ray, lattice.latticeNormal));
+    for (int k = 1; k <= P.braggOrders; ++k)
+    {
+      float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
+      for (int l = 0; l < WAVELENGTHS; ++l)
+      {
+        passed[l] *= 1.0 - braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
+      }
+    }
+    return;
+  }
+  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  for (int f = 0; f < P.latticeFamilies; ++f)
+  {
+    vec3 normal = familyNormal(lattice, f);
+    // The crystal's thickness along the normal: the ray's path in the domain
+    // projected on it (a slab's thickness for planes parallel to it).
+    float thicknessMm = lengthMm * abs(dot(ray, normal));
+    for (int k = 1; k <= 64; ++k)
+    {
+      CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, ray, thicknessMm);
+      if (family.braggWavelength < shortest) break;
+      transmitFamily(family);
+    }
+  }
+}
+
+// The light reaching a point in the Bragg shadow of another domain keeps what
+// that domain passes along its path (into `passed`; 1 out of shadows).
+void passLight(LightShadow shadow, vec3 towardLight)
+{
+  if (!ENERGY_CONSERVATION) return;
+  if (shadow.domain >= 0)
+  {
+    passThroughDomain(domains[shadow.domain], towardLight, shadow.lengthMm);
+    return;
+  }
+  for (int l = 0; l < WAVELENGTHS; ++l) passed[l] = 1.0;
+}
+
+// The view ray's light from behind a crossing keeps what the domain passes.
+void dimBehind(DomainRecord lattice, vec3 towardEye, float lengthMm)
+{
+  passThroughDomain(lattice, towardEye, lengthMm);
+  for (int l = 0; l < WAVELENGTHS; ++l) viewTransmittance[l] *= passed[l];
+}
+
+// Bragg diffraction at a domain crossing (eq. 4, 9): lambda_B from the
+// glancing angle of the light on the lattice planes; the box band B averaged
+// per bin; gain G and 1/pi turn the reflected irradiance into radiance.
+// tauView: the view path's depths at 550 nm, as LightSample's tau; shadow:
+// the domain the light passed before (ENERGY_CONSERVATION).
+void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, LightShadow shadow)
+{
+  vec3 towardLight = normalize(P.light - at);
+  passLight(shadow, towardLight);
+  float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
+  LightSample light = lightAt(at);
+  float tauLight = light.tau.x;
+  vec2 tauAbsorption = light.tau.yz + tauView.yz;
+  float weight = P.diffractionGain * light.geometry *
+    mosaicWeight(lattice.latticeNormal, towardLight, towardEye, P.mosaicSpread) / OPAL_PI;
+  for (int k = 1; k <= P.braggOrders; ++k)
+  {
+    float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
+    float contributionY = 0.0;
+    for (int l = 0; l < WAVELENGTHS; ++l)
+    {
+      float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
+      if (band > 0.0)
+      {
+        float s = bins[l].rayleighScale;
+        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) *
+          lightKept(l) * transmittedToEye(l);
+        radiance[l] += value;
+        contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+      }
+    }
+    if (contributionY > dominantY)
+    {
+      dominantY = contributionY;
+      dominantLambda = lambdaB;
+    }
+  }
+  if (ENERGY_CONSERVATION) dimBehind(lattice, towardEye, 0.0);
 }
 
 // Coupled-wave Bragg reflection at a crossing (docs/design.md §7.2): per plane
 // family and order while lambda_B reaches the shortest bin, R(lambda) of
 // N = min(thickness / d, CoherentLayers) layers into a normalised lobe about
-// the light's mirror direction; then the view ray keeps 1 - R.
-void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm)
+// the light's mirror direction, of the light `shadow`'s domain passed; then
+// the view ray keeps 1 - R.
+void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm, LightShadow shadow)
 {
   vec3 towardLight = normalize(P.light - at);
+  passLight(shadow, towardLight);
   LightSample light = lightAt(at);
   vec2 tauAbsorption = light.tau.yz + tauView.yz;
   float shortest = bins[0].lambda - 0.5 * bins[0].width;
@@ -260,13 +325,8 @@ void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauVi
       if (family.braggWavelength < shortest) break;
       reflectFamily(family, weight, light.tau.x, tauView, tauAbsorption);
     }
-    for (int k = 1; k <= 64; ++k)
-    {
-      CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, towardEye, thicknessMm);
-      if (family.braggWavelength < shortest) break;
-      transmitFamily(family);
-    }
   }
+  dimBehind(lattice, towardEye, lengthMm);
 }
 
 // The nodes span the wavelength table's s: from the longest wavelength's
@@ -284,17 +344,17 @@ float nodeStep()
 // The scattering at s from the nodes: cubic Lagrange interpolation of log G
 // through the four nearest nodes (G is a sum of decaying exponentials in s,
 // nearly linear in log), times s. 0 where nothing scattered.
-float scatterAt(float s)
+float scatterAt(float nodes[SPECTRAL_NODES], float s)
 {
-  if (!(scatterNodes[0] > 0.0))
+  if (!(nodes[0] > 0.0))
   {
     return 0.0;
   }
   float x = (s - nodeFirst()) / nodeStep();
   int i = clamp(int(floor(x)) - 1, 0, SPECTRAL_NODES - 4);
   float u = x - float(i);
-  float g0 = log(scatterNodes[i]), g1 = log(scatterNodes[i + 1]);
-  float g2 = log(scatterNodes[i + 2]), g3 = log(scatterNodes[i + 3]);
+  float g0 = log(nodes[i]), g1 = log(nodes[i + 1]);
+  float g2 = log(nodes[i + 2]), g3 = log(nodes[i + 3]);
   float logG = g0 * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g1 * u * (u - 2.0) * (u - 3.0) / 2.0 +
     g2 * u * (u - 1.0) * (u - 3.0) / -2.0 + g3 * u * (u - 1.0) * (u - 2.0) / 6.0;
   return s * exp(logG);
@@ -303,8 +363,10 @@ float scatterAt(float s)
 // Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]
 // in a voxel of coefficients (mus, absorption), isotropic phase 1/(4 pi), in
 // sub-steps of at most marchStep with the view transmittance at each
-// midpoint. Returns the view depths (as LightSample's tau) after the segment.
-vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float mus, vec2 absorption, vec3 tauView)
+// midpoint; `shadowed`: in the round's Bragg shadow (shadowNodes, shadowRadiance).
+// Returns the view depths (as LightSample's tau) after the segment.
+vec3 scatterAlongSegment(
+  vec3 origin, vec3 inward, float t, float segment, float mus, vec2 absorption, vec3 tauView, bool shadowed)
 {
   int pieces = max(1, int(ceil(segment / P.marchStep)));
   float ds = segment / float(pieces);
@@ -325,7 +387,13 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
       float ratio = exp(-tauTotal * nodeStep());
       for (int k = 0; k < SPECTRAL_NODES; ++k)
       {
-        scatterNodes[k] += coloured ? term * exp(-tauAbsorption.x * absorptionNodes[k]) : term;
+        float value = coloured ? term * exp(-tauAbsorption.x * absorptionNodes[k]) : term;
+        if (ENERGY_CONSERVATION)
+        {
+          shadowNodes[k] += shadowed ? value : 0.0;
+          value = shadowed ? 0.0 : value;
+        }
+        scatterNodes[k] += value;
         term *= ratio;
       }
     }
@@ -334,8 +402,14 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
       for (int l = 0; l < WAVELENGTHS; ++l)
       {
         float s = bins[l].rayleighScale;
-        radiance[l] += weight * s * exp(-tauTotal * s) * (coloured ? absorbedAt(s, vec2(tauAbsorption.x, 0.0)) : 1.0) *
-          transmittedToEye(l);
+        float value = weight * s * exp(-tauTotal * s) *
+          (coloured ? absorbedAt(s, vec2(tauAbsorption.x, 0.0)) : 1.0) * transmittedToEye(l);
+        if (ENERGY_CONSERVATION)
+        {
+          shadowRadiance[l] += shadowed ? value : 0.0;
+          value = shadowed ? 0.0 : value;
+        }
+        radiance[l] += value;
       }
     }
     tauView += vec3(mus, absorption) * ds;
@@ -351,6 +425,7 @@ vec3 crossingPoint[MAX_CROSSINGS];
 int crossingDomain[MAX_CROSSINGS];
 vec3 crossingDepth[MAX_CROSSINGS]; // view depths at the crossing (as LightSample's tau)
 float crossingLength[MAX_CROSSINGS]; // mm of the ray inside the domain (only with COUPLED_WAVE)
+LightShadow crossingShadow[MAX_CROSSINGS]; // the light's Bragg shadow there (only with ENERGY_CONSERVATION)
 
 // Where the walk stands between rounds.
 struct WalkState
@@ -360,17 +435,34 @@ struct WalkState
   vec3 tauView;    // depths at 550 nm from P_in along the view path (as LightSample's tau)
   int lastDomain;  // the domain being crossed, counted once
   bool done;       // the ray has left the opal
+  LightShadow shadow; // the round's Bragg shadow (ENERGY_CONSERVATION; domain -1: none yet)
+  vec3 shadowAt;      // where the ray first met it
 };
+
+const LightShadow NO_SHADOW = LightShadow(-1, 0.0, 0.0);
+
+// The Bragg shadow the light pass recorded for voxel v in `domain`: none
+// without ENERGY_CONSERVATION or where the recorded domain is v's own.
+LightShadow shadowOfVoxel(int v, int domain)
+{
+  if (!ENERGY_CONSERVATION) return NO_SHADOW;
+  LightShadow shadow = lightShadow[v];
+  return shadow.domain == domain ? NO_SHADOW : shadow;
+}
 
 // Walks the refracted ray on from `state`, gathering scattering and
 // recording domain crossings, until it leaves the opal at tExit or the record
 // is full; returns the number of crossings recorded.
 // With ENERGY_CONSERVATION a round records one crossing and ends where the
-// ray leaves its domain, so the crossing dims all that lies behind it.
+// ray leaves its domain, so the crossing dims all that lies behind it; it
+// gathers scattering in one Bragg shadow besides the unshadowed light, and
+// ends before a voxel in another (outside a crossing: inside one, the
+// domain's own scattering keeps the round's shadow).
 int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 {
   int count = 0;
-  for (int guard = 0; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
+  int guard = 0;
+  for (; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
     float tNext = min(cellExit(state.walk), tExit);
     float segment = tNext - state.t;
@@ -382,6 +474,14 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       float mus = cell.scattering;
       vec2 absorption = absorptionAt(v);
       if (ENERGY_CONSERVATION && count == 1 && domain != state.lastDomain) break;
+      LightShadow shadow = shadowOfVoxel(v, domain);
+      bool otherShadow = shadow.domain >= 0 && state.shadow.domain >= 0 && shadow.domain != state.shadow.domain;
+      if (ENERGY_CONSERVATION && count == 0 && otherShadow) break;
+      if (shadow.domain >= 0 && state.shadow.domain < 0)
+      {
+        state.shadow = shadow;
+        state.shadowAt = origin + (state.t + 0.5 * segment) * inward;
+      }
       if (domain >= 0 && domain != state.lastDomain)
       {
         // The paper's domains neither scatter nor absorb; beyond it they may
@@ -390,12 +490,14 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
         crossingDomain[count] = domain;
         crossingDepth[count] = state.tauView + 0.5 * segment * vec3(mus, absorption);
         if (COUPLED_WAVE) crossingLength[count] = 0.0;
+        crossingShadow[count] = shadow;
         ++count;
       }
       if (COUPLED_WAVE && domain >= 0 && count > 0) crossingLength[count - 1] += segment;
       if (mus > 0.0)
       {
-        state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView);
+        state.tauView = scatterAlongSegment(
+          origin, inward, state.t, segment, mus, absorption, state.tauView, shadow.domain >= 0);
       }
       else if (ABSORPTION)
       {
@@ -407,45 +509,56 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
     if (state.t >= tExit) break;
     stepWalk(state.walk);
   }
-  state.done = state.t >= tExit || (ENERGY_CONSERVATION ? count == 0 : count < MAX_CROSSINGS);
+  // Not done where a crossing, a shadow or a full record interrupted the walk.
+  state.done = state.t >= tExit || guard == 65536;
   return count;
 }
 
-// The body's scattering gathered on the nodes so far, into the bins through
-// the view transmittance of the crossings in front of it; the nodes restart
+// The body's scattering gathered in a round, into the bins through the view
+// transmittance of the crossings in front of it, the part in the round's
+// Bragg shadow through what its domain passes of the light; the nodes restart
 // (ENERGY_CONSERVATION: the scattering behind the next crossing is dimmed by it).
-void flushScattering()
+void flushScattering(inout WalkState state)
 {
-  if (EXACT_SCATTERING) return;
+  bool shadowed = state.shadow.domain >= 0;
+  if (shadowed) passThroughDomain(domains[state.shadow.domain], normalize(P.light - state.shadowAt), state.shadow.lengthMm);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    radiance[l] += viewTransmittance[l] * scatterAt(bins[l].rayleighScale);
+    float s = bins[l].rayleighScale;
+    float inShadow = !shadowed ? 0.0 : passed[l] * (EXACT_SCATTERING ? shadowRadiance[l] : viewTransmittance[l] * scatterAt(shadowNodes, s));
+    radiance[l] += (EXACT_SCATTERING ? 0.0 : viewTransmittance[l] * scatterAt(scatterNodes, s)) + inShadow;
+    shadowRadiance[l] = 0.0;
   }
-  for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
+  for (int k = 0; k < SPECTRAL_NODES; ++k)
+  {
+    scatterNodes[k] = 0.0;
+    shadowNodes[k] = 0.0;
+  }
+  state.shadow = NO_SHADOW;
 }
 
 // The refracted ray from `origin` voxel by voxel to where it leaves the opal
 // at tExit, gathering scattering and each domain once per crossing.
 void marchInside(vec3 origin, vec3 inward, float tExit)
 {
-  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false);
+  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW, vec3(0.0));
   for (int round = 0; round < 4096 && !state.done; ++round)
   {
     int count = walkRecording(state, origin, inward, tExit);
+    if (ENERGY_CONSERVATION) flushScattering(state);
     for (int c = 0; c < count; ++c)
     {
-      if (ENERGY_CONSERVATION) flushScattering();
       if (COUPLED_WAVE)
       {
-        reflectAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingLength[c]);
+        reflectAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingLength[c],
+          crossingShadow[c]);
       }
       else
       {
-        diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c]);
+        diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingShadow[c]);
       }
     }
   }
-  if (ENERGY_CONSERVATION) flushScattering();
 }
 
 // Spectral radiance: the light's normalised D65 scales every term; the view
@@ -455,7 +568,7 @@ void writePixel(int pixelIndex, float transmitted, float tHit)
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    float gathered = radiance[l] + (EXACT_SCATTERING ? 0.0 : scatterAt(bins[l].rayleighScale));
+    float gathered = radiance[l] + (EXACT_SCATTERING ? 0.0 : scatterAt(scatterNodes, bins[l].rayleighScale));
     float value = transmitted * gathered * bins[l].illuminant;
     xyz += value * bins[l].colourMatching * bins[l].width;
     if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
@@ -500,6 +613,11 @@ void main()
     for (int l = 0; l < WAVELENGTHS; ++l) viewTransmittance[l] = 1.0;
   }
   for (int k = 0; k < SPECTRAL_NODES; ++k) scatterNodes[k] = 0.0;
+  if (ENERGY_CONSERVATION)
+  {
+    for (int k = 0; k < SPECTRAL_NODES; ++k) shadowNodes[k] = 0.0;
+    for (int l = 0; l < WAVELENGTHS; ++l) shadowRadiance[l] = 0.0;
+  }
   if (ABSORPTION && !EXACT_SCATTERING)
   {
     for (int k = 0; k < SPECTRAL_NODES; ++k)

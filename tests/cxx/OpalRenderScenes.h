@@ -115,11 +115,40 @@ struct SlabScene
   double DomainHalfSize = 2.5;             // mm, a square
   double PlaneSpacing = 200.0;             // nm, FCC (111) d
   double DomainSpin = 0.0;                 // radians: the lattice's turn about DomainNormal
+  std::vector<glm::dvec3> MoreDomainCentres; // copies of the domain centred there (ids 1, 2, ...)
 
   std::vector<float> ScatteringField, DistanceField, AbsorptionField, ExponentField;
   std::vector<std::int32_t> DomainField;
   std::vector<std::array<int, 3>> DomainVoxels;
   opal::Grid VoxelGrid;
+
+  // The square domain (DomainNormal, DomainHalfSize, PlaneSpacing, DomainSpin) at `centre`, id `id`.
+  void addDomain(opal::RenderVolume& volume, const glm::dvec3& centre, std::int32_t id)
+  {
+    const glm::dvec3 n = glm::normalize(this->DomainNormal);
+    const glm::dvec3 helper = std::fabs(n.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
+    const glm::dvec3 v = glm::cross(n, u);
+    std::vector<std::array<double, 3>> square;
+    for (const auto& corner : { glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1) })
+    {
+      const glm::dvec3 q = centre + this->DomainHalfSize * (corner.x * u + corner.y * v);
+      square.push_back({ q.x, q.y, q.z });
+    }
+    std::vector<std::array<int, 3>> voxels;
+    opal::rasterisePolygon(this->VoxelGrid, square, { n.x, n.y, n.z }, voxels);
+    for (const auto& c : voxels)
+    {
+      const auto index = static_cast<std::size_t>(this->VoxelGrid.linearIndex(c[0], c[1], c[2]));
+      this->DomainField[index] = id;
+      this->ScatteringField[index] = 0.0f; // no scattering in domains (paper §6.2)
+    }
+    this->DomainVoxels.insert(this->DomainVoxels.end(), voxels.begin(), voxels.end());
+    const glm::dquat q = opal::latticeOrientation(n, this->DomainSpin);
+    volume.Domains.push_back({ { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) },
+      static_cast<float>(this->PlaneSpacing),
+      { static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z) } });
+  }
 
   opal::RenderVolume build()
   {
@@ -148,27 +177,13 @@ struct SlabScene
     volume.Spacing = this->VoxelGrid.Spacing;
     if (this->WithDomain)
     {
-      const glm::dvec3 n = glm::normalize(this->DomainNormal);
-      const glm::dvec3 helper = std::fabs(n.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-      const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
-      const glm::dvec3 v = glm::cross(n, u);
-      std::vector<std::array<double, 3>> square;
-      for (const auto& corner : { glm::dvec2(-1, -1), glm::dvec2(1, -1), glm::dvec2(1, 1), glm::dvec2(-1, 1) })
+      this->DomainVoxels.clear();
+      std::vector<glm::dvec3> centres{ this->DomainCentre };
+      centres.insert(centres.end(), this->MoreDomainCentres.begin(), this->MoreDomainCentres.end());
+      for (std::size_t id = 0; id < centres.size(); ++id)
       {
-        const glm::dvec3 q = this->DomainCentre + this->DomainHalfSize * (corner.x * u + corner.y * v);
-        square.push_back({ q.x, q.y, q.z });
+        this->addDomain(volume, centres[id], static_cast<std::int32_t>(id));
       }
-      opal::rasterisePolygon(this->VoxelGrid, square, { n.x, n.y, n.z }, this->DomainVoxels);
-      for (const auto& c : this->DomainVoxels)
-      {
-        const auto index = static_cast<std::size_t>(this->VoxelGrid.linearIndex(c[0], c[1], c[2]));
-        this->DomainField[index] = 0;
-        this->ScatteringField[index] = 0.0f; // no scattering in domains (paper §6.2)
-      }
-      const glm::dquat q = opal::latticeOrientation(n, this->DomainSpin);
-      volume.Domains.push_back({ { static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z) },
-        static_cast<float>(this->PlaneSpacing),
-        { static_cast<float>(q.w), static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z) } });
     }
     volume.ScatteringCoefficient = this->ScatteringField.data();
     volume.DomainId = this->DomainField.data();

@@ -3,7 +3,8 @@
 // light reflects R(lambda) of OpalCore's coupledWaveReflectance into the
 // lobe's peak (GPU against CPU, bin by bin) and peaks at lambda_B = 2 d n_bar;
 // the view ray through the domain keeps 1 - R, so reflected + transmitted =
-// incident within 0.1% per bin (and with the paper's box band and
+// incident within 0.1% per bin, on the view path and on the light's (the
+// light pass's Bragg shadows; also with the paper's box band and
 // EnergyConservation); moving the eye a few degrees changes which
 // of two tilted domains is bright; the fcc planes reflect where (111) cannot.
 #include "OpalCoupledWave.h"
@@ -50,20 +51,22 @@ opal::RenderParameters coupledView()
   return p;
 }
 
-// R of the crossing of a flat domain at normal incidence averaged over a bin
-// as the march samples it (docs/design.md §7.2: 4 points where the bin comes
-// within 4 kappa of the band; in the wings the side lobes' phase average
-// where the bin spans 4 of their periods, else its centre), from OpalCore.
-double binReflectance(double centre, double width, int layers = Layers)
+// R of the crossing of a flat domain by a ray of glancing sine sinGlancing
+// averaged over a bin as the march samples it (docs/design.md §7.2: 4 points
+// where the bin comes within 4 kappa of the band; in the wings the side
+// lobes' phase average where the bin spans 4 of their periods, else its
+// centre), from OpalCore.
+double binReflectance(double centre, double width, int layers = Layers, double sinGlancing = 1.0)
 {
   const opal::ColloidalCrystal crystal;
   opal::CoupledWaveInput in;
   in.SpacingNm = Spacing111;
   in.MeanIndex = opal::meanIndex(crystal);
   in.FourierComponent = opal::permittivityFourierComponent(crystal, opal::Pi * std::sqrt(1.5));
+  in.SinGlancing = sinGlancing;
   in.Layers = layers; // the one-voxel domain is 500 layers thick: CoherentLayers limits
-  const double lambdaB = 2.0 * Spacing111 * in.MeanIndex;
-  const double kappaLambda = opal::Pi * std::fabs(in.FourierComponent) / in.MeanIndex;
+  const double lambdaB = 2.0 * Spacing111 * in.MeanIndex * sinGlancing;
+  const double kappaLambda = opal::Pi * std::fabs(in.FourierComponent) / (in.MeanIndex * sinGlancing);
   auto detuning = [&](double lambda) { return (opal::Pi / Spacing111) * (lambdaB / lambda - 1.0); };
   const double shortEdge = detuning(centre - 0.5 * width), longEdge = detuning(centre + 0.5 * width);
   const double reach = 4.0 * kappaLambda / lambdaB;
@@ -71,8 +74,10 @@ double binReflectance(double centre, double width, int layers = Layers)
   {
     if ((shortEdge - longEdge) * layers * Spacing111 >= 4.0 * opal::Pi)
     {
-      const double x = std::pow(kappaLambda / centre / detuning(centre), 2); // s and p alike at normal incidence
-      return 1.0 - std::sqrt(1.0 - x);
+      // The phase average 1 - sqrt(1 - (kappa/delta)^2) of s, and of p (kappa_p = kappa_s |cos 2 theta_n|).
+      auto sideLobes = [&](double kappa) { return 1.0 - std::sqrt(1.0 - std::pow(kappa / detuning(centre), 2)); };
+      const double kappaS = kappaLambda / centre;
+      return 0.5 * (sideLobes(kappaS) + sideLobes(kappaS * std::fabs(2.0 * sinGlancing * sinGlancing - 1.0)));
     }
     in.WavelengthNm = centre;
     return opal::coupledWaveReflectance(in).average();
@@ -134,14 +139,55 @@ void checkReflectance(SceneRenderer& renderer)
       std::to_string(peakLambda));
 }
 
-// Scattering only below the domain, light beside the eye (its lobe misses the
-// eye): what the body sends up through the domain keeps 1 - R(lambda), so the
-// domain's R (`reflectance` of a bin's centre and width) and the measured
-// transmittance add up to 1 (no absorption).
-void checkEnergy(SceneRenderer& renderer, opal::RenderParameters p,
-  const std::function<double(double, double)>& reflectance, const std::string& what)
+// Two flat domains 0.5 mm apart, light at the eye: the lower one is lit
+// through the upper (its Bragg shadow) and seen through it, so it adds
+// R (1 - R)^2 to the upper's R at the lobe's peak, in every bin; without
+// energy conservation on the light path it would add R (1 - R).
+void checkStackedDomains(SceneRenderer& renderer)
 {
-  p.LightPosition = { 20.0, 30.0, 0.0 };
+  const opal::RenderParameters p = coupledView();
+  std::vector<double> both, upper;
+  for (bool lower : { true, false })
+  {
+    SlabScene scene;
+    scene.WithDomain = true;
+    scene.PlaneSpacing = Spacing111;
+    if (lower) scene.MoreDomainCentres.push_back({ 0.0, 0.5, 0.0 });
+    const opal::RenderImage image = renderChecked(renderer, scene, p, "stacked domains");
+    (lower ? both : upper) = spectrumAt(image, Centre, Centre);
+  }
+  const double fresnel = std::pow((Mu - 1) / (Mu + 1), 2);
+  const double concentration = 1.0 / std::pow(opal::CoupledWaveDefaultSpread * opal::Pi / 180.0, 2);
+  const double peak = concentration / (2.0 * opal::Pi * (1.0 - std::exp(-2.0 * concentration)));
+  // The lower domain's crossing, at y = 0.45 - 0.55, lies 29.5 mm from the light (28 from the apex).
+  const double factor = (1 - fresnel) * (1 - fresnel) * std::pow(28.0 / 29.5, 2) * peak;
+  double worst = 0.0;
+  for (std::size_t l = 0; l < both.size(); ++l)
+  {
+    const double r = binReflectance(p.WavelengthRange[0] + p.WavelengthStep * l, p.WavelengthStep);
+    const double expected = factor * r * (1.0 - r) * (1.0 - r);
+    if (expected > 0.01 * factor)
+    {
+      worst = std::max(worst, std::fabs((both[l] - upper[l]) / expected - 1.0));
+    }
+  }
+  std::cout << "stacked domains: the lower one's light against R (1 - R)^2, bins above 1%: worst " << worst
+            << std::endl;
+  OPAL_CHECK(worst < 0.01, "a domain lit and seen through another reflects R (1 - R)^2 within 1%");
+}
+
+// Scattering only below the domain, a distant light 33.7 degrees beside the
+// eye (its lobe misses the eye): the light reaching the body has passed the
+// domain and keeps 1 - R(lambda) at the light's angle (the Bragg shadow), and
+// what the body sends up keeps 1 - R at the eye's, so reflected + transmitted
+// equals incident on both paths: the body's light through the domain over
+// its light without it is (1 - R_view)(1 - R_light), `reflectance` of a bin's
+// centre, width and glancing sine (no absorption).
+constexpr double LightGlancingSine = 0.83205; // cos atan(2/3)
+void checkEnergy(SceneRenderer& renderer, opal::RenderParameters p,
+  const std::function<double(double, double, double)>& reflectance, const std::string& what)
+{
+  p.LightPosition = { 2.0e5, 3.0e5, 0.0 }; // parallel within 1e-5 over the slab
   std::vector<double> through, open;
   for (bool withDomain : { true, false })
   {
@@ -159,15 +205,18 @@ void checkEnergy(SceneRenderer& renderer, opal::RenderParameters p,
       what + ": renders finite with the validation layer silent");
     (withDomain ? through : open) = spectrumAt(image, Centre, Centre);
   }
-  double worst = 0.0;
+  double worst = 0.0, deepestShadow = 1.0;
   for (std::size_t l = 0; l < open.size(); ++l)
   {
-    const double transmitted = through[l] / open[l];
-    worst = std::max(worst,
-      std::fabs(reflectance(p.WavelengthRange[0] + p.WavelengthStep * l, p.WavelengthStep) + transmitted - 1.0));
+    const double centre = p.WavelengthRange[0] + p.WavelengthStep * l, width = p.WavelengthStep;
+    const double lightKept = 1.0 - reflectance(centre, width, LightGlancingSine);
+    deepestShadow = std::min(deepestShadow, lightKept);
+    worst = std::max(worst, std::fabs(through[l] / open[l] - (1.0 - reflectance(centre, width, 1.0)) * lightKept));
   }
-  std::cout << "energy, " << what << ": worst |R + T - 1| over the bins " << worst << std::endl;
-  OPAL_CHECK(worst < 1e-3, what + ": reflected + transmitted equals incident within 0.1% in every bin");
+  std::cout << "energy, " << what << ": worst |T - (1 - R_view)(1 - R_light)| over the bins " << worst
+            << "; deepest light shadow " << deepestShadow << std::endl;
+  OPAL_CHECK(deepestShadow < 0.9, what + ": the light's path through the domain has a Bragg notch");
+  OPAL_CHECK(worst < 1e-3, what + ": reflected + transmitted equals incident on both paths within 0.1% in every bin");
 }
 
 // The coupled-wave model at 50 layers (side lobes sampled at the bins'
@@ -179,16 +228,18 @@ void checkEnergies(SceneRenderer& renderer)
   {
     opal::RenderParameters p = coupledView();
     p.CoherentLayers = layers;
-    checkEnergy(renderer, p, [layers](double c, double w) { return binReflectance(c, w, layers); },
+    checkEnergy(renderer, p, [layers](double c, double w, double sine) { return binReflectance(c, w, layers, sine); },
       "coupled-wave, " + std::to_string(layers) + " layers");
   }
   opal::RenderParameters p = coupledView();
   p.BraggModel = opal::BraggModelKind::Paper;
   p.EnergyConservation = true;
   p.MosaicSpread = 1.0; // gates the box band's reflection of the light aside away from the eye
-  const double lambdaB = 2.0 * Spacing111 * Mu, half = 0.5 * p.BraggBandwidth * lambdaB;
   checkEnergy(renderer, p,
-    [&](double c, double w) {
+    [&](double c, double w, double sine) {
+      // The box band at the Bragg-Snell wavelength 2 d sqrt(mu^2 - cos^2) (eq. 3).
+      const double lambdaB = 2.0 * Spacing111 * std::sqrt(Mu * Mu - (1.0 - sine * sine));
+      const double half = 0.5 * p.BraggBandwidth * lambdaB;
       return std::max(0.0, std::min(c + 0.5 * w, lambdaB + half) - std::max(c - 0.5 * w, lambdaB - half)) / w;
     },
     "paper model with EnergyConservation");
@@ -279,6 +330,7 @@ int TestOpalCoupledWaveRender(int, char*[])
   auto renderer = opaltest::makeRenderer();
   checkReflectance(*renderer);
   checkEnergies(*renderer);
+  checkStackedDomains(*renderer);
   checkViewDependence(*renderer);
   checkFccPlanes(*renderer);
   return opaltest::finish("TestOpalCoupledWaveRender");

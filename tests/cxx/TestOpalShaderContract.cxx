@@ -73,6 +73,9 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("lightField[0].", LightFieldPair, nextVoxel),
     OPAL_FIELD("lightAbsorption[0].", LightFieldPair, voxel),
     OPAL_FIELD("lightAbsorption[0].", LightFieldPair, nextVoxel),
+    OPAL_FIELD("lightShadow[0].", LightShadow, domain),
+    OPAL_FIELD("lightShadow[0].", LightShadow, lengthMm),
+    OPAL_FIELD("lightShadow[0].", LightShadow, ownLengthMm),
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
     OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
     OPAL_FIELD("domains[0].", DomainRecord, orientation),
@@ -94,12 +97,12 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 }
 
 // Prefixes of the contract's structs in the shaders' reflection.
-const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "domains[0].", "pixelColour[0].",
+const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "domains[0].", "pixelColour[0].",
   "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "range." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
-  { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) } };
 
 std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)

@@ -18,9 +18,14 @@ using namespace sessiondetail;
 // pass completes, so an aborted pass leaves nothing stale behind.
 bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 {
+  const bool braggShadow = conservesEnergy(setup.Parameters);
+  if (braggShadow)
+  {
+    this->prepareShadowField();
+  }
   const bool completed = this->Volume->Geometry.lightAboveGrid(setup.Camera.Light)
-    ? this->sweepLightLayers(progress)
-    : this->marchLightPerVoxel(progress);
+    ? this->sweepLightLayers(braggShadow, progress)
+    : this->marchLightPerVoxel(braggShadow, progress);
   if (completed)
   {
     this->LightField = lightFieldKey(setup);
@@ -29,7 +34,7 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 }
 
 // Layer by layer from the top: each layer reads the one above.
-bool RenderSession::sweepLightLayers(Progress& progress)
+bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
   const int layers = dims[1];
@@ -38,8 +43,8 @@ bool RenderSession::sweepLightLayers(Progress& progress)
   // Every layer's queue of entry voxels empty, its indirect dispatch of none.
   auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
   std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
-  const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove);
-  const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued);
+  const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
+  const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow);
   const int layersPerSubmit =
     static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
   for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
@@ -63,7 +68,7 @@ bool RenderSession::sweepLightLayers(Progress& progress)
 }
 
 // Every voxel marches to the light (lights low or to the side).
-bool RenderSession::marchLightPerVoxel(Progress& progress)
+bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
   const std::size_t voxels = this->Volume->Shape.voxelCount();
   for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
@@ -71,7 +76,7 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
     const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
     const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->lightPass(gpu::LightPassMarchTowardsLight)
+      this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow)
         .dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     });
     if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
@@ -82,18 +87,36 @@ bool RenderSession::marchLightPerVoxel(Progress& progress)
   return true;
 }
 
-// A light pass's mode for the volume: with ABSORPTION if it absorbs (made on first use).
-ComputePipeline& RenderSession::lightPass(int mode)
+// A light pass's mode for the volume: with ABSORPTION if it absorbs, with
+// BRAGG_SHADOW if asked (made on first use).
+ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
 {
-  const bool absorbs = this->Volume->Absorbs;
-  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs }];
+  const int absorbs = this->Volume->Absorbs ? 1 : 0;
+  const int shadow = braggShadow ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow }];
   if (!pass)
   {
     const embedded::Spirv code = embedded::lightOpticalDepthShader();
+    // constant_id 0: the mode, 1: ABSORPTION, 2: BRAGG_SHADOW.
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ mode, absorbs ? 1 : 0 });
+      std::vector<std::int32_t>{ mode, absorbs, shadow });
   }
   return *pass;
+}
+
+// The Bragg shadow field, made the first time a light pass records it.
+void RenderSession::prepareShadowField()
+{
+  DeviceVolume& v = *this->Volume;
+  if (v.HasShadowField)
+  {
+    return;
+  }
+  v.LightShadow.reset();
+  v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.Shape.voxelCount() * sizeof(gpu::LightShadow),
+    "light Bragg shadow field", BufferPlacement::DeviceLocal);
+  v.HasShadowField = true;
+  this->bindBuffers();
 }
 
 // The march for a wavelength count: the scattering spectrum on nodes, or at

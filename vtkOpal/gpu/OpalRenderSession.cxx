@@ -111,7 +111,7 @@ std::unique_ptr<VulkanBuffer> absorptionCells(
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
 {
   return this->Light == other.Light && this->RefractiveIndex == other.RefractiveIndex &&
-    this->FalloffAtEntry == other.FalloffAtEntry;
+    this->FalloffAtEntry == other.FalloffAtEntry && this->BraggShadow == other.BraggShadow;
 }
 
 RenderSession::RenderSession(const VulkanOptions& options)
@@ -123,11 +123,12 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
-  // constant_id 0: the mode, 1: ABSORPTION (pipelines with it made on first use).
+  // constant_id 0: the mode, 1: ABSORPTION, 2: BRAGG_SHADOW (pipelines with
+  // either made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[{ mode, false }] = std::make_unique<ComputePipeline>(
-      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode, 0 });
+    this->LightPasses[{ mode, 0, 0 }] = std::make_unique<ComputePipeline>(
+      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode, 0, 0 });
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
@@ -182,6 +183,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->SurfaceDistance = deviceLocalBuffer(
     context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
   uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field");
+  uploaded->LightShadow = deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder");
   uploaded->EntryVoxels = deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels");
   // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
@@ -342,8 +344,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t wavelengths = setup.Bins.size();
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
-  const std::uint64_t volumeBytes =
-    static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) * deviceBytesPerVoxel(this->Volume->Absorbs);
+  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) *
+    (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0));
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
     spectrumBytes;
@@ -416,7 +418,8 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
 RenderSession::LightFieldKey RenderSession::lightFieldKey(const FrameSetup& setup)
 {
   const glm::dvec3& light = setup.Camera.Light;
-  return { { light.x, light.y, light.z }, setup.Parameters.RefractiveIndex, setup.Parameters.LightFalloffAtEntry };
+  return { { light.x, light.y, light.z }, setup.Parameters.RefractiveIndex, setup.Parameters.LightFalloffAtEntry,
+    conservesEnergy(setup.Parameters) };
 }
 
 // The table of the bins, with the light's spectrum: normalised D65, or 1
@@ -464,6 +467,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();
   buffers[gpu::AbsorptionCellBinding] = v.AbsorptionCells.get();
   buffers[gpu::LightAbsorptionBinding] = v.LightAbsorption.get();
+  buffers[gpu::LightShadowBinding] = v.LightShadow.get();
   this->Bindings->bind(buffers);
 }
 

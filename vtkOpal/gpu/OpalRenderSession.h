@@ -86,6 +86,7 @@ private:
     std::array<double, 3> Light; // in the model's frame
     double RefractiveIndex;
     bool FalloffAtEntry;
+    bool BraggShadow; // with the Bragg shadows (energy conservation, docs/design.md §7.2)
     bool operator==(const LightFieldKey& other) const;
   };
   class Progress;
@@ -97,8 +98,9 @@ private:
   void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
   void bindBuffers();
   bool runLightPass(const FrameSetup& setup, Progress& progress);
-  bool sweepLightLayers(Progress& progress);
-  bool marchLightPerVoxel(Progress& progress);
+  bool sweepLightLayers(bool braggShadow, Progress& progress);
+  bool marchLightPerVoxel(bool braggShadow, Progress& progress);
+  void prepareShadowField();
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
   void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const;
@@ -106,13 +108,14 @@ private:
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
   ComputePipeline& marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg);
-  ComputePipeline& lightPass(int mode);
+  ComputePipeline& lightPass(int mode, bool braggShadow);
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
-  // The light pass's three modes (shaders/opal_render_contract.h), by mode
-  // and whether the volume absorbs (docs/design.md §3.9).
-  std::map<std::pair<int, bool>, std::unique_ptr<ComputePipeline>> LightPasses;
+  // The light pass's three modes (shaders/opal_render_contract.h), by mode,
+  // whether the volume absorbs (docs/design.md §3.9) and whether the pass
+  // records Bragg shadows (§7.2).
+  std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> LightPasses;
   // The highlight pass's two modes (select and shade), by mode.
   std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;

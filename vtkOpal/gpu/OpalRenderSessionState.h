@@ -76,6 +76,10 @@ struct RenderSession::DeviceVolume
   std::unique_ptr<VulkanBuffer> AbsorptionCells, LightAbsorption;
   bool Absorbs = false;
   float AbsorptionExponent = 0.0f; // of the coloured part
+  // The Bragg shadow of every voxel (energy conservation, docs/design.md
+  // §7.2): made by the first light pass that needs it, a placeholder before.
+  std::unique_ptr<VulkanBuffer> LightShadow;
+  bool HasShadowField = false;
 };
 
 // The per-frame buffers, kept while they are large enough.
