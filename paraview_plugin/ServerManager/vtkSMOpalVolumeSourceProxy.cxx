@@ -32,7 +32,35 @@ void vtkSMOpalVolumeSourceProxy::SetPropertyModifiedFlag(const char* name, int f
         filter->FillFromVolumePreset();
       }
     }
+    for (unsigned int i = 0; i < this->GetNumberOfConsumers(); ++i)
+    {
+      this->FillRepresentation(this->GetConsumerProxy(i));
+    }
   }
+}
+
+void vtkSMOpalVolumeSourceProxy::AddConsumer(vtkSMProperty* property, vtkSMProxy* proxy)
+{
+  this->Superclass::AddConsumer(property, proxy);
+  this->FillRepresentation(proxy);
+}
+
+void vtkSMOpalVolumeSourceProxy::FillRepresentation(vtkSMProxy* representation)
+{
+  const char* group = representation ? representation->GetXMLGroup() : nullptr;
+  if (!group || std::strcmp(group, "representations") != 0 || !representation->GetProperty("BraggModel") ||
+    !representation->GetProperty("LatticePlanes") || !this->GetProperty("Preset"))
+  {
+    return;
+  }
+  const opal::PresetSettings* preset = opal::presetByIndex(vtkSMPropertyHelper(this, "Preset").GetAsInt());
+  if (!preset)
+  {
+    return; // custom: the values shown stay
+  }
+  vtkSMPropertyHelper(representation, "BraggModel").Set(static_cast<int>(preset->BraggModel));
+  vtkSMPropertyHelper(representation, "LatticePlanes").Set(static_cast<int>(preset->LatticePlanes));
+  representation->UpdateVTKObjects();
 }
 
 void vtkSMOpalVolumeSourceProxy::FillFromPreset()

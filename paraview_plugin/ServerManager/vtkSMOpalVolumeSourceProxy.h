@@ -5,7 +5,10 @@
  * When the Preset property changes, this proxy sets the properties the preset
  * stands for (its values by property name, OpalPresets.h) to the preset's values, so the panel shows what will be used and a value
  * edited afterwards is used (docs/design.md §2.8) — the rule of the command
- * line and of vtkOpalSource::SetPreset. Custom sets nothing.
+ * line and of vtkOpalSource::SetPreset. Custom sets nothing. Its renders and
+ * Bragg maps show the preset's view settings (vtkSMOpalViewpointFilterProxy),
+ * and its "Opal Spectral" representations the preset's Bragg model and planes
+ * (the kinds of opal, docs/design.md §2.11), when shown and when the preset changes.
  */
 #pragma once
 
@@ -24,6 +27,7 @@ protected:
   ~vtkSMOpalVolumeSourceProxy() override;
 
   void SetPropertyModifiedFlag(const char* name, int flag) override;
+  void AddConsumer(vtkSMProperty* property, vtkSMProxy* proxy) override;
 
 private:
   vtkSMOpalVolumeSourceProxy(const vtkSMOpalVolumeSourceProxy&) = delete;
@@ -31,5 +35,7 @@ private:
 
   // Sets the preset's values on the properties it stands for.
   void FillFromPreset();
+  // Sets the preset's Bragg model and planes on a representation that has them.
+  void FillRepresentation(vtkSMProxy* representation);
   bool Filling = false;
 };

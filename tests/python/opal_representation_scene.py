@@ -2,7 +2,8 @@
 shows a small Opal Volume with the "Opal Spectral" representation and checks
 what the view shows.
 
-- The volume is shown as "Opal Spectral" first (its proxy's hint).
+- The volume is shown as "Opal Spectral" first (its proxy's hint); a kind of
+  opal's representation shows its preset's Bragg model and planes.
 - Two camera directions 10 degrees apart: both show the stone (most of its
   box's footprint is not background) and the domains' hues differ.
 - The still frame equals Opal Spectral Render's image for the same camera
@@ -22,7 +23,7 @@ import sys
 
 import numpy
 from paraview import servermanager as sm
-from paraview.simple import (ColorBy, CreateView, Hide, LoadPlugin, OutputPort, Plane, Render, SaveScreenshot,
+from paraview.simple import (ColorBy, CreateView, Delete, Hide, LoadPlugin, OutputPort, Plane, Render, SaveScreenshot,
                              Show)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
@@ -45,6 +46,17 @@ stone = Show(OutputPort(volume, 0), view)
 check(stone.Representation == "Opal Spectral", f"the volume is shown as Opal Spectral first ({stone.Representation})")
 stone.SetRepresentationType("Opal Spectral")
 Render(view)  # the first render resets the camera; the cameras below are set after it
+
+# A kind of opal's representation takes its preset's Bragg model and planes (docs/design.md §2.11).
+kind = OpalVolume(Preset="black-opal", Dimensions=[20, 10, 24], DomainCount=5)  # noqa: F821
+kind_display = Show(OutputPort(kind, 0), view)
+check(kind_display.BraggModel == "coupled-wave" and kind_display.LatticePlanes == "fcc",
+      f"black-opal is shown with its Bragg model and planes: {kind_display.BraggModel}, {kind_display.LatticePlanes}")
+kind.Preset = "fig12"
+check(kind_display.BraggModel == "paper" and kind_display.LatticePlanes == "111",
+      f"choosing fig12 shows the paper's model: {kind_display.BraggModel}, {kind_display.LatticePlanes}")
+Hide(OutputPort(kind, 0), view)
+Delete(kind)
 
 
 def look_from(eye):
