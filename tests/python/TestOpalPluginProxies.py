@@ -132,7 +132,7 @@ check(mapped is not None and mapped.GetName() == "BraggWavelength",
 for proxy in (render, bragg):
     groups = [proxy.SMProxy.GetPropertyGroup(i) for i in range(proxy.SMProxy.GetNumberOfPropertyGroups())]
     handles = {g.GetProperty(0).GetXMLName(): [g.GetXMLLabel() or "", g.GetPanelWidget()]
-               for g in groups if g.GetPanelWidget() == "InteractiveHandle"}
+               for g in groups if g.GetPanelWidget() == "OpalHandle"}
     found = {word: sorted(name for name, tags in handles.items() if any(word in t.lower() for t in tags))
              for word in ("position", "eye", "light")}
     check(found == {"position": ["EyePosition", "LightPosition"], "eye": ["EyePosition"],

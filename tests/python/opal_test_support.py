@@ -1,5 +1,6 @@
 """Helpers shared by the pvpython tests."""
 import os
+import random
 import subprocess
 import sys
 
@@ -23,6 +24,23 @@ def run(command, timeout=240):
         raise RuntimeError(f"{' '.join(command)} exited {result.returncode}:\n"
                            f"{result.stdout[-4000:]}\n{result.stderr[-4000:]}")
     return result
+
+
+def run_gui_script(script, plugin, paraview, output_directory):
+    """Runs tests/gui/`script` in the ParaView client (paraview --script) on a
+    virtual display of its own; returns the verdict it wrote (the client's
+    stdout is not the test's), or "no verdict written"."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    output = os.path.join(output_directory, "gui")
+    os.makedirs(output, exist_ok=True)
+    verdict = os.path.join(output, os.path.splitext(script)[0] + "-verdict.txt")
+    if os.path.exists(verdict):
+        os.remove(verdict)
+    os.environ["OPAL_GUI_VERDICT"] = verdict
+    os.environ["OPAL_PLUGIN"] = plugin
+    run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 1280x1024x24",
+         paraview, "--script=" + os.path.join(here, "..", "gui", script)], timeout=280)
+    return open(verdict).read() if os.path.exists(verdict) else "no verdict written"
 
 
 # The checks of one test script: each failed one is printed and counted;
