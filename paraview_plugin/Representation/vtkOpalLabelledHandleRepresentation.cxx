@@ -15,6 +15,7 @@ vtkOpalLabelledHandleRepresentation::vtkOpalLabelledHandleRepresentation()
   text->SetBold(true);
   text->SetShadow(true);
   this->Label->SetInput("");
+  this->SetHandleColor(1.0, 1.0, 1.0); // the stock handle's white until the hint colours it
 }
 
 vtkOpalLabelledHandleRepresentation::~vtkOpalLabelledHandleRepresentation() = default;
@@ -72,7 +73,13 @@ void vtkOpalLabelledHandleRepresentation::ReleaseGraphicsResources(vtkWindow* wi
 void vtkOpalLabelledHandleRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  // The proxy's properties by name (TestOpalXmlDefaults reads them here).
   const char* text = this->Label->GetInput();
   os << indent << "LabelText: " << (text ? text : "") << "\n";
   os << indent << "LabelOffset: " << this->LabelOffset[0] << " " << this->LabelOffset[1] << "\n";
+  const double* color = this->Label->GetTextProperty()->GetColor();
+  os << indent << "HandleColor: " << color[0] << " " << color[1] << " " << color[2] << "\n";
+  double position[3];
+  this->GetWorldPosition(position);
+  os << indent << "WorldPosition: " << position[0] << " " << position[1] << " " << position[2] << "\n";
 }

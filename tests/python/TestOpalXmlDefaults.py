@@ -47,7 +47,7 @@ def parse_values(kind, text):
     """Numbers (or strings) of an XML default_values or a PrintSelf line."""
     words = text.split()
     if kind == "StringVectorProperty":
-        return words
+        return words or [""]  # an empty string is one value
     words = [{"On": "1", "Off": "0", "true": "1", "false": "0"}.get(w, w) for w in words]
     return [int(w) if kind in ("IntVectorProperty", "IdTypeVectorProperty") else float(w) for w in words]
 
@@ -155,8 +155,8 @@ def create_representation(group, name, inputs):
 
 def check_proxy(path, group, element, inputs):
     where = f"{os.path.basename(path)}:{element.get('name')}"
-    if group == "representations":
-        proxy = create_representation(group, element.get("name"), inputs)
+    if group in ("representations", "3d_widget_representations"):
+        proxy = create_representation(group, element.get("name"), inputs if group == "representations" else [])
         if not check(proxy is not None, f"{where}: ParaView creates the representation"):
             return None
     else:
@@ -191,17 +191,21 @@ def main():
     check(len(files) >= 3, f"the plugin's XML files are found in {XML_DIRECTORY}")
     proxies = [(path, group.get("name"), element) for path in files
                for group in ET.parse(path).getroot().iter("ProxyGroup") for element in group
-               if element.get("class") and group.get("name") != "views"]
+               if element.get("class") and group.get("name") != "views" and
+               element.tag != "NewWidgetRepresentationProxy"]
     skipped.extend((f"{os.path.basename(path)}:{element.get('name')}",
                     "a view: ParaView's RenderView and its properties, none of ours")
                    for path in files for group in ET.parse(path).getroot().iter("ProxyGroup")
                    if group.get("name") == "views" for element in group)
+    skipped.extend((f"{os.path.basename(path)}:{element.get('name')}",
+                    "ParaView's 3-D widget wrapper: its properties are its handle representation's, checked")
+                   for path in files for element in ET.parse(path).getroot().iter("NewWidgetRepresentationProxy"))
     # Sources first: the filters take the first source as their input.
     proxies.sort(key=lambda item: item[2].find("InputProperty") is not None)
     inputs = []
     for path, group, element in proxies:
         proxy = check_proxy(path, group, element, inputs)
-        if proxy is not None and element.find("InputProperty") is None:
+        if proxy is not None and group == "sources":
             # A filter on a volume with a preset shows the preset's view
             # settings instead of its XML defaults (docs/design.md §2.8).
             if "Preset" in proxy.ListProperties():
