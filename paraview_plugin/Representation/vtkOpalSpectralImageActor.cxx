@@ -1,5 +1,7 @@
 #include "vtkOpalSpectralImageActor.h"
 
+#include "OpalRenderParameters.h"
+
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -8,7 +10,6 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
-#include "OpalRenderParameters.h"
 #include "vtkOpalSpectralRender.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -267,7 +268,7 @@ vtkImageData* vtkOpalSpectralImageActor::UpdatedOutput()
 vtkMTimeType vtkOpalSpectralImageActor::GetReadyFinalFrame()
 {
   const bool ready = this->Render && this->GetVisibility() && this->StartedKey == this->Render->GetMTime() &&
-    this->StartedKey != this->FinalKey && this->Render->GetBackgroundFrameState() == 2;
+    this->Render->GetBackgroundFrameState() == 2;
   return ready ? this->StartedKey : 0;
 }
 
