@@ -13,10 +13,11 @@
  * StillQuality. With DeferFinalFrames on (the GUI's still renders), a final
  * still frame is not waited for: the render draws the preview and the final
  * frame is rendered on a worker thread, drawn by a later render once it has
- * finished (GetReadyFinalFrame says when; docs/design.md §5.2). With Headlight on the light sits at the eye, the paper's
- * set-up (previews keep the last still frame's light, so a drag needs no
- * light pass); off, the render filter's LightPosition is used. The camera's view
- * angle is taken as it is; a parallel projection is rendered in perspective.
+ * finished (GetReadyFinalFrame says when; docs/design.md §5.2). With
+ * Headlight on the light sits at the eye, the paper's set-up (previews keep
+ * the last still frame's light, so a drag needs no light pass); off, the
+ * render filter's LightPosition is used. The camera's view angle is taken as
+ * it is; a parallel projection is rendered in perspective.
  */
 #pragma once
 
