@@ -15,12 +15,25 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
+
+// A frame rendered on a worker thread. The worker writes Frame and Error and
+// then sets Finished; the caller's thread reads them only after joining.
+struct vtkOpalSpectralRender::BackgroundFrame
+{
+  std::thread Worker;
+  std::atomic<bool> Cancel{ false };
+  std::atomic<bool> Finished{ false };
+  opal::RenderFrame Frame;
+  std::string Error;
+};
 
 namespace
 {
@@ -52,6 +65,7 @@ void vtkOpalSpectralRender::EndAllSessions()
   std::lock_guard<std::mutex> guard(filtersLock());
   for (vtkOpalSpectralRender* filter : liveFilters())
   {
+    filter->CancelBackgroundFrame();
     filter->RenderSession.reset();
     filter->UploadedVolume = nullptr;
   }
@@ -75,6 +89,7 @@ vtkOpalSpectralRender::~vtkOpalSpectralRender()
 {
   std::lock_guard<std::mutex> guard(filtersLock());
   liveFilters().erase(this);
+  this->CancelBackgroundFrame();
 }
 
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
@@ -154,8 +169,13 @@ int vtkOpalSpectralRender::GetNumberOfValidationMessages() const
 opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(
   vtkInformation* inputInformation, vtkImageData* input) const
 {
+  return this->Resolve(this->GetRenderParameters(), inputInformation, input);
+}
+
+opal::RenderParameters vtkOpalSpectralRender::Resolve(
+  opal::RenderParameters p, vtkInformation* inputInformation, vtkImageData* input) const
+{
   const vtkOpalRenderInput::VolumeSettings volume = vtkOpalRenderInput::ReadSettings(inputInformation, input);
-  opal::RenderParameters p = this->GetRenderParameters();
   if (p.ImageSize[0] == 0 && p.ImageSize[1] == 0)
   {
     p.ImageSize = volume.ImageSize;
@@ -285,6 +305,8 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
 int vtkOpalSpectralRender::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
+  // The session is this thread's again: a background frame (of other settings) stops.
+  this->CancelBackgroundFrame();
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
@@ -317,22 +339,7 @@ int vtkOpalSpectralRender::RequestData(
       this->UpdateProgress(fraction);
       return !this->GetAbortExecute();
     });
-    const std::vector<std::string> messages = this->Session().context().validationMessages();
-    this->ValidationMessages = static_cast<int>(messages.size());
-    if (!messages.empty())
-    {
-      // With OPAL_VULKAN_VALIDATION set, what the layer says is a bug: shown, and the request fails.
-      vtkErrorMacro("The Vulkan validation layer reported " << messages.size() << " message(s); the first: "
-                                                            << messages.front());
-      return 0;
-    }
-    if (frame.Status == opal::FrameStatus::Aborted)
-    {
-      output->Initialize();
-      return 0;
-    }
-    vtkOpalRenderOutput::Fill(frame.Image, this->Session().context().deviceName(), output);
-    return 1;
+    return this->Publish(frame, output) ? 1 : 0;
   }
   catch (const opal::NoVulkanDeviceError& e)
   {
@@ -343,6 +350,113 @@ int vtkOpalSpectralRender::RequestData(
     vtkErrorMacro(<< e.what());
   }
   return 0;
+}
+
+bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData* output)
+{
+  const std::vector<std::string> messages = this->Session().context().validationMessages();
+  this->ValidationMessages = static_cast<int>(messages.size());
+  if (!messages.empty())
+  {
+    // With OPAL_VULKAN_VALIDATION set, what the layer says is a bug: shown, and the request fails.
+    vtkErrorMacro("The Vulkan validation layer reported " << messages.size() << " message(s); the first: "
+                                                          << messages.front());
+    return false;
+  }
+  if (frame.Status == opal::FrameStatus::Aborted)
+  {
+    output->Initialize();
+    return false;
+  }
+  vtkOpalRenderOutput::Fill(frame.Image, this->Session().context().deviceName(), output);
+  return true;
+}
+
+bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& parameters)
+{
+  this->CancelBackgroundFrame();
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!input)
+  {
+    vtkErrorMacro("The render has no input to render in the background; update it first.");
+    return false;
+  }
+  const opal::RenderParameters p = this->Resolve(parameters, this->GetInputInformation(0, 0), input);
+  const std::string error = opal::validate(p);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  try
+  {
+    if (!this->UploadVolume(input))
+    {
+      return false;
+    }
+    opal::RenderSession* session = &this->Session();
+    this->BackgroundWork = std::make_unique<BackgroundFrame>();
+    BackgroundFrame* work = this->BackgroundWork.get();
+    // No VTK object is touched on the worker: the session and its own state only.
+    work->Worker = std::thread([work, session, p]() {
+      try
+      {
+        work->Frame = session->render(p, [work](double) { return !work->Cancel.load(); });
+      }
+      catch (const std::exception& e)
+      {
+        work->Error = e.what();
+      }
+      work->Finished.store(true);
+    });
+    return true;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< e.what());
+  }
+  this->BackgroundWork.reset(); // no worker started
+  return false;
+}
+
+int vtkOpalSpectralRender::GetBackgroundFrameState() const
+{
+  if (!this->BackgroundWork)
+  {
+    return 0;
+  }
+  return this->BackgroundWork->Finished.load() ? 2 : 1;
+}
+
+bool vtkOpalSpectralRender::TakeBackgroundFrame(vtkImageData* image)
+{
+  if (this->GetBackgroundFrameState() != 2)
+  {
+    return false;
+  }
+  this->BackgroundWork->Worker.join();
+  const std::unique_ptr<BackgroundFrame> work = std::move(this->BackgroundWork);
+  if (!work->Error.empty())
+  {
+    vtkErrorMacro(<< work->Error);
+    return false;
+  }
+  this->NumberOfCompletedBackgroundFrames += work->Frame.Status == opal::FrameStatus::Completed ? 1 : 0;
+  return this->Publish(work->Frame, image);
+}
+
+void vtkOpalSpectralRender::CancelBackgroundFrame()
+{
+  if (!this->BackgroundWork)
+  {
+    return;
+  }
+  this->BackgroundWork->Cancel.store(true);
+  this->BackgroundWork->Worker.join();
+  const bool completed = this->BackgroundWork->Error.empty() &&
+    this->BackgroundWork->Frame.Status == opal::FrameStatus::Completed;
+  (completed ? this->NumberOfCompletedBackgroundFrames : this->NumberOfAbandonedBackgroundFrames) += 1;
+  this->BackgroundWork.reset();
 }
 
 void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)

@@ -32,6 +32,14 @@
  * the device while the input is unchanged, and the light field while the
  * light, the rotation and the refractive index are, so a new camera re-renders
  * without upload or light pass.
+ *
+ * A frame can also be rendered on a worker thread while the caller goes on
+ * (StartBackgroundFrame; the live view's final frames, docs/design.md §5.2).
+ * Only the render session is touched there, never a VTK object; the session
+ * is then the worker's, so every use of it on the caller's thread (an update,
+ * a new background frame, a new device, the filter's end) first cancels the
+ * frame and waits for it, which stops at its next check (between light-pass
+ * slabs or march tiles).
  */
 #pragma once
 
@@ -43,6 +51,7 @@
 
 namespace opal
 {
+struct RenderFrame;
 struct RenderParameters;
 class RenderSession;
 }
@@ -184,6 +193,27 @@ public:
   /// Validation-layer messages of the last render (OPAL_VULKAN_VALIDATION=1).
   int GetNumberOfValidationMessages() const;
 
+  /// Starts rendering `parameters` (as set on the filter; resolved against the
+  /// input like an update's) on a worker thread, from the input of the last
+  /// update, and returns. A background frame still running is cancelled first;
+  /// the volume is uploaded here if the session lacks it. False, with an
+  /// error, if the frame cannot start (bad settings, no input).
+  bool StartBackgroundFrame(const opal::RenderParameters& parameters);
+  /// 0 none, 1 running, 2 finished (TakeBackgroundFrame gives it).
+  int GetBackgroundFrameState() const;
+  /// Fills `image` with the finished background frame as an update would fill
+  /// the output; false if none has finished, or it failed (said in an error).
+  bool TakeBackgroundFrame(vtkImageData* image);
+  /// Cancels a running background frame and waits for it to stop; a finished
+  /// one not taken is dropped.
+  void CancelBackgroundFrame();
+  ///@{
+  /// Background frames that completed, and that were cancelled before they
+  /// completed (abandoned), since the filter was made (for tests).
+  vtkGetMacro(NumberOfCompletedBackgroundFrames, int);
+  vtkGetMacro(NumberOfAbandonedBackgroundFrames, int);
+  ///@}
+
 protected:
   vtkOpalSpectralRender();
   ~vtkOpalSpectralRender() override;
@@ -236,6 +266,19 @@ private:
   opal::RenderSession& Session();
   // Uploads the input volume unless the session already holds this version of it.
   bool UploadVolume(vtkImageData* input);
+  // The parameters with the volume's settings where they are 0, the preset's
+  // placement, and the quality's reductions (GetResolvedRenderParameters).
+  opal::RenderParameters Resolve(
+    opal::RenderParameters p, vtkInformation* inputInformation, vtkImageData* input) const;
+  // A rendered frame into `output`; false, with an error, for validation-layer
+  // messages or an aborted frame.
+  bool Publish(const opal::RenderFrame& frame, vtkImageData* output);
+
+  // A frame on a worker thread (StartBackgroundFrame); defined in the .cxx.
+  struct BackgroundFrame;
+  std::unique_ptr<BackgroundFrame> BackgroundWork;
+  int NumberOfCompletedBackgroundFrames = 0;
+  int NumberOfAbandonedBackgroundFrames = 0;
 
   std::unique_ptr<opal::RenderSession> RenderSession;
   int SessionDeviceIndex = -2;

@@ -1,5 +1,7 @@
 #include "vtkOpalSpectralImageActor.h"
 
+#include "OpalRenderParameters.h"
+
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -123,12 +125,12 @@ int vtkOpalSpectralImageActor::RenderOpaqueGeometry(vtkViewport* viewport)
     return 0;
   }
   const bool interactive = window->GetDesiredUpdateRate() > 1.0;
-  if (!this->UpdateFrame(renderer, interactive))
+  vtkImageData* image = this->UpdateFrame(renderer, interactive);
+  if (!image)
   {
     return 0;
   }
-  vtkImageData* image = this->Render->GetOutput();
-  if (image->GetMTime() != this->UploadedTime)
+  if (image != this->UploadedImage || image->GetMTime() != this->UploadedTime)
   {
     this->UploadFrame(window, image);
   }
@@ -136,7 +138,30 @@ int vtkOpalSpectralImageActor::RenderOpaqueGeometry(vtkViewport* viewport)
   return 1;
 }
 
-bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interactive)
+vtkImageData* vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interactive)
+{
+  if (!this->AimRender(renderer))
+  {
+    return nullptr;
+  }
+  const double* eye = renderer->GetActiveCamera()->GetPosition();
+  if (!interactive && this->StillQuality == 0 && this->DeferFinalFrames)
+  {
+    return this->DeferredFrame(eye);
+  }
+  // The headlight follows the eye at still frames; a preview keeps the last
+  // still frame's light, so dragging re-marches without rerunning the light
+  // pass (the light field depends on the light, not on the eye).
+  if (this->Headlight && (!interactive || this->LastQuality < 0))
+  {
+    this->Render->SetLightPosition(eye);
+  }
+  this->LastQuality = interactive ? 1 : this->StillQuality;
+  this->Render->SetQuality(this->LastQuality);
+  return this->UpdatedOutput();
+}
+
+bool vtkOpalSpectralImageActor::AimRender(vtkRenderer* renderer)
 {
   int width = 0, height = 0;
   renderer->GetTiledSize(&width, &height);
@@ -176,22 +201,84 @@ bool vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interact
   const double angle = vtkMath::DegreesFromRadians(2 * std::atan(tangent));
   this->Render->SetViewAngle(angle);
   this->TanHalfViewAngle = std::tan(vtkMath::RadiansFromDegrees(angle) / 2);
-  // The headlight follows the eye at still frames; a preview keeps the last
-  // still frame's light, so dragging re-marches without rerunning the light
-  // pass (the light field depends on the light, not on the eye).
-  if (this->Headlight && (!interactive || this->LastQuality < 0))
+  return true;
+}
+
+// docs/design.md §5.2: the render filter keeps the preview's settings (as
+// while dragging), so their MTime names this camera, size, settings and
+// volume; the final frame of them renders on the worker once, and the first
+// render after it finished draws it.
+vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
+{
+  if (this->Headlight && this->LastQuality < 0)
   {
-    this->Render->SetLightPosition(camera->GetPosition());
+    this->Render->SetLightPosition(eye);
   }
-  this->LastQuality = interactive ? 1 : this->StillQuality;
-  this->Render->SetQuality(this->LastQuality);
+  this->Render->SetQuality(1);
+  vtkMTimeType key = this->Render->GetMTime();
+  if (key == this->StartedKey && this->Render->GetBackgroundFrameState() == 2 &&
+    this->Render->TakeBackgroundFrame(this->FinalFrame))
+  {
+    // Previews from here on keep this still frame's light, as after a waited-for one.
+    if (this->Headlight)
+    {
+      this->Render->SetLightPosition(eye);
+    }
+    key = this->FinalKey = this->StartedKey = this->Render->GetMTime();
+  }
+  if (key == this->FinalKey)
+  {
+    this->LastQuality = 0;
+    return this->FinalFrame;
+  }
+  // Re-rendered only if the settings changed, which cancels a final frame of the old ones.
+  vtkImageData* preview = this->UpdatedOutput();
+  if (!preview)
+  {
+    return nullptr;
+  }
+  this->LastQuality = 1;
+  if (key != this->StartedKey)
+  {
+    opal::RenderParameters finalFrame = this->Render->GetRenderParameters();
+    finalFrame.Quality = opal::RenderQuality::Final;
+    if (this->Headlight)
+    {
+      std::copy(eye, eye + 3, finalFrame.LightPosition.begin());
+    }
+    // Once per key: a frame that failed (said in an error) is not retried until something changes.
+    this->StartedKey = key;
+    this->Render->StartBackgroundFrame(finalFrame);
+  }
+  return preview;
+}
+
+vtkImageData* vtkOpalSpectralImageActor::UpdatedOutput()
+{
   if (!this->Render->GetExecutive()->Update())
   {
-    return false;
+    return nullptr;
   }
   vtkImageData* image = this->Render->GetOutput();
-  return image->GetNumberOfPoints() > 0 && image->GetPointData()->GetArray("RGB") &&
+  const bool drawable = image->GetNumberOfPoints() > 0 && image->GetPointData()->GetArray("RGB") &&
     vtkFloatArray::SafeDownCast(image->GetPointData()->GetArray("Depth"));
+  return drawable ? image : nullptr;
+}
+
+vtkMTimeType vtkOpalSpectralImageActor::GetReadyFinalFrame()
+{
+  const bool ready = this->Render && this->GetVisibility() && this->StartedKey == this->Render->GetMTime() &&
+    this->Render->GetBackgroundFrameState() == 2;
+  return ready ? this->StartedKey : 0;
+}
+
+void vtkOpalSpectralImageActor::CancelFinalFrame()
+{
+  if (this->Render)
+  {
+    this->Render->CancelBackgroundFrame();
+  }
+  this->StartedKey = 0; // started again at the next still render
 }
 
 void vtkOpalSpectralImageActor::UploadFrame(vtkOpenGLRenderWindow* window, vtkImageData* image)
@@ -212,6 +299,7 @@ void vtkOpalSpectralImageActor::UploadFrame(vtkOpenGLRenderWindow* window, vtkIm
   this->DepthTexture->SetMinificationFilter(vtkTextureObject::Nearest);
   this->DepthTexture->SetMagnificationFilter(vtkTextureObject::Nearest);
   this->FrameAspect = static_cast<double>(dims[0]) / dims[1];
+  this->UploadedImage = image;
   this->UploadedTime = image->GetMTime();
 }
 
@@ -268,6 +356,7 @@ void vtkOpalSpectralImageActor::ReleaseGraphicsResources(vtkWindow* window)
   // Nothing left to release against a context that may be gone by the destructor.
   this->ColourTexture->SetContext(nullptr);
   this->DepthTexture->SetContext(nullptr);
+  this->UploadedImage = nullptr;
   this->UploadedTime = 0;
   this->Superclass::ReleaseGraphicsResources(window);
 }
@@ -277,5 +366,6 @@ void vtkOpalSpectralImageActor::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Headlight: " << this->Headlight << "\n";
   os << indent << "StillQuality: " << this->StillQuality << "\n";
+  os << indent << "DeferFinalFrames: " << this->DeferFinalFrames << "\n";
   os << indent << "LastQuality: " << this->LastQuality << "\n";
 }

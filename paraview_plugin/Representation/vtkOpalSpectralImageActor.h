@@ -10,13 +10,18 @@
  * renders interactively (its desired update rate above 1 frame per second:
  * ParaView's InteractiveRender, used during a drag, sets 5) the frame is a preview
  * (Quality preview, a quarter of the pixels); a still render uses
- * StillQuality. With Headlight on the light sits at the eye, the paper's
- * set-up (previews keep the last still frame's light, so a drag needs no
- * light pass); off, the render filter's LightPosition is used. The camera's view
- * angle is taken as it is; a parallel projection is rendered in perspective.
+ * StillQuality. With DeferFinalFrames on (the GUI's still renders), a final
+ * still frame is not waited for: the render draws the preview and the final
+ * frame is rendered on a worker thread, drawn by a later render once it has
+ * finished (GetReadyFinalFrame says when; docs/design.md §5.2). With
+ * Headlight on the light sits at the eye, the paper's set-up (previews keep
+ * the last still frame's light, so a drag needs no light pass); off, the
+ * render filter's LightPosition is used. The camera's view angle is taken as
+ * it is; a parallel projection is rendered in perspective.
  */
 #pragma once
 
+#include "vtkImageData.h" // for vtkNew<vtkImageData>
 #include "vtkNew.h"
 #include "vtkOpalRepresentationModule.h" // for export macro
 #include "vtkProp.h"
@@ -25,7 +30,6 @@
 #include <memory>
 
 class vtkCamera;
-class vtkImageData;
 class vtkOpalSpectralRender;
 class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
@@ -54,6 +58,20 @@ public:
   vtkGetMacro(StillQuality, int);
   ///@}
 
+  ///@{
+  /// Still final frames on a worker thread, drawn by a later render (the
+  /// preview meanwhile); off (default): a still render waits for its frame.
+  vtkSetMacro(DeferFinalFrames, bool);
+  vtkGetMacro(DeferFinalFrames, bool);
+  ///@}
+
+  /// A final frame finished on the worker and not yet drawn: its id (> 0),
+  /// the same until it is drawn or dropped; 0 if none. The view should render.
+  vtkMTimeType GetReadyFinalFrame();
+
+  /// Stops a final frame rendering on the worker (the stone is hidden or leaves the view).
+  void CancelFinalFrame();
+
   /// The stone's bounds, for the camera's reset and clipping range.
   void SetStoneBounds(const double bounds[6]);
   double* GetBounds() override;
@@ -73,8 +91,14 @@ private:
   vtkOpalSpectralImageActor(const vtkOpalSpectralImageActor&) = delete;
   void operator=(const vtkOpalSpectralImageActor&) = delete;
 
-  // Points the render filter at the camera and size; false if no image came.
-  bool UpdateFrame(vtkRenderer* renderer, bool interactive);
+  // Points the render filter at the camera and size; the image to draw, or null.
+  vtkImageData* UpdateFrame(vtkRenderer* renderer, bool interactive);
+  // The camera and the image size into the render filter; false if there is nothing to draw.
+  bool AimRender(vtkRenderer* renderer);
+  // A still final frame not waited for: the preview now, the final one once finished.
+  vtkImageData* DeferredFrame(const double eye[3]);
+  // The render filter's output brought up to date; null if it has no image.
+  vtkImageData* UpdatedOutput();
   // The image and each pixel's distance along its ray, as textures.
   void UploadFrame(vtkOpenGLRenderWindow* window, vtkImageData* image);
   // The quad, its depth from the camera's current projection.
@@ -88,7 +112,14 @@ private:
   vtkNew<vtkTextureObject> ColourTexture;
   vtkNew<vtkTextureObject> DepthTexture;
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
-  vtkMTimeType UploadedTime = 0; // the render output's MTime the textures hold
+  bool DeferFinalFrames = false;
+  vtkNew<vtkImageData> FinalFrame; // the last final frame taken from the worker
+  // Ids of deferred final frames: the render filter's MTime with the preview's
+  // settings (the same until the camera, the size, a setting or the volume changes).
+  vtkMTimeType StartedKey = 0; // of the frame last started on the worker
+  vtkMTimeType FinalKey = 0;   // of the frame FinalFrame holds
+  vtkImageData* UploadedImage = nullptr; // the image the textures hold (identity only)
+  vtkMTimeType UploadedTime = 0;         // and its MTime then
   bool WarnedParallel = false;
   double TanHalfViewAngle = 0; // of the frame's vertical view angle
   double FrameAspect = 1;      // width / height of the frame's image

@@ -14,6 +14,49 @@
 
 vtkStandardNewMacro(vtkOpalSpectralRepresentation);
 
+namespace
+{
+// Process-wide: set by the GUI's plugin part in the GUI only (docs/design.md §5.2).
+bool finalFramesInBackground = false;
+
+// Whether the view renders for a screenshot. ParaView 5.11 keeps the getter
+// protected; its address taken through a subclass is usable on any view.
+struct ScreenshotFlag : vtkPVView
+{
+  static bool Of(vtkPVView* view) { return (view->*(&ScreenshotFlag::GetInCaptureScreenshot))(); }
+};
+} // namespace
+
+void vtkOpalSpectralRepresentation::SetFinalFramesInBackground(bool background)
+{
+  finalFramesInBackground = background;
+}
+
+bool vtkOpalSpectralRepresentation::GetFinalFramesInBackground()
+{
+  return finalFramesInBackground;
+}
+
+vtkMTimeType vtkOpalSpectralRepresentation::GetReadyFinalFrame()
+{
+  return this->Actor->GetReadyFinalFrame();
+}
+
+int vtkOpalSpectralRepresentation::GetLastFrameQuality()
+{
+  return this->Actor->GetLastQuality();
+}
+
+int vtkOpalSpectralRepresentation::GetNumberOfCompletedFinalFrames()
+{
+  return this->Render->GetNumberOfCompletedBackgroundFrames();
+}
+
+int vtkOpalSpectralRepresentation::GetNumberOfAbandonedFinalFrames()
+{
+  return this->Render->GetNumberOfAbandonedBackgroundFrames();
+}
+
 vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
 {
   this->Actor->SetRender(this->Render);
@@ -93,6 +136,12 @@ int vtkOpalSpectralRepresentation::ProcessViewRequest(
     vtkPVRenderView::SetGeometryBounds(inInfo, this, this->Bounds);
     vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
   }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    // A screenshot (a tiled one too) waits for its final frame.
+    auto* view = vtkPVView::SafeDownCast(this->GetView());
+    this->Actor->SetDeferFinalFrames(finalFramesInBackground && view && !ScreenshotFlag::Of(view));
+  }
   return 1;
 }
 
@@ -116,6 +165,7 @@ bool vtkOpalSpectralRepresentation::RemoveFromView(vtkView* view)
   }
   // The textures go with the window they were made in, which may close first.
   this->Actor->ReleaseGraphicsResources(renderView->GetRenderWindow());
+  this->Actor->CancelFinalFrame();
   renderView->GetRenderer()->RemoveActor(this->Actor);
   return this->Superclass::RemoveFromView(view);
 }
@@ -124,6 +174,10 @@ void vtkOpalSpectralRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
   this->Actor->SetVisibility(visible ? 1 : 0);
+  if (!visible)
+  {
+    this->Actor->CancelFinalFrame();
+  }
 }
 
 void vtkOpalSpectralRepresentation::SetHeadlight(int headlight)

@@ -10,7 +10,11 @@
  * drawn with its depth by a vtkOpalSpectralImageActor, so rotating, panning or
  * zooming changes the play of colour and the domains, slices and axes mix
  * with the stone. While the view is dragged the frames are previews; the
- * still frame that follows has Quality. Each rank renders the whole
+ * still frame that follows has Quality. With FinalFramesInBackground on (the
+ * GUI's plugin part sets it), a still render does not wait for a final frame:
+ * it draws the preview, the final frame renders on a worker thread, and the
+ * GUI renders the view again when GetReadyFinalFrame says it has finished;
+ * screenshots always wait. Each rank renders the whole
  * volume: the representation asks its input for the whole extent.
  *
  * The optics are the render filter's settings, with its defaults
@@ -66,6 +70,28 @@ public:
   void SetExposure(double value);
   void SetWavelengthStep(double value);
   void SetModelRotation(double x, double y, double z);
+  ///@}
+
+  ///@{
+  /// Still final frames rendered on a worker thread, not waited for, in every
+  /// representation of this process (docs/design.md §5.2). Off by default
+  /// (pvpython, pvbatch, pvserver: a render or a screenshot has its final
+  /// frame); the GUI's plugin part turns it on, and renders a view again
+  /// when one of its representations has a final frame ready.
+  static void SetFinalFramesInBackground(bool background);
+  static bool GetFinalFramesInBackground();
+  ///@}
+
+  /// A final frame finished in the background and not yet drawn: its id (> 0,
+  /// the same until drawn or dropped), or 0. The view should render again.
+  vtkMTimeType GetReadyFinalFrame();
+
+  ///@{
+  /// For tests: the quality of the frame last drawn (0 final, 1 preview, -1
+  /// none), and the background final frames completed and abandoned.
+  int GetLastFrameQuality();
+  int GetNumberOfCompletedFinalFrames();
+  int GetNumberOfAbandonedFinalFrames();
   ///@}
 
   /// The filter that renders each frame (for tests and scripts).
