@@ -53,10 +53,14 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   const OpalRenderOptions& options, std::string& deviceName)
 {
   ProgressBar volumeBar("volume");
-  const std::optional<opal::BuiltVolume> volume = opal::buildVolume(model, [&volumeBar](double fraction) {
-    volumeBar.show(fraction);
-    return true;
-  });
+  // Only the arrays the render reads (VolumeArrays::Render): no description.
+  const std::optional<opal::BuiltVolume> volume = opal::buildVolume(
+    model,
+    [&volumeBar](double fraction) {
+      volumeBar.show(fraction);
+      return true;
+    },
+    opal::VolumeArrays::Render);
   if (!volume)
   {
     throw std::runtime_error("the volume could not be built");
@@ -182,7 +186,7 @@ int main(int argc, char** argv)
   parameters.WriteSpectrum = outputs.SpectralChannels || !outputs.ImageData.empty();
   // Bad parameters cost one line and exit status 2, before any work.
   for (const std::string& error :
-    { opal::validate(model.parameters()), opal::volumeMemoryError(model.parameters()), opal::validate(parameters) })
+    { opal::validate(model.parameters()), opal::volumeMemoryError(model.parameters(), opal::VolumeArrays::Render), opal::validate(parameters) })
   {
     if (!error.empty())
     {

@@ -4,7 +4,8 @@
 // camera; a new light, rotation or refractive index reruns the light pass; an
 // aborted light pass leaves no stale field behind; abort is an explicit status;
 // the volume uploaded through staging buffers (the path of a GPU with
-// dedicated memory, forced on lavapipe) renders the same image.
+// dedicated memory, forced on lavapipe) renders the same image; so does a
+// build of only the render's arrays (opal-render's, VolumeArrays::Render).
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
@@ -83,6 +84,14 @@ int TestOpalRenderSession(int, char*[])
     opaltest::SceneRenderer fresh(opal::VulkanOptions{});
     const opal::RenderImage c = fresh.render(volume->renderVolume(), moved);
     OPAL_CHECK(identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
+    // opal-render's build keeps only what the render reads: the same image.
+    const auto renderOnly = opal::buildVolume(model, nullptr, opal::VolumeArrays::Render);
+    OPAL_CHECK(renderOnly->VoxelType.empty() && renderOnly->LatticeOrientation.empty() &&
+        renderOnly->ScatteringCoefficient == volume->ScatteringCoefficient && renderOnly->DomainId == volume->DomainId &&
+        renderOnly->SurfaceDistance == volume->SurfaceDistance,
+      "a render-only build keeps the render's fields, equal to the whole build's, and no description");
+    OPAL_CHECK(identical(b.Image, fresh.render(renderOnly->renderVolume(), moved)),
+      "a render-only build renders exactly the whole build's image");
   }
 
   // What the light field depends on reruns it.

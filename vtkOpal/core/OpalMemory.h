@@ -16,5 +16,8 @@ std::string formatBytes(std::uint64_t bytes);
 
 // Bytes per voxel of the volume's point arrays (docs/design.md §2.5 fields).
 constexpr std::uint64_t VolumeBytesPerVoxel = 1 + 4 + 12 + 4 + 4 + 4 + 4 + 4 + 16; // LatticeOrientation last
+// What a build for the render keeps (VolumeArrays::Render): DomainId,
+// ScatteringCoefficient, SurfaceDistance.
+constexpr std::uint64_t RenderVolumeBytesPerVoxel = 4 + 4 + 4;
 
 } // namespace opal

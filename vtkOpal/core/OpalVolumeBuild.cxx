@@ -21,25 +21,29 @@ T* dataOrNull(std::vector<T>& values)
 
 VolumeFields fieldsOf(BuiltVolume& volume)
 {
-  return { volume.VoxelType.data(), volume.ParticleDiameter.data(), volume.Normal.data(), volume.DomainId.data(),
-    volume.BraggLambdaMax.data(), volume.BraggLambdaMin.data(), volume.ScatteringCoefficient.data(),
-    volume.SurfaceDistance.data(), dataOrNull(volume.CellId), dataOrNull(volume.AbsorptionCoefficient),
-    dataOrNull(volume.AbsorptionExponent), volume.LatticeOrientation.data() };
+  return { dataOrNull(volume.VoxelType), dataOrNull(volume.ParticleDiameter), dataOrNull(volume.Normal),
+    volume.DomainId.data(), dataOrNull(volume.BraggLambdaMax), dataOrNull(volume.BraggLambdaMin),
+    volume.ScatteringCoefficient.data(), volume.SurfaceDistance.data(), dataOrNull(volume.CellId),
+    dataOrNull(volume.AbsorptionCoefficient), dataOrNull(volume.AbsorptionExponent),
+    dataOrNull(volume.LatticeOrientation) };
 }
 
-void allocate(BuiltVolume& volume, bool absorbs)
+void allocate(BuiltVolume& volume, bool absorbs, VolumeArrays arrays)
 {
   const auto voxels = static_cast<std::size_t>(volume.VoxelGrid.voxelCount());
-  volume.VoxelType.resize(voxels);
-  volume.ParticleDiameter.resize(voxels);
-  volume.Normal.resize(3 * voxels);
-  volume.LatticeOrientation.resize(4 * voxels);
+  if (arrays == VolumeArrays::All)
+  {
+    volume.VoxelType.resize(voxels);
+    volume.ParticleDiameter.resize(voxels);
+    volume.Normal.resize(3 * voxels);
+    volume.LatticeOrientation.resize(4 * voxels);
+    volume.BraggLambdaMax.resize(voxels);
+    volume.BraggLambdaMin.resize(voxels);
+  }
   volume.DomainId.resize(voxels);
-  volume.BraggLambdaMax.resize(voxels);
-  volume.BraggLambdaMin.resize(voxels);
   volume.ScatteringCoefficient.resize(voxels);
   volume.SurfaceDistance.resize(voxels);
-  if (volume.Layout.hasCells())
+  if (volume.Layout.hasCells() && arrays == VolumeArrays::All)
   {
     volume.CellId.resize(voxels);
   }
@@ -71,7 +75,7 @@ RenderVolume BuiltVolume::renderVolume() const
   return volume;
 }
 
-std::string volumeMemoryError(const ModelParameters& parameters)
+std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays arrays)
 {
   const std::uint64_t voxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
     static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
@@ -79,7 +83,8 @@ std::string volumeMemoryError(const ModelParameters& parameters)
   // lists the ordered ones (16 bytes each, at most all).
   const std::uint64_t layoutBytes = parameters.DomainLayout == DomainLayoutKind::Voronoi ? 4 + 4 + 16 : 0;
   const std::uint64_t absorptionBytes = parameters.absorbs() ? 4 + 4 : 0;
-  const std::uint64_t needed = voxels * (VolumeBytesPerVoxel + layoutBytes + absorptionBytes);
+  const std::uint64_t arrayBytes = arrays == VolumeArrays::All ? VolumeBytesPerVoxel : RenderVolumeBytesPerVoxel;
+  const std::uint64_t needed = voxels * (arrayBytes + layoutBytes + absorptionBytes);
   const std::uint64_t available = physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {
@@ -90,7 +95,8 @@ std::string volumeMemoryError(const ModelParameters& parameters)
     " for the volume's arrays, more than this machine's " + formatBytes(available) + " of memory.";
 }
 
-std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const std::function<bool(double)>& progress)
+std::optional<BuiltVolume> buildVolume(
+  const ModelParameters& parameters, const std::function<bool(double)>& progress, VolumeArrays arrays)
 {
   auto report = [&progress](double fraction) { return !progress || progress(fraction); };
   BuiltVolume volume;
@@ -102,7 +108,7 @@ std::optional<BuiltVolume> buildVolume(const ModelParameters& parameters, const 
   {
     return std::nullopt;
   }
-  allocate(volume, parameters.absorbs());
+  allocate(volume, parameters.absorbs(), arrays);
   const VolumeFiller filler(parameters, volume.Layout);
   const std::array<int, 3>& dims = volume.VoxelGrid.Dimensions;
   const std::array<int, 6> extent{ 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };

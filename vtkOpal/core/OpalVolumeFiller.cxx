@@ -92,7 +92,7 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
       this->fillScatteringVoxel(o, { i, j, k }, distance, out);
       this->fillAbsorption(o, j, out);
     }
-    else
+    else if (out.VoxelType)
     {
       out.VoxelType[o] = EmptyVoxel;
     }
@@ -101,13 +101,16 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
 
 void VolumeFiller::clearVoxel(std::int64_t o, const VolumeFields& out)
 {
-  float* normal = out.Normal + 3 * o;
-  normal[0] = normal[1] = normal[2] = 0.0f;
   out.DomainId[o] = -1;
-  out.BraggLambdaMax[o] = 0.0f;
-  out.BraggLambdaMin[o] = 0.0f;
   out.ScatteringCoefficient[o] = 0.0f;
-  out.ParticleDiameter[o] = 0.0f;
+  if (out.VoxelType)
+  {
+    float* normal = out.Normal + 3 * o;
+    normal[0] = normal[1] = normal[2] = 0.0f;
+    out.BraggLambdaMax[o] = 0.0f;
+    out.BraggLambdaMin[o] = 0.0f;
+    out.ParticleDiameter[o] = 0.0f;
+  }
   if (out.LatticeOrientation)
   {
     std::fill_n(out.LatticeOrientation + 4 * o, 4, 0.0f);
@@ -138,17 +141,20 @@ void VolumeFiller::fillAbsorption(std::int64_t o, int j, const VolumeFields& out
 // DomainScatteringCoefficient beyond it (docs/design.md §2.10).
 void VolumeFiller::fillDiffractionVoxel(std::int64_t o, const Domain& domain, const VolumeFields& out) const
 {
-  const double mu = this->Parameters.RefractiveIndex;
-  const double lambdaMax = braggLambdaMax(domain.ParticleDiameter, mu);
-  out.VoxelType[o] = DiffractionVoxel;
   out.DomainId[o] = domain.Id;
-  out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
-  out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
-  out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
   out.ScatteringCoefficient[o] = static_cast<float>(this->Parameters.DomainScatteringCoefficient);
-  for (std::size_t a = 0; a < 3; ++a)
+  if (out.VoxelType)
   {
-    out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(domain.Normal[a]);
+    const double mu = this->Parameters.RefractiveIndex;
+    const double lambdaMax = braggLambdaMax(domain.ParticleDiameter, mu);
+    out.VoxelType[o] = DiffractionVoxel;
+    out.ParticleDiameter[o] = static_cast<float>(domain.ParticleDiameter);
+    out.BraggLambdaMax[o] = static_cast<float>(lambdaMax);
+    out.BraggLambdaMin[o] = static_cast<float>(braggLambdaMin(lambdaMax, mu));
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      out.Normal[3 * o + static_cast<std::int64_t>(a)] = static_cast<float>(domain.Normal[a]);
+    }
   }
   if (out.LatticeOrientation)
   {
@@ -161,9 +167,13 @@ void VolumeFiller::fillScatteringVoxel(
   std::int64_t o, const std::array<int, 3>& ijk, double distance, const VolumeFields& out) const
 {
   const double diameter = this->Diameters.at(ijk[0], ijk[1], ijk[2]);
+  out.ScatteringCoefficient[o] = static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
+  if (!out.VoxelType)
+  {
+    return;
+  }
   out.VoxelType[o] = ScatteringVoxel;
   out.ParticleDiameter[o] = static_cast<float>(diameter);
-  out.ScatteringCoefficient[o] = static_cast<float>(this->RayleighPerCubicNm * diameter * diameter * diameter);
   // Only voxels within one spacing of the surface can have an empty
   // neighbour; the margin keeps float rounding of reused distances moot.
   if (distance >= -1.5 * this->MaxSpacing && this->isSurfaceVoxel(ijk[0], ijk[1], ijk[2]))

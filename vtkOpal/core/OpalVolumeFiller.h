@@ -23,10 +23,12 @@ enum VoxelType : std::uint8_t
   DiffractionVoxel = 2,
 };
 
-// Destination arrays, each laid out over the extent with x fastest.
+// Destination arrays, each laid out over the extent with x fastest. The
+// description (VoxelType, ParticleDiameter, Normal, BraggLambdaMax/Min) is
+// written only where VoxelType is given: a render reads none of it.
 struct VolumeFields
 {
-  std::uint8_t* VoxelType;
+  std::uint8_t* VoxelType;      // null: no description written
   float* ParticleDiameter;      // nm
   float* Normal;                // 3 components
   std::int32_t* DomainId;
