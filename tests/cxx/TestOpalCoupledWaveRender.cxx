@@ -17,6 +17,7 @@
 #include <functional>
 #include <iostream>
 #include <string>
+#include <utility>
 
 namespace
 {
@@ -99,25 +100,42 @@ std::vector<double> spectrumAt(const opal::RenderImage& image, int x, int y)
     image.Spectrum.begin() + static_cast<long>((i + 1) * bins));
 }
 
+// The centre pixel's radiance per unit R from a flat domain at the lobe's
+// peak, light at the eye lightDistance mm from the crossing (28 mm from the
+// slab's top, where the irradiance is 1): (1 - F)^2 (28 / distance)^2 peak.
+double lobePeakFactor(double lightDistance)
+{
+  const double fresnel = std::pow((Mu - 1) / (Mu + 1), 2);
+  const double concentration = 1.0 / std::pow(opal::CoupledWaveDefaultSpread * opal::Pi / 180.0, 2);
+  const double peak = concentration / (2.0 * opal::Pi * (1.0 - std::exp(-2.0 * concentration)));
+  return (1 - fresnel) * (1 - fresnel) * std::pow(28.0 / lightDistance, 2) * peak;
+}
+
+// The centre pixel's spectra of two slab scenes, differing as `vary` sets them.
+std::pair<std::vector<double>, std::vector<double>> centreSpectra(SceneRenderer& renderer,
+  const opal::RenderParameters& p, const std::function<void(SlabScene&, bool)>& vary, const std::string& what)
+{
+  std::vector<double> spectra[2];
+  for (bool first : { true, false })
+  {
+    SlabScene scene;
+    scene.WithDomain = true;
+    scene.PlaneSpacing = Spacing111;
+    vary(scene, first);
+    spectra[first ? 0 : 1] = spectrumAt(renderChecked(renderer, scene, p, what), Centre, Centre);
+  }
+  return { spectra[0], spectra[1] };
+}
+
 // A flat domain, light at the eye: the centre pixel sees the lobe's peak, so
 // its spectrum less the slab's without the domain (the highlight) is
 // (1 - F) g peak R(lambda), g = (1 - F)(28/29)^2 (irradiance 1 at the top).
 void checkReflectance(SceneRenderer& renderer)
 {
   const opal::RenderParameters p = coupledView();
-  std::vector<double> spectrum, highlight;
-  for (bool withDomain : { true, false })
-  {
-    SlabScene scene;
-    scene.WithDomain = withDomain;
-    scene.PlaneSpacing = Spacing111;
-    const opal::RenderImage image = renderChecked(renderer, scene, p, "coupled-wave flat domain");
-    (withDomain ? spectrum : highlight) = spectrumAt(image, Centre, Centre);
-  }
-  const double fresnel = std::pow((Mu - 1) / (Mu + 1), 2);
-  const double concentration = 1.0 / std::pow(opal::CoupledWaveDefaultSpread * opal::Pi / 180.0, 2);
-  const double peak = concentration / (2.0 * opal::Pi * (1.0 - std::exp(-2.0 * concentration)));
-  const double factor = (1 - fresnel) * (1 - fresnel) * std::pow(28.0 / 29.0, 2) * peak;
+  auto [spectrum, highlight] = centreSpectra(
+    renderer, p, [](SlabScene& scene, bool withDomain) { scene.WithDomain = withDomain; }, "coupled-wave flat domain");
+  const double factor = lobePeakFactor(29.0);
   double worst = 0.0;
   std::size_t brightest = 0;
   for (std::size_t l = 0; l < spectrum.size(); ++l)
@@ -146,21 +164,14 @@ void checkReflectance(SceneRenderer& renderer)
 void checkStackedDomains(SceneRenderer& renderer)
 {
   const opal::RenderParameters p = coupledView();
-  std::vector<double> both, upper;
-  for (bool lower : { true, false })
-  {
-    SlabScene scene;
-    scene.WithDomain = true;
-    scene.PlaneSpacing = Spacing111;
-    if (lower) scene.MoreDomainCentres.push_back({ 0.0, 0.5, 0.0 });
-    const opal::RenderImage image = renderChecked(renderer, scene, p, "stacked domains");
-    (lower ? both : upper) = spectrumAt(image, Centre, Centre);
-  }
-  const double fresnel = std::pow((Mu - 1) / (Mu + 1), 2);
-  const double concentration = 1.0 / std::pow(opal::CoupledWaveDefaultSpread * opal::Pi / 180.0, 2);
-  const double peak = concentration / (2.0 * opal::Pi * (1.0 - std::exp(-2.0 * concentration)));
-  // The lower domain's crossing, at y = 0.45 - 0.55, lies 29.5 mm from the light (28 from the apex).
-  const double factor = (1 - fresnel) * (1 - fresnel) * std::pow(28.0 / 29.5, 2) * peak;
+  const auto [both, upper] = centreSpectra(
+    renderer, p,
+    [](SlabScene& scene, bool lower) {
+      if (lower) scene.MoreDomainCentres.push_back({ 0.0, 0.5, 0.0 });
+    },
+    "stacked domains");
+  // The lower domain's crossing, at y = 0.45 - 0.55, lies 29.5 mm from the light.
+  const double factor = lobePeakFactor(29.5);
   double worst = 0.0;
   for (std::size_t l = 0; l < both.size(); ++l)
   {
