@@ -13,7 +13,10 @@ from paraview.simple import (CreateView, GetActiveViewOrCreate, Hide, LoadPlugin
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
-verdict_path = os.environ["OPAL_GUI_VERDICT"]
+from opal_gui_verdict import end_with_verdict
+
+output = os.path.dirname(os.environ["OPAL_GUI_VERDICT"])  # screenshots beside the verdict
+
 lines = []
 
 
@@ -50,7 +53,7 @@ try:
     view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 60, 40], [0, 60, 0], [0, 1, 0]
     view.OrientationAxesVisibility = 0
     Render(view)
-    shot = os.path.join(os.path.dirname(verdict_path), "gui-handles.png")
+    shot = os.path.join(output, "gui-handles.png")
     SaveScreenshot(shot, view, ImageResolution=[400, 300])
     light, eye = pixels_of(shot, [255, 204, 51]), pixels_of(shot, [77, 204, 255])
     lines.append(f"screenshot: {light} light-coloured, {eye} eye-coloured pixels")
@@ -63,6 +66,4 @@ try:
 except Exception as error:  # the verdict must be written whatever happens
     lines.append(f"error: {error!r}")
     passed = False
-with open(verdict_path, "w") as out:
-    out.write("\n".join(lines + ["passed" if passed else "FAILED"]) + "\n")
-os._exit(0)  # end the client: the GUI would wait for its user
+end_with_verdict(lines, passed)

@@ -10,7 +10,10 @@ from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Rende
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
-verdict_path = os.environ["OPAL_GUI_VERDICT"]
+from opal_gui_verdict import end_with_verdict
+
+output = os.path.dirname(os.environ["OPAL_GUI_VERDICT"])  # screenshots beside the verdict
+
 lines = []
 
 
@@ -31,10 +34,10 @@ try:
     Render(view)
     view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 40, 0], [0, 2, 0], [0, 0, -1]
     Render(view)
-    before = screenshot(view, os.path.join(os.path.dirname(verdict_path), "gui-live-before.png"))
+    before = screenshot(view, os.path.join(output, "gui-live-before.png"))
     view.GetActiveCamera().Azimuth(10)
     Render(view)
-    after = screenshot(view, os.path.join(os.path.dirname(verdict_path), "gui-live-after.png"))
+    after = screenshot(view, os.path.join(output, "gui-live-after.png"))
     background = before[0]  # a corner: the view's background
     stone_share = numpy.mean(numpy.any(numpy.abs(before - background) > 12, axis=1))
     changed = numpy.mean(numpy.any(numpy.abs(before - after) > 8, axis=1))
@@ -47,6 +50,4 @@ try:
 except Exception as error:  # the verdict must be written whatever happens
     lines.append(f"error: {error!r}")
     passed = False
-with open(verdict_path, "w") as out:
-    out.write("\n".join(lines + ["passed" if passed else "FAILED"]) + "\n")
-os._exit(0)  # end the client: the GUI would wait for its user
+end_with_verdict(lines, passed)

@@ -38,8 +38,10 @@ def run_gui_script(script, plugin, paraview, output_directory):
         os.remove(verdict)
     os.environ["OPAL_GUI_VERDICT"] = verdict
     os.environ["OPAL_PLUGIN"] = plugin
+    gui = os.path.join(here, "..", "gui")  # the scripts' shared module, opal_gui_verdict
+    os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [gui, os.environ.get("PYTHONPATH")]))
     run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 1280x1024x24",
-         paraview, "--script=" + os.path.join(here, "..", "gui", script)], timeout=280)
+         paraview, "--script=" + os.path.join(gui, script)], timeout=280)
     return open(verdict).read() if os.path.exists(verdict) else "no verdict written"
 
 
