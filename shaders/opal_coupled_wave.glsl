@@ -10,6 +10,12 @@ const float CW_TANH_SATURATES = 20.0;
 // Rays closer than this to the planes (sin theta2) reflect nothing.
 const float CW_GRAZING_SIN = 1e-6;
 
+// A = sin(sL)/s outside the band, y = sL (s^2 = delta^2 - kappa^2 > 0).
+float sideLobeAmplitude(float s, float y, float thickness)
+{
+  return y < CW_SERIES_BELOW ? thickness * (1.0 - y * y / 6.0) : sin(y) / s;
+}
+
 // R of a grating of coupling kappa, detuning delta (1/nm) and thickness L (nm):
 // kappa^2 A^2 / (1 + b^2 A^2) with A = tanh(sL)/s, b = delta inside the band
 // (s^2 = kappa^2 - delta^2 >= 0) and A = sin(sL)/s, b = kappa outside.
@@ -25,11 +31,22 @@ float coupledModeReflectance(float kappa, float delta, float thickness)
   }
   else
   {
-    a = y < CW_SERIES_BELOW ? thickness * (1.0 - y * y / 6.0) : sin(y) / s;
+    a = sideLobeAmplitude(s, y, thickness);
   }
   float b = q2 >= 0.0 ? delta : kappa;
   float ka2 = kappa * kappa * a * a;
   return ka2 / (1.0 + b * b * a * a);
+}
+
+// coupledModeReflectance where delta^2 > kappa^2 is known (outside the band):
+// the same value from its sin form alone, without the tanh form that SIMD
+// lanes would evaluate too.
+float sideLobeReflectance(float kappa, float delta, float thickness)
+{
+  float s = sqrt(abs(kappa * kappa - delta * delta));
+  float a = sideLobeAmplitude(s, s * thickness, thickness);
+  float ka2 = kappa * kappa * a * a;
+  return ka2 / (1.0 + kappa * kappa * a * a);
 }
 
 // 3 j1(x) / x, the sphere's form factor (1 at x = 0).
@@ -53,12 +70,18 @@ struct CoupledWaveFamily
   float thickness;       // L = N d, nm
 };
 
+// lambda_B = 2 (d/k) n_bar sin theta2 of period d/k (nm) at glancing sine sin theta2.
+float braggWavelengthAt(float period, float sinGlancing)
+{
+  return 2.0 * period * P.meanIndex * sinGlancing;
+}
+
 // Family of period d/k (nm), |eps_kG| and thickness L (nm) seen at glancing sine sin theta2.
 CoupledWaveFamily coupledWaveFamily(float sinGlancing, float period, float fourier, float thickness)
 {
   // Rays within 1e-6 of grazing, and crossings of no thickness, reflect nothing.
   bool reflects = sinGlancing > CW_GRAZING_SIN && thickness > 0.0;
-  return CoupledWaveFamily(2.0 * period * P.meanIndex * sinGlancing,
+  return CoupledWaveFamily(braggWavelengthAt(period, sinGlancing),
     reflects ? OPAL_PI * fourier / (P.meanIndex * sinGlancing) : 0.0,
     abs(2.0 * sinGlancing * sinGlancing - 1.0), OPAL_PI / period, thickness);
 }
@@ -84,12 +107,25 @@ float sideLobeAverage(float kappa, float delta)
   return 1.0 - sqrt(max(1.0 - (kappa * kappa) / (delta * delta), 0.0));
 }
 
+// Where a wing bin spans four side-lobe periods (pi / L each in delta) or
+// more, it takes their phase average, else its centre value.
+bool spansSideLobes(CoupledWaveFamily f, float centre, float width)
+{
+  float shortEdge = coupledWaveDetuning(f, centre - 0.5 * width), longEdge = coupledWaveDetuning(f, centre + 0.5 * width);
+  return (shortEdge - longEdge) * f.thickness >= 4.0 * OPAL_PI;
+}
+
+float sideLobePhaseAverage(CoupledWaveFamily f, float centre)
+{
+  float delta = coupledWaveDetuning(f, centre), kappaS = f.couplingLength / centre;
+  return 0.5 * (sideLobeAverage(kappaS, delta) + sideLobeAverage(kappaS * f.polarisationP, delta));
+}
+
 // R averaged over a wavelength bin (docs/design.md §7.2). Where the bin comes
 // within CW_BAND_KAPPAS couplings of the band: at CW_BIN_SAMPLES points (the
 // stop band, about 1.5% of lambda for silica in water, is narrower than a
 // 10 nm bin, so one sample could miss it). In the wings: the side lobes'
-// phase average where the bin spans four of their periods or more (pi / L
-// each in delta), else the value at the centre.
+// phase average or the centre value (spansSideLobes).
 const int CW_BIN_SAMPLES = 4;
 const float CW_BAND_KAPPAS = 4.0;
 float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
@@ -98,12 +134,7 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
   float shortEdge = coupledWaveDetuning(f, centre - 0.5 * width), longEdge = coupledWaveDetuning(f, centre + 0.5 * width);
   if (longEdge > reach || shortEdge < -reach)
   {
-    if ((shortEdge - longEdge) * f.thickness < 4.0 * OPAL_PI)
-    {
-      return coupledWaveReflectance(f, centre);
-    }
-    float delta = coupledWaveDetuning(f, centre), kappaS = f.couplingLength / centre;
-    return 0.5 * (sideLobeAverage(kappaS, delta) + sideLobeAverage(kappaS * f.polarisationP, delta));
+    return spansSideLobes(f, centre, width) ? sideLobePhaseAverage(f, centre) : coupledWaveReflectance(f, centre);
   }
   float sum = 0.0;
   for (int i = 0; i < CW_BIN_SAMPLES; ++i)
@@ -111,6 +142,28 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
     sum += coupledWaveReflectance(f, centre + width * ((float(i) + 0.5) / float(CW_BIN_SAMPLES) - 0.5));
   }
   return sum / float(CW_BIN_SAMPLES);
+}
+
+// coupledWaveBinAverage of a bin beyond the band's reach whose centre lies
+// above lambda_B / 4 (so |delta| > kappa there for both polarisations):
+// the same value without the band's forms (coupledWaveBand says which bins).
+float coupledWaveWingAverage(CoupledWaveFamily f, float centre, float width)
+{
+  if (spansSideLobes(f, centre, width)) return sideLobePhaseAverage(f, centre);
+  float delta = coupledWaveDetuning(f, centre), kappaS = f.couplingLength / centre;
+  return 0.5 * (sideLobeReflectance(kappaS, delta, f.thickness) +
+    sideLobeReflectance(kappaS * f.polarisationP, delta, f.thickness));
+}
+
+// The wavelengths [lo, hi] that a bin must overlap to need
+// coupledWaveBinAverage's band forms: where |delta| = pi k/d |lambda_B/lambda - 1|
+// <= CW_BAND_KAPPAS kappa(lambda_B); from 0 if a bin's centre may lie below
+// lambda_B / 4 (there kappa(lambda) may exceed |delta| beyond that reach).
+vec2 coupledWaveBand(CoupledWaveFamily f, float shortest)
+{
+  float reach = CW_BAND_KAPPAS * f.couplingLength / (f.braggWavelength * f.detuningScale); // relative to pi k/d
+  float lo = 0.26 * f.braggWavelength > shortest ? 0.0 : f.braggWavelength / (1.0 + reach);
+  return vec2(lo, reach < 0.5 ? f.braggWavelength / (1.0 - reach) : 1e6);
 }
 
 // Bins further than this many couplings kappa_s from lambda_B are skipped:

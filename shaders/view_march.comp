@@ -171,19 +171,64 @@ ivec2 binsWithin(vec2 window)
   return ivec2(first, last);
 }
 
-// The reflected light of one family and order into the pixel: R(lambda) E
-// lobe, attenuated like the paper's diffraction and by the crossings in front.
+// The centre of bin l: the bins are one step wide, each beside the next
+// (§3.6), so no per-lane load of the table where lanes loop over other bins.
+float binCentre(int l)
+{
+  return bins[0].lambda + float(l) * bins[0].width;
+}
+
+// The bins of family f's window (x, y) and those among them that may need
+// coupledWaveBinAverage's band forms (z, w: those overlapping the band's
+// wavelengths widened by 1e-4 lambda_B, far beyond float rounding); the rest
+// take coupledWaveWingAverage, the same value without the band's forms,
+// which every SIMD lane would otherwise evaluate (docs/design.md §7.2).
+ivec4 coupledWaveBins(CoupledWaveFamily f)
+{
+  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  ivec2 band = binsWithin(coupledWaveBand(f, shortest) + vec2(-1e-4, 1e-4) * f.braggWavelength);
+  ivec2 window = binsWithin(coupledWaveWindow(f));
+  return ivec4(window, max(band.x, window.x), min(band.y, window.y));
+}
+
+// R of family f in bin l, a wing bin of coupledWaveBins; bandBin: any bin.
+float wingBin(CoupledWaveFamily f, int l)
+{
+  return coupledWaveWingAverage(f, binCentre(l), bins[0].width);
+}
+
+float bandBin(CoupledWaveFamily f, int l)
+{
+  return coupledWaveBinAverage(f, binCentre(l), bins[0].width);
+}
+
+// Bin l's share R of the reflected light into the pixel: R(lambda) E lobe,
+// attenuated like the paper's diffraction and by the crossings in front.
+float reflectBin(int l, float r, float weight, float tauLight, vec3 tauView, vec2 tauAbsorption)
+{
+  float s = bins[l].rayleighScale;
+  float value = weight * r * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * lightKept(l) *
+    transmittedToEye(l);
+  radiance[l] += value;
+  return value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+}
+
+// The reflected light of one family and order into the pixel; the brightest
+// family's lambda_B is the pixel's dominant wavelength.
 void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 tauView, vec2 tauAbsorption)
 {
-  ivec2 range = binsWithin(coupledWaveWindow(family));
+  ivec4 range = coupledWaveBins(family);
   float contributionY = 0.0;
   for (int l = range.x; l <= range.y; ++l)
   {
-    float s = bins[l].rayleighScale;
-    float value = weight * coupledWaveBinAverage(family, bins[l].lambda, bins[l].width) *
-      exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) * lightKept(l) * transmittedToEye(l);
-    radiance[l] += value;
-    contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+    if (l < range.z || l > range.w)
+    {
+      contributionY += reflectBin(l, wingBin(family, l), weight, tauLight, tauView, tauAbsorption);
+    }
+  }
+  for (int l = range.z; l <= range.w; ++l)
+  {
+    contributionY += reflectBin(l, bandBin(family, l), weight, tauLight, tauView, tauAbsorption);
   }
   if (contributionY > dominantY)
   {
@@ -195,10 +240,14 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
 // What passes the domain keeps 1 - R of the family and order.
 void transmitFamily(CoupledWaveFamily family)
 {
-  ivec2 range = binsWithin(coupledWaveWindow(family));
+  ivec4 range = coupledWaveBins(family);
   for (int l = range.x; l <= range.y; ++l)
   {
-    passed[l] *= 1.0 - coupledWaveBinAverage(family, bins[l].lambda, bins[l].width);
+    if (l < range.z || l > range.w) passed[l] *= 1.0 - wingBin(family, l);
+  }
+  for (int l = range.z; l <= range.w; ++l)
+  {
+    passed[l] *= 1.0 - bandBin(family, l);
   }
 }
 
