@@ -132,11 +132,19 @@ LightSample lightAt(vec3 p)
 float dominantLambda;
 float dominantY;
 
-// What the light keeps in bin l after the Bragg shadow passLight computed
-// into `passed`: 1 without ENERGY_CONSERVATION.
+// What the light passes of the last Bragg shadow evaluated for this pixel
+// (passShadow), and that shadow's domain: a ray leaves and re-enters one
+// domain's shadow, and each evaluation costs a crossing's families.
+float shadowPassed[WAVELENGTHS];
+int shadowPassedDomain;
+// The crossing being reflected is lit through a Bragg shadow (passLight).
+bool lightShadowed;
+
+// What the light keeps in bin l after the Bragg shadow passLight found: 1
+// out of shadows and without ENERGY_CONSERVATION.
 float lightKept(int l)
 {
-  return ENERGY_CONSERVATION ? passed[l] : 1.0;
+  return ENERGY_CONSERVATION && lightShadowed ? shadowPassed[l] : 1.0;
 }
 
 // Family f of the domain at order k, its unit normal in the model frame
@@ -287,17 +295,24 @@ void passThroughDomain(DomainRecord lattice, vec3 ray, float lengthMm)
   }
 }
 
-// The light reaching a point in the Bragg shadow of another domain keeps what
-// that domain passes along its path (into `passed`; 1 out of shadows).
+// What the light passes of a Bragg shadow's domain along its path, into
+// shadowPassed: evaluated the first time the pixel meets that domain's shadow
+// (its direction and length then; the light turns < 1 degree over a
+// millimetre of the ray at the paper's 60 mm) and kept while no other is.
+void passShadow(LightShadow shadow, vec3 towardLight)
+{
+  if (shadow.domain == shadowPassedDomain) return;
+  passThroughDomain(domains[shadow.domain], towardLight, shadow.lengthMm);
+  for (int l = 0; l < WAVELENGTHS; ++l) shadowPassed[l] = passed[l];
+  shadowPassedDomain = shadow.domain;
+}
+
+// The light reaching a crossing in the Bragg shadow of another domain keeps
+// what that domain passes (lightKept).
 void passLight(LightShadow shadow, vec3 towardLight)
 {
-  if (!ENERGY_CONSERVATION) return;
-  if (shadow.domain >= 0)
-  {
-    passThroughDomain(domains[shadow.domain], towardLight, shadow.lengthMm);
-    return;
-  }
-  for (int l = 0; l < WAVELENGTHS; ++l) passed[l] = 1.0;
+  lightShadowed = ENERGY_CONSERVATION && shadow.domain >= 0;
+  if (lightShadowed) passShadow(shadow, towardLight);
 }
 
 // The view ray's light from behind a crossing keeps what the domain passes.
@@ -390,20 +405,28 @@ float nodeStep()
   return (bins[0].rayleighScale - bins[WAVELENGTHS - 1].rayleighScale) / float(SPECTRAL_NODES - 1);
 }
 
-// The scattering at s from the nodes: cubic Lagrange interpolation of log G
-// through the four nearest nodes (G is a sum of decaying exponentials in s,
-// nearly linear in log), times s. 0 where nothing scattered.
-float scatterAt(float nodes[SPECTRAL_NODES], float s)
+// The nodes' sums G turned into log G in place, once per resampling rather
+// than four logs per bin; false (nodes unchanged) where nothing scattered.
+bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
 {
   if (!(nodes[0] > 0.0))
   {
-    return 0.0;
+    return false;
   }
+  for (int k = 0; k < SPECTRAL_NODES; ++k) nodes[k] = log(nodes[k]);
+  return true;
+}
+
+// The scattering at s from log G on the nodes (nodesToLogs): cubic Lagrange
+// interpolation of log G through the four nearest nodes (G is a sum of
+// decaying exponentials in s, nearly linear in log), times s.
+float scatterAt(float logNodes[SPECTRAL_NODES], float s)
+{
   float x = (s - nodeFirst()) / nodeStep();
   int i = clamp(int(floor(x)) - 1, 0, SPECTRAL_NODES - 4);
   float u = x - float(i);
-  float g0 = log(nodes[i]), g1 = log(nodes[i + 1]);
-  float g2 = log(nodes[i + 2]), g3 = log(nodes[i + 3]);
+  float g0 = logNodes[i], g1 = logNodes[i + 1];
+  float g2 = logNodes[i + 2], g3 = logNodes[i + 3];
   float logG = g0 * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g1 * u * (u - 2.0) * (u - 3.0) / 2.0 +
     g2 * u * (u - 1.0) * (u - 3.0) / -2.0 + g3 * u * (u - 1.0) * (u - 2.0) / 6.0;
   return s * exp(logG);
@@ -570,12 +593,14 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 void flushScattering(inout WalkState state)
 {
   bool shadowed = state.shadow.domain >= 0;
-  if (shadowed) passThroughDomain(domains[state.shadow.domain], normalize(P.light - state.shadowAt), state.shadow.lengthMm);
+  if (shadowed) passShadow(state.shadow, normalize(P.light - state.shadowAt));
+  bool open = !EXACT_SCATTERING && nodesToLogs(scatterNodes);
+  bool behind = shadowed && !EXACT_SCATTERING && nodesToLogs(shadowNodes);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
     float s = bins[l].rayleighScale;
-    float inShadow = !shadowed ? 0.0 : passed[l] * (EXACT_SCATTERING ? shadowRadiance[l] : viewTransmittance[l] * scatterAt(shadowNodes, s));
-    radiance[l] += (EXACT_SCATTERING ? 0.0 : viewTransmittance[l] * scatterAt(scatterNodes, s)) + inShadow;
+    float lit = (open ? scatterAt(scatterNodes, s) : 0.0) + (behind ? shadowPassed[l] * scatterAt(shadowNodes, s) : 0.0);
+    radiance[l] += viewTransmittance[l] * lit + (shadowed && EXACT_SCATTERING ? shadowPassed[l] * shadowRadiance[l] : 0.0);
     shadowRadiance[l] = 0.0;
   }
   for (int k = 0; k < SPECTRAL_NODES; ++k)
@@ -615,9 +640,10 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
 void writePixel(int pixelIndex, float transmitted, float tHit)
 {
   vec3 xyz = vec3(0.0);
+  bool scattered = !EXACT_SCATTERING && nodesToLogs(scatterNodes);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    float gathered = radiance[l] + (EXACT_SCATTERING ? 0.0 : scatterAt(scatterNodes, bins[l].rayleighScale));
+    float gathered = radiance[l] + (scattered ? scatterAt(scatterNodes, bins[l].rayleighScale) : 0.0);
     float value = transmitted * gathered * bins[l].illuminant;
     xyz += value * bins[l].colourMatching * bins[l].width;
     if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
@@ -666,6 +692,8 @@ void main()
   {
     for (int k = 0; k < SPECTRAL_NODES; ++k) shadowNodes[k] = 0.0;
     for (int l = 0; l < WAVELENGTHS; ++l) shadowRadiance[l] = 0.0;
+    shadowPassedDomain = -1;
+    lightShadowed = false;
   }
   if (ABSORPTION && !EXACT_SCATTERING)
   {
