@@ -168,12 +168,18 @@ vec3 familyNormal(DomainRecord lattice, int f)
   return f == 0 ? lattice.latticeNormal : rotateByQuaternion(lattice.orientation, normalize(FCC_MILLER[f]));
 }
 
+// The short edge of the first bin: no order's lambda_B below it reaches a bin.
+float shortestWavelength()
+{
+  return bins[0].lambda - 0.5 * bins[0].width;
+}
+
 // The first and last bin overlapping the wavelengths [window.x, window.y]
 // (the bins are one step wide, each beside the next: §3.6), so a narrow
 // window loops over its few bins only.
 ivec2 binsWithin(vec2 window)
 {
-  float start = bins[0].lambda - 0.5 * bins[0].width, step = bins[0].width;
+  float start = shortestWavelength(), step = bins[0].width;
   int first = max(int(ceil((window.x - start) / step)) - 1, 0);
   int last = min(int(floor((window.y - start) / step)), WAVELENGTHS - 1);
   return ivec2(first, last);
@@ -193,7 +199,7 @@ float binCentre(int l)
 // which every SIMD lane would otherwise evaluate (docs/design.md §7.2).
 ivec4 coupledWaveBins(CoupledWaveFamily f)
 {
-  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  float shortest = shortestWavelength();
   ivec2 band = binsWithin(coupledWaveBand(f, shortest) + vec2(-1e-4, 1e-4) * f.braggWavelength);
   ivec2 window = binsWithin(coupledWaveWindow(f));
   return ivec4(window, max(band.x, window.x), min(band.y, window.y));
@@ -210,8 +216,9 @@ float bandBin(CoupledWaveFamily f, int l)
   return coupledWaveBinAverage(f, binCentre(l), bins[0].width);
 }
 
-// Bin l's share R of the reflected light into the pixel: R(lambda) E lobe,
-// attenuated like the paper's diffraction and by the crossings in front.
+// Bin l's share r of the reflected light into the pixel (the coupled-wave R,
+// or the paper's band B), times `weight` (lobe or gain), attenuated on the
+// light's path and the view's and by the crossings in front; returns its luminance.
 float reflectBin(int l, float r, float weight, float tauLight, vec3 tauView, vec2 tauAbsorption)
 {
   float s = bins[l].rayleighScale;
@@ -279,7 +286,7 @@ void passThroughDomain(DomainRecord lattice, vec3 ray, float lengthMm)
     }
     return;
   }
-  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  float shortest = shortestWavelength();
   for (int f = 0; f < P.latticeFamilies; ++f)
   {
     vec3 normal = familyNormal(lattice, f);
@@ -346,11 +353,7 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
       float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
       if (band > 0.0)
       {
-        float s = bins[l].rayleighScale;
-        float value = weight * band * exp(-(tauLight + tauView.x) * s) * absorbedAt(s, tauAbsorption) *
-          lightKept(l) * transmittedToEye(l);
-        radiance[l] += value;
-        contributionY += value * bins[l].illuminant * bins[l].colourMatching.y * bins[l].width;
+        contributionY += reflectBin(l, band, weight, tauLight, tauView, tauAbsorption);
       }
     }
     if (contributionY > dominantY)
@@ -373,7 +376,7 @@ void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauVi
   passLight(shadow, towardLight);
   LightSample light = lightAt(at);
   vec2 tauAbsorption = light.tau.yz + tauView.yz;
-  float shortest = bins[0].lambda - 0.5 * bins[0].width;
+  float shortest = shortestWavelength();
   for (int f = 0; f < P.latticeFamilies; ++f)
   {
     vec3 normal = familyNormal(lattice, f);
