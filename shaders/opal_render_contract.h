@@ -57,7 +57,12 @@ OPAL_CONSTANT int LightAbsorptionBinding = 17;  // LightFieldPair per voxel: abs
 // Energy conservation on the light path (docs/design.md §7.2), written by the
 // light pass and read by the march specialised on it; else a placeholder.
 OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
-OPAL_CONSTANT int BindingCount = 19;
+// Per domain, what it passes of the light per bin and the light path's
+// length from which that holds (a row of wavelengthCount + 1 floats, see
+// ShadowTableGroupSize), written each frame by the Bragg shadow table pass
+// and read by the march, both specialised on energy conservation; else a placeholder.
+OPAL_CONSTANT int ShadowTableBinding = 19;      // float per domain and bin, and one more per domain
+OPAL_CONSTANT int BindingCount = 20;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -149,14 +154,26 @@ struct LightShadow
 };
 
 // One diffraction domain: the (111) lattice-plane normal (y >= 0), the
-// plane spacing d (nm, eq. 3) and the lattice orientation, crystal frame ->
-// model frame, as a unit quaternion stored (x, y, z, w) (docs/design.md §7.2).
+// plane spacing d (nm, eq. 3), the lattice orientation, crystal frame ->
+// model frame, as a unit quaternion stored (x, y, z, w) (docs/design.md §7.2),
+// and the mean of its voxels' centres (where the Bragg shadow table takes the
+// direction to the light).
 struct OPAL_ALIGNED DomainRecord
 {
   OPAL_ALIGNED vec3 latticeNormal;
   float planeSpacing;
   OPAL_ALIGNED vec4 orientation;
+  OPAL_ALIGNED vec3 centre;
+  float unused; // std430 padding after the vec3
 };
+
+// The Bragg shadow table (docs/design.md §7.2): domain i's row starts at
+// i (wavelengthCount + 1); its floats [0, wavelengthCount) are what the
+// domain passes of the light per bin, for a path long enough to cross
+// CoherentLayers layers of every family that reflects in the bins, and float
+// wavelengthCount is that path's least length in mm (0 in the paper's model,
+// where length does not matter). One invocation per domain, in groups of:
+OPAL_CONSTANT int ShadowTableGroupSize = 64;
 
 // The view march's result per pixel: CIE XYZ and the distance from the eye to
 // the surface (0 where the ray misses).
@@ -228,7 +245,7 @@ struct ColourRange
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 32 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
 } // namespace opal::gpu
 #endif

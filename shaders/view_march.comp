@@ -30,12 +30,14 @@ layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
 #include "opal_camera.glsl"
 #include "opal_coupled_wave.glsl"
 #include "opal_voxel_walk.glsl"
+#include "opal_bragg_transmission.glsl"
 
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
+layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { float shadowTable[]; };
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
 // Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
@@ -62,9 +64,6 @@ float viewTransmittance[WAVELENGTHS];
 // EXACT_SCATTERING; flushed through that domain's 1 - R for the light.
 float shadowNodes[SPECTRAL_NODES];
 float shadowRadiance[WAVELENGTHS];
-// What one domain passes per bin, the product of its 1 - R(lambda)
-// (passThroughDomain): the light's Bragg shadow, or the view ray's crossing.
-float passed[WAVELENGTHS];
 
 // The view transmittance of bin l: 1 without ENERGY_CONSERVATION.
 float transmittedToEye(int l)
@@ -147,75 +146,6 @@ float lightKept(int l)
   return ENERGY_CONSERVATION && lightShadowed ? shadowPassed[l] : 1.0;
 }
 
-// Family f of the domain at order k, its unit normal in the model frame
-// `normal`, for a ray of unit direction `ray`: its period, coupling and
-// coherent thickness, the crystal being thicknessMm thick along the normal
-// (docs/design.md §7.2).
-CoupledWaveFamily coupledFamily(DomainRecord lattice, vec3 normal, int f, int k, vec3 ray, float thicknessMm)
-{
-  float squaredMiller = dot(FCC_MILLER[f], FCC_MILLER[f]);
-  float spacing = lattice.planeSpacing * sqrt(3.0 / squaredMiller); // d_hkl = a / sqrt(h^2 + k^2 + l^2)
-  // x = pi D / d_hkl, D = d_111 sqrt(3/2).
-  float x = OPAL_PI * sqrt(1.5) * lattice.planeSpacing / spacing;
-  float layers = min(thicknessMm * 1e6 / spacing, P.coherentLayers);
-  return coupledWaveFamily(abs(dot(ray, normal)), spacing / float(k),
-    abs(P.permittivityContrast * sphereFormFactor(float(k) * x)), layers * spacing);
-}
-
-// The unit normal of family f in the model frame.
-vec3 familyNormal(DomainRecord lattice, int f)
-{
-  return f == 0 ? lattice.latticeNormal : rotateByQuaternion(lattice.orientation, normalize(FCC_MILLER[f]));
-}
-
-// The short edge of the first bin: no order's lambda_B below it reaches a bin.
-float shortestWavelength()
-{
-  return bins[0].lambda - 0.5 * bins[0].width;
-}
-
-// The first and last bin overlapping the wavelengths [window.x, window.y]
-// (the bins are one step wide, each beside the next: §3.6), so a narrow
-// window loops over its few bins only.
-ivec2 binsWithin(vec2 window)
-{
-  float start = shortestWavelength(), step = bins[0].width;
-  int first = max(int(ceil((window.x - start) / step)) - 1, 0);
-  int last = min(int(floor((window.y - start) / step)), WAVELENGTHS - 1);
-  return ivec2(first, last);
-}
-
-// The centre of bin l: the bins are one step wide, each beside the next
-// (§3.6), so no per-lane load of the table where lanes loop over other bins.
-float binCentre(int l)
-{
-  return bins[0].lambda + float(l) * bins[0].width;
-}
-
-// The bins of family f's window (x, y) and those among them that may need
-// coupledWaveBinAverage's band forms (z, w: those overlapping the band's
-// wavelengths widened by 1e-4 lambda_B, far beyond float rounding); the rest
-// take coupledWaveWingAverage, the same value without the band's forms,
-// which every SIMD lane would otherwise evaluate (docs/design.md §7.2).
-ivec4 coupledWaveBins(CoupledWaveFamily f)
-{
-  float shortest = shortestWavelength();
-  ivec2 band = binsWithin(coupledWaveBand(f, shortest) + vec2(-1e-4, 1e-4) * f.braggWavelength);
-  ivec2 window = binsWithin(coupledWaveWindow(f));
-  return ivec4(window, max(band.x, window.x), min(band.y, window.y));
-}
-
-// R of family f in bin l, a wing bin of coupledWaveBins; bandBin: any bin.
-float wingBin(CoupledWaveFamily f, int l)
-{
-  return coupledWaveWingAverage(f, binCentre(l), bins[0].width);
-}
-
-float bandBin(CoupledWaveFamily f, int l)
-{
-  return coupledWaveBinAverage(f, binCentre(l), bins[0].width);
-}
-
 // Bin l's share r of the reflected light into the pixel (the coupled-wave R,
 // or the paper's band B), times `weight` (lobe or gain), attenuated on the
 // light's path and the view's and by the crossings in front; returns its luminance.
@@ -252,74 +182,35 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
   }
 }
 
-// What passes the domain keeps 1 - R of the family and order.
-void transmitFamily(CoupledWaveFamily family)
-{
-  ivec4 range = coupledWaveBins(family);
-  for (int l = range.x; l <= range.y; ++l)
-  {
-    if (l < range.z || l > range.w) passed[l] *= 1.0 - wingBin(family, l);
-  }
-  for (int l = range.z; l <= range.w; ++l)
-  {
-    passed[l] *= 1.0 - bandBin(family, l);
-  }
-}
-
-// What a ray of unit direction `ray` keeps per bin after lengthMm of it in a
-// domain (docs/design.md §7.2), into `passed`: 1 - R of every family and
-// order in the coupled-wave model; 1 - B of each order's box band in the
-// paper's (R = B: the band reflects all the light within it).
-void passThroughDomain(DomainRecord lattice, vec3 ray, float lengthMm)
-{
-  for (int l = 0; l < WAVELENGTHS; ++l) passed[l] = 1.0;
-  if (!COUPLED_WAVE)
-  {
-    float sinGlancing = abs(dot(ray, lattice.latticeNormal));
-    for (int k = 1; k <= P.braggOrders; ++k)
-    {
-      float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
-      for (int l = 0; l < WAVELENGTHS; ++l)
-      {
-        passed[l] *= 1.0 - braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
-      }
-    }
-    return;
-  }
-  float shortest = shortestWavelength();
-  for (int f = 0; f < P.latticeFamilies; ++f)
-  {
-    vec3 normal = familyNormal(lattice, f);
-    // The crystal's thickness along the normal: the ray's path in the domain
-    // projected on it (a slab's thickness for planes parallel to it).
-    float thicknessMm = lengthMm * abs(dot(ray, normal));
-    for (int k = 1; k <= 64; ++k)
-    {
-      CoupledWaveFamily family = coupledFamily(lattice, normal, f, k, ray, thicknessMm);
-      if (family.braggWavelength < shortest) break;
-      transmitFamily(family);
-    }
-  }
-}
-
-// What the light passes of a Bragg shadow's domain along its path, into
-// shadowPassed: evaluated the first time the pixel meets that domain's shadow
-// (its direction and length then; the light turns < 1 degree over a
-// millimetre of the ray at the paper's 60 mm) and kept while no other is.
-void passShadow(LightShadow shadow, vec3 towardLight)
+// What the light passes of a Bragg shadow's domain, into shadowPassed, for
+// the direction from the domain's centre to the light (the light's direction
+// within the cone it sees a domain in, as the Bragg shadow table takes it):
+// the domain's row of that table where the light's path there is long enough
+// (ShadowTableGroupSize), else evaluated for its length. Evaluated the first
+// time the pixel meets that domain's shadow and kept while no other is.
+void passShadow(LightShadow shadow)
 {
   if (shadow.domain == shadowPassedDomain) return;
-  passThroughDomain(domains[shadow.domain], towardLight, shadow.lengthMm);
-  for (int l = 0; l < WAVELENGTHS; ++l) shadowPassed[l] = passed[l];
+  int row = shadow.domain * (WAVELENGTHS + 1);
+  if (shadow.lengthMm >= shadowTable[row + WAVELENGTHS])
+  {
+    for (int l = 0; l < WAVELENGTHS; ++l) shadowPassed[l] = shadowTable[row + l];
+  }
+  else
+  {
+    DomainRecord lattice = domains[shadow.domain];
+    passThroughDomain(lattice, normalize(P.light - lattice.centre), shadow.lengthMm);
+    for (int l = 0; l < WAVELENGTHS; ++l) shadowPassed[l] = passed[l];
+  }
   shadowPassedDomain = shadow.domain;
 }
 
 // The light reaching a crossing in the Bragg shadow of another domain keeps
 // what that domain passes (lightKept).
-void passLight(LightShadow shadow, vec3 towardLight)
+void passLight(LightShadow shadow)
 {
   lightShadowed = ENERGY_CONSERVATION && shadow.domain >= 0;
-  if (lightShadowed) passShadow(shadow, towardLight);
+  if (lightShadowed) passShadow(shadow);
 }
 
 // The view ray's light from behind a crossing keeps what the domain passes.
@@ -337,7 +228,7 @@ void dimBehind(DomainRecord lattice, vec3 towardEye, float lengthMm)
 void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, LightShadow shadow)
 {
   vec3 towardLight = normalize(P.light - at);
-  passLight(shadow, towardLight);
+  passLight(shadow);
   float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
   LightSample light = lightAt(at);
   float tauLight = light.tau.x;
@@ -373,7 +264,7 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
 void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm, LightShadow shadow)
 {
   vec3 towardLight = normalize(P.light - at);
-  passLight(shadow, towardLight);
+  passLight(shadow);
   LightSample light = lightAt(at);
   vec2 tauAbsorption = light.tau.yz + tauView.yz;
   float shortest = shortestWavelength();
@@ -511,7 +402,6 @@ struct WalkState
   int lastDomain;  // the domain being crossed, counted once
   bool done;       // the ray has left the opal
   LightShadow shadow; // the round's Bragg shadow (ENERGY_CONSERVATION; domain -1: none yet)
-  vec3 shadowAt;      // where the ray first met it
 };
 
 const LightShadow NO_SHADOW = LightShadow(-1, 0.0, 0.0);
@@ -552,11 +442,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       LightShadow shadow = shadowOfVoxel(v, domain);
       bool otherShadow = shadow.domain >= 0 && state.shadow.domain >= 0 && shadow.domain != state.shadow.domain;
       if (ENERGY_CONSERVATION && count == 0 && otherShadow) break;
-      if (shadow.domain >= 0 && state.shadow.domain < 0)
-      {
-        state.shadow = shadow;
-        state.shadowAt = origin + (state.t + 0.5 * segment) * inward;
-      }
+      if (shadow.domain >= 0 && state.shadow.domain < 0) state.shadow = shadow;
       if (domain >= 0 && domain != state.lastDomain)
       {
         // The paper's domains neither scatter nor absorb; beyond it they may
@@ -596,7 +482,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 void flushScattering(inout WalkState state)
 {
   bool shadowed = state.shadow.domain >= 0;
-  if (shadowed) passShadow(state.shadow, normalize(P.light - state.shadowAt));
+  if (shadowed) passShadow(state.shadow);
   bool open = !EXACT_SCATTERING && nodesToLogs(scatterNodes);
   bool behind = shadowed && !EXACT_SCATTERING && nodesToLogs(shadowNodes);
   for (int l = 0; l < WAVELENGTHS; ++l)
@@ -618,7 +504,7 @@ void flushScattering(inout WalkState state)
 // at tExit, gathering scattering and each domain once per crossing.
 void marchInside(vec3 origin, vec3 inward, float tExit)
 {
-  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW, vec3(0.0));
+  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
   for (int round = 0; round < 4096 && !state.done; ++round)
   {
     int count = walkRecording(state, origin, inward, tExit);

@@ -231,16 +231,20 @@ void checkEnergy(SceneRenderer& renderer, opal::RenderParameters p,
 }
 
 // The coupled-wave model at 50 layers (side lobes sampled at the bins'
-// centres) and 200 (their phase average); the paper's model with
-// EnergyConservation, whose R is the box band at lambda_B = 2 d mu.
+// centres) and 200 (their phase average), where the domain's 0.1 mm holds
+// more layers than CoherentLayers (the light's Bragg shadow read from the
+// table); CoherentLayers 1000 on that 0.1 mm of 500 layers (200 nm each):
+// N = 500 on both paths, from the paths' lengths (the shadow evaluated for
+// its length); the paper's model with EnergyConservation, whose R is the box
+// band at lambda_B = 2 d mu.
 void checkEnergies(SceneRenderer& renderer)
 {
-  for (int layers : { Layers, 200 })
+  for (const auto& [coherent, layers] : { std::pair{ Layers, Layers }, std::pair{ 200, 200 }, std::pair{ 1000, 500 } })
   {
     opal::RenderParameters p = coupledView();
-    p.CoherentLayers = layers;
-    checkEnergy(renderer, p, [layers](double c, double w, double sine) { return binReflectance(c, w, layers, sine); },
-      "coupled-wave, " + std::to_string(layers) + " layers");
+    p.CoherentLayers = coherent;
+    checkEnergy(renderer, p, [layers = layers](double c, double w, double sine) { return binReflectance(c, w, layers, sine); },
+      "coupled-wave, CoherentLayers " + std::to_string(coherent) + ", " + std::to_string(layers) + " layers");
   }
   opal::RenderParameters p = coupledView();
   p.BraggModel = opal::BraggModelKind::Paper;

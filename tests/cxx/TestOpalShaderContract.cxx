@@ -79,6 +79,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
     OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
     OPAL_FIELD("domains[0].", DomainRecord, orientation),
+    OPAL_FIELD("domains[0].", DomainRecord, centre),
+    OPAL_FIELD("domains[0].", DomainRecord, unused),
     OPAL_FIELD("pixelColour[0].", PixelColour, xyz),
     OPAL_FIELD("pixelColour[0].", PixelColour, depth),
     OPAL_FIELD("pixelMirror[0].", PixelMirror, nearLight),
@@ -184,7 +186,8 @@ int TestOpalShaderContract(int argc, char* argv[])
   }
   std::set<std::string> seen;
   for (const char* shader :
-    { "light_optical_depth.comp", "view_march.comp", "specular_highlight.comp", "spectrum_to_colour.comp" })
+    { "light_optical_depth.comp", "view_march.comp", "specular_highlight.comp", "spectrum_to_colour.comp",
+      "bragg_shadow_table.comp" })
   {
     const std::set<std::string> names = checkShader(shader, reflect(argv[1], argv[2], shader));
     seen.insert(names.begin(), names.end());

@@ -37,6 +37,39 @@ float RenderVolume::colouredAbsorptionExponent() const
   return 0.0f;
 }
 
+std::vector<std::array<double, 3>> RenderVolume::domainCentres() const
+{
+  std::vector<std::array<double, 3>> sums(this->Domains.size(), std::array<double, 3>{});
+  std::vector<std::size_t> counts(this->Domains.size(), 0);
+  const std::array<int, 3>& n = this->Dimensions;
+  for (std::size_t i = 0; i < this->voxelCount(); ++i)
+  {
+    const std::int32_t domain = this->DomainId[i];
+    if (domain < 0)
+    {
+      continue;
+    }
+    const std::array<std::size_t, 3> index{ i % static_cast<std::size_t>(n[0]),
+      i / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]),
+      i / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])) };
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      sums[static_cast<std::size_t>(domain)][a] += static_cast<double>(index[a]);
+    }
+    ++counts[static_cast<std::size_t>(domain)];
+  }
+  std::vector<std::array<double, 3>> centres(this->Domains.size());
+  for (std::size_t d = 0; d < centres.size(); ++d)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      const double index = counts[d] > 0 ? sums[d][a] / static_cast<double>(counts[d]) : 0.5 * (n[a] - 1);
+      centres[d][a] = this->Origin[a] + index * this->Spacing[a];
+    }
+  }
+  return centres;
+}
+
 RenderDomain renderDomain(
   const std::array<double, 3>& normal, double particleDiameter, const std::array<double, 4>& orientation)
 {

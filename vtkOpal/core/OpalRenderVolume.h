@@ -48,6 +48,10 @@ struct RenderVolume
   // colour), or 0 if all are grey. The render carries two absorption depths,
   // this exponent's and the grey one (docs/design.md §3.9).
   float colouredAbsorptionExponent() const;
+  // Per domain, the mean of its voxels' centres in mm (the grid's centre for
+  // a domain no voxel holds): where the light's Bragg shadow table takes the
+  // direction to the light (docs/design.md §7.2).
+  std::vector<std::array<double, 3>> domainCentres() const;
 };
 
 // A domain with this lattice normal and sphere diameter (nm), taken as the

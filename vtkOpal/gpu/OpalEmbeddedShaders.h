@@ -18,5 +18,6 @@ Spirv lightOpticalDepthShader();
 Spirv viewMarchShader();
 Spirv specularHighlightShader();
 Spirv spectrumToColourShader();
+Spirv braggShadowTableShader();
 
 } // namespace opal::embedded

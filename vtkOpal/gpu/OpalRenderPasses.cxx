@@ -119,6 +119,39 @@ void RenderSession::prepareShadowField()
   this->bindBuffers();
 }
 
+// The Bragg shadow table (docs/design.md §7.2): what each domain passes of
+// the light, read by the march that conserves energy. Every frame: it follows
+// the light, the bins and the model, and costs a dispatch of one invocation
+// per domain.
+void RenderSession::runShadowTable(const FrameSetup& setup)
+{
+  const int domains = setup.Block.domainCount;
+  if (!conservesEnergy(setup.Parameters) || domains == 0)
+  {
+    return;
+  }
+  const ComputePipeline& pass = this->shadowTablePass(
+    setup.Block.wavelengthCount, setup.Parameters.BraggModel == BraggModelKind::CoupledWave);
+  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  this->Context->submitAndWait([&](VkCommandBuffer commands) {
+    pass.dispatch(commands, unused, static_cast<std::uint32_t>((domains + gpu::ShadowTableGroupSize - 1) / gpu::ShadowTableGroupSize));
+  });
+}
+
+// The Bragg shadow table's pass for a wavelength count and Bragg model (made on first use).
+ComputePipeline& RenderSession::shadowTablePass(int wavelengths, bool coupledWave)
+{
+  std::unique_ptr<ComputePipeline>& pass = this->ShadowTablePasses[{ wavelengths, coupledWave ? 1 : 0 }];
+  if (!pass)
+  {
+    const embedded::Spirv code = embedded::braggShadowTableShader();
+    // constant_id 0: WAVELENGTHS, 1: COUPLED_WAVE.
+    pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
+      std::vector<std::int32_t>{ wavelengths, coupledWave ? 1 : 0 });
+  }
+  return *pass;
+}
+
 // The march for a wavelength count: the scattering spectrum on nodes, or at
 // every wavelength where nodes are off or would not be fewer than the bins;
 // with ABSORPTION if the volume absorbs; with the Bragg model of `bragg`.

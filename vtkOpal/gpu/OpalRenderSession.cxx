@@ -60,8 +60,6 @@ void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
   }
 }
 
-// A buffer in device-local memory, holding `values` if given: what only the
-// device reads and writes.
 // The coupled-wave model's settings (docs/design.md §7.2): the crystal's mean
 // index and permittivity contrast, the layers and the plane families.
 void setCoupledWave(gpu::RenderParameterBlock& block, const RenderParameters& p, const RenderVolume& volume)
@@ -76,6 +74,23 @@ void setCoupledWave(gpu::RenderParameterBlock& block, const RenderParameters& p,
   block.latticeFamilies = p.LatticePlanes == LatticePlaneSet::Fcc ? FccPlaneCount : 1;
 }
 
+// The domain table as the shaders read it (DomainTableBinding).
+std::vector<gpu::DomainRecord> domainRecords(const RenderVolume& volume)
+{
+  const std::vector<std::array<double, 3>> centres = volume.domainCentres();
+  std::vector<gpu::DomainRecord> records;
+  for (std::size_t i = 0; i < volume.Domains.size(); ++i)
+  {
+    const RenderDomain& domain = volume.Domains[i];
+    const auto& q = domain.Orientation; // (w, x, y, z) -> the contract's (x, y, z, w)
+    records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
+      domain.PlaneSpacing, gpu::vec4(q[1], q[2], q[3], q[0]), toVec3(centres[i]), 0.0f });
+  }
+  return records;
+}
+
+// A buffer in device-local memory, holding `values` if given: what only the
+// device reads and writes.
 std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
   VulkanContext& context, std::uint64_t bytes, const char* what, const void* values = nullptr)
 {
@@ -188,13 +203,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
-  std::vector<gpu::DomainRecord> records;
-  for (const RenderDomain& domain : volume.Domains)
-  {
-    const auto& q = domain.Orientation; // (w, x, y, z) -> the contract's (x, y, z, w)
-    records.push_back({ gpu::vec3(domain.LatticeNormal[0], domain.LatticeNormal[1], domain.LatticeNormal[2]),
-      domain.PlaneSpacing, gpu::vec4(q[1], q[2], q[3], q[0]) });
-  }
+  const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
   uploaded->Geometry = VolumeGeometry(volume);
@@ -233,6 +242,7 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
   {
     return frame;
   }
+  this->runShadowTable(setup);
   timings.LightPass = secondsSince(lightStart);
 
   const auto marchStart = Clock::now();
@@ -393,6 +403,16 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.PixelCapacity = n;
     rebind = true;
   }
+  const std::size_t shadowTableFloats = conservesEnergy(setup.Parameters)
+    ? static_cast<std::size_t>(setup.Block.domainCount) * (setup.Bins.size() + 1) : std::size_t{ 1 };
+  if (!b.ShadowTable || shadowTableFloats > b.ShadowTableFloats)
+  {
+    b.ShadowTable.reset();
+    b.ShadowTable = std::make_unique<VulkanBuffer>(context, std::max<std::size_t>(shadowTableFloats, 1) * sizeof(float),
+      "Bragg shadow table", BufferPlacement::DeviceLocal);
+    b.ShadowTableFloats = shadowTableFloats;
+    rebind = true;
+  }
   if (!b.PixelSpectrum || spectrumFloats > b.SpectrumFloats)
   {
     b.PixelSpectrum.reset();
@@ -443,7 +463,7 @@ void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins
 void RenderSession::bindBuffers()
 {
   const FrameBuffers& b = *this->Buffers;
-  if (!this->Volume || !b.WavelengthTable || !b.PixelColour || !b.PixelSpectrum)
+  if (!this->Volume || !b.WavelengthTable || !b.PixelColour || !b.PixelSpectrum || !b.ShadowTable)
   {
     return; // bound once the volume and the first frame's buffers exist
   }
@@ -468,6 +488,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::AbsorptionCellBinding] = v.AbsorptionCells.get();
   buffers[gpu::LightAbsorptionBinding] = v.LightAbsorption.get();
   buffers[gpu::LightShadowBinding] = v.LightShadow.get();
+  buffers[gpu::ShadowTableBinding] = b.ShadowTable.get();
   this->Bindings->bind(buffers);
 }
 

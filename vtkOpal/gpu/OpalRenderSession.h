@@ -101,6 +101,7 @@ private:
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   void prepareShadowField();
+  void runShadowTable(const FrameSetup& setup);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
   void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const;
@@ -109,6 +110,7 @@ private:
   RenderImage readBack(const FrameSetup& setup) const;
   ComputePipeline& marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg);
   ComputePipeline& lightPass(int mode, bool braggShadow);
+  ComputePipeline& shadowTablePass(int wavelengths, bool coupledWave);
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
@@ -121,6 +123,8 @@ private:
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength) and absorption (0 or 1).
   std::map<std::array<int, 5>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
+  std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold

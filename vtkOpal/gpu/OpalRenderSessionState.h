@@ -88,8 +88,12 @@ struct RenderSession::FrameBuffers
   std::unique_ptr<VulkanBuffer> Parameters, WavelengthTable;
   std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelMirror, PixelSpectrum, PixelRadiance, PixelRGB8;
   std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
+  // What each domain passes of the light (the Bragg shadow table, docs/design.md
+  // §7.2), device-local; one float where no frame conserved energy yet.
+  std::unique_ptr<VulkanBuffer> ShadowTable;
   std::size_t PixelCapacity = 0;
   std::size_t SpectrumFloats = 0;
+  std::size_t ShadowTableFloats = 0;
 };
 
 // Everything a frame derives from its parameters before touching the device.
