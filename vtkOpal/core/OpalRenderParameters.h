@@ -20,12 +20,17 @@ enum class LightSpectrum : int
 
 // Final renders the parameters as they are; Preview, for interaction, renders
 // half the width and height, 20 nm wavelength steps, 8 spectral nodes and a
-// 2 x 2 highlight (withQuality).
+// 2 x 2 highlight (withQuality), and marches PreviewStepScale x the step.
 enum class RenderQuality : int
 {
   Final = 0,
   Preview = 1,
 };
+
+// The preview's march step over the final's: twice a voxel, so a ray takes
+// one scattering sample per voxel it crosses (a voxel's chord is at most
+// sqrt(3) voxels) instead of about 1.6 (docs/design.md §3.4).
+constexpr double PreviewStepScale = 2.0;
 
 // The Bragg reflection of a domain crossing (docs/design.md §7.2): the
 // paper's box band of gain G, or the coupled-wave reflectance of the lattice

@@ -319,7 +319,8 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.gridOrigin = toVec3(shape.Origin);
   block.smallestSpacing = static_cast<float>(geometry.smallestSpacing());
   block.gridSpacing = toVec3(shape.Spacing);
-  block.marchStep = static_cast<float>(p.StepSize > 0 ? p.StepSize : geometry.smallestSpacing());
+  block.marchStep = static_cast<float>((p.StepSize > 0 ? p.StepSize : geometry.smallestSpacing()) *
+    (asked.Quality == RenderQuality::Preview ? PreviewStepScale : 1.0));
   block.eye = toVec3(setup.Camera.Eye);
   block.tanHalfViewAngle = static_cast<float>(std::tan(glm::radians(p.ViewAngle) / 2));
   block.forward = toVec3(setup.Camera.Forward);
