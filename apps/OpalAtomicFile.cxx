@@ -38,8 +38,7 @@ std::filesystem::path backupName(const std::filesystem::path& path)
 // none for formats whose writer reports a short write itself (EXR, TIFF).
 std::string expectedEnding(const std::filesystem::path& path)
 {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowerCaseExtension(path);
   if (extension == ".png")
   {
     return std::string("\0\0\0\0IEND\xAE\x42\x60\x82", 12);
@@ -75,6 +74,14 @@ bool writtenWhole(const std::filesystem::path& file)
   return stream.gcount() == static_cast<std::streamsize>(tail.size()) && tail.find(ending) != std::string::npos;
 }
 } // namespace
+
+std::string lowerCaseExtension(const std::filesystem::path& path)
+{
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
 
 std::filesystem::path resolvedTarget(const std::filesystem::path& path)
 {

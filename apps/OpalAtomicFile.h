@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+// The path's extension in lower case (".png"), which names its format.
+std::string lowerCaseExtension(const std::filesystem::path& path);
+
 // The file a path names: a symbolic link's target, the path itself otherwise.
 std::filesystem::path resolvedTarget(const std::filesystem::path& path);
 

@@ -5,23 +5,12 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdint>
-#include <filesystem>
 #include <memory>
 #include <vector>
 
 namespace
 {
-std::string lowerExtension(const std::string& path)
-{
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
 // The image's pixels with `channels` values each: `first` (3 per pixel) then,
 // if given, `extra` (extraCount per pixel). Rows are top to bottom already.
 template <typename T>
@@ -66,7 +55,7 @@ bool writeWithOpenImageIO(const std::string& path, const OIIO::ImageSpec& spec, 
 
 std::string writeImage(const opal::RenderImage& image, const std::string& path, bool spectralChannels)
 {
-  const bool exr = lowerExtension(path) == ".exr";
+  const bool exr = lowerCaseExtension(path) == ".exr";
   const bool spectral = exr && spectralChannels;
   if (spectral && image.Spectrum.empty())
   {

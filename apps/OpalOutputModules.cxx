@@ -1,5 +1,7 @@
 #include "OpalOutputModules.h"
 
+#include "OpalAtomicFile.h"
+
 #include <dlfcn.h>
 
 #include <filesystem>
@@ -33,8 +35,13 @@ const Table& loadModule(const char* file, const char* entry)
 }
 } // namespace
 
-const ImageOutputModule& imageOutputModule()
+const ImageOutputModule& imageOutputModule(const std::string& path)
 {
+  if (lowerCaseExtension(path) == ".png")
+  {
+    static const ImageOutputModule& png = loadModule<ImageOutputModule>(OPAL_PNG_OUTPUT_MODULE, "opalPngOutputModule");
+    return png;
+  }
   static const ImageOutputModule& module =
     loadModule<ImageOutputModule>(OPAL_IMAGE_OUTPUT_MODULE, "opalImageOutputModule");
   return module;

@@ -1,7 +1,7 @@
-// opal-render's file output lives in two plugin libraries, loaded only when a
+// opal-render's file output lives in plugin libraries, loaded only when a
 // file of their kind is written, so the program itself starts without them:
-// images through OpenImageIO (Debian's build loads ~260 libraries, 0.16 s
-// before main) and .vti through VTK. Each module exports one C function
+// PNG through libpng, the other images through OpenImageIO (Debian's build
+// loads ~260 libraries, 0.2 s) and .vti through VTK. Each module exports one C function
 // returning its table of functions.
 #pragma once
 
@@ -31,12 +31,14 @@ struct VtiOutputModule
 
 // The modules, loaded on first use from the library folder beside the
 // program's (../lib/); throw std::runtime_error naming the file if they
-// cannot be loaded.
-const ImageOutputModule& imageOutputModule();
+// cannot be loaded. The image module for a path: libpng's for .png (any
+// case), OpenImageIO's for the other formats.
+const ImageOutputModule& imageOutputModule(const std::string& path);
 const VtiOutputModule& vtiOutputModule();
 
 } // namespace opal
 
 // What each module exports.
 extern "C" const opal::ImageOutputModule* opalImageOutputModule();
+extern "C" const opal::ImageOutputModule* opalPngOutputModule();
 extern "C" const opal::VtiOutputModule* opalVtiOutputModule();

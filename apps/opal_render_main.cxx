@@ -126,7 +126,7 @@ bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const 
   };
   for (const std::string& path : outputs.Images)
   {
-    if (!record(path, opal::imageOutputModule().WriteImage(image, path, outputs.SpectralChannels)))
+    if (!record(path, opal::imageOutputModule(path).WriteImage(image, path, outputs.SpectralChannels)))
     {
       return false;
     }

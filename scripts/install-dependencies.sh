@@ -12,7 +12,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslang-tools glslang-dev spirv-tools
   # libraries of our own code
-  libopenimageio-dev openimageio-tools libcli11-dev libglm-dev nlohmann-json3-dev
+  libpng-dev libopenimageio-dev openimageio-tools libcli11-dev libglm-dev nlohmann-json3-dev
   libbenchmark-dev
   # headless ParaView GUI tests
   xvfb xauth
