@@ -19,6 +19,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <future>
+#include <memory>
 #include <iostream>
 #include <stdexcept>
 #include <vector>
@@ -48,13 +50,13 @@ void addOutputOptions(CLI::App& app, Outputs& outputs)
     ->group("Output");
 }
 
-// Builds the volume and renders the frame; throws on failure.
-opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::RenderParameters& parameters,
-  const OpalRenderOptions& options, std::string& deviceName)
+// Builds the volume with only the arrays the render reads
+// (VolumeArrays::Render: no description), warning about a small shape or
+// domains that could not be placed; throws on failure.
+opal::BuiltVolume buildRenderVolume(const opal::ModelParameters& model)
 {
   ProgressBar volumeBar("volume");
-  // Only the arrays the render reads (VolumeArrays::Render): no description.
-  const std::optional<opal::BuiltVolume> volume = opal::buildVolume(
+  std::optional<opal::BuiltVolume> volume = opal::buildVolume(
     model,
     [&volumeBar](double fraction) {
       volumeBar.show(fraction);
@@ -75,19 +77,31 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
               << volume->Layout.requestedCount() << " domains could be placed within MaxPlacementAttempts."
               << std::endl;
   }
+  return std::move(*volume);
+}
+
+// Builds the volume and renders the frame; throws on failure. The Vulkan
+// device starts on a thread of its own while the volume builds (the loader,
+// the driver and the pipelines: about 0.1 s of one core on lavapipe).
+opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::RenderParameters& parameters,
+  const OpalRenderOptions& options, std::string& deviceName)
+{
   opal::VulkanOptions vulkan;
   vulkan.DeviceIndex = options.deviceIndex();
   vulkan.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, options.deviceMemoryLimit())) << 20;
-  opal::RenderSession session(vulkan);
-  session.setVolume(volume->renderVolume());
+  std::future<std::unique_ptr<opal::RenderSession>> starting =
+    std::async(std::launch::async, [vulkan] { return std::make_unique<opal::RenderSession>(vulkan); });
+  const opal::BuiltVolume volume = buildRenderVolume(model);
+  const std::unique_ptr<opal::RenderSession> session = starting.get();
+  session->setVolume(volume.renderVolume());
   ProgressBar renderBar("render");
-  opal::RenderFrame frame = session.render(parameters, [&renderBar](double fraction) {
+  opal::RenderFrame frame = session->render(parameters, [&renderBar](double fraction) {
     renderBar.show(fraction);
     return true;
   });
-  deviceName = session.context().deviceName();
+  deviceName = session->context().deviceName();
   // With OPAL_VULKAN_VALIDATION set, what the validation layer said is shown, and fails the run.
-  const std::vector<std::string> messages = session.context().validationMessages();
+  const std::vector<std::string> messages = session->context().validationMessages();
   for (const std::string& message : messages)
   {
     std::cerr << "opal-render: validation layer: " << message << std::endl;
