@@ -101,11 +101,6 @@ void followShadow(inout ShadowWalk w, int domain, float length)
   }
 }
 
-int domainIn(ivec3 cell)
-{
-  return insideGrid(cell) ? voxelCells[voxelIndex(cell)].domainId : -1;
-}
-
 // Stores a voxel's (optical depth, geometry factor) where the light field
 // keeps them: in its own pair, and as the +x neighbour in the pair before it
 // (in its own pair too at the end of a row); its absorption depths likewise;
@@ -127,14 +122,35 @@ void storeLight(int index, LightSample light, ShadowWalk shadow)
 }
 
 // A voxel's extinction coefficients at 550 nm: (mu_s, coloured mu_a, grey mu_a).
+vec3 mediumOf(VoxelCell voxel, int index)
+{
+  return vec3(voxel.scattering, ABSORPTION ? absorptionCells[index] : vec2(0.0));
+}
+
 vec3 mediumAt(int index)
 {
-  return vec3(voxelCells[index].scattering, ABSORPTION ? absorptionCells[index] : vec2(0.0));
+  return mediumOf(voxelCells[index], index);
 }
 
 vec3 mediumIn(ivec3 cell)
 {
   return insideGrid(cell) ? mediumAt(voxelIndex(cell)) : vec3(0.0);
+}
+
+// What a walk needs of a cell, from one read of its VoxelCell: its
+// coefficients (mediumAt) and its domain (-1 outside domains and the grid).
+struct CellContents
+{
+  vec3 medium;
+  int domain;
+};
+
+CellContents contentsOf(ivec3 cell)
+{
+  if (!insideGrid(cell)) return CellContents(vec3(0.0), -1);
+  int index = voxelIndex(cell);
+  VoxelCell voxel = voxelCells[index];
+  return CellContents(mediumOf(voxel, index), voxel.domainId);
 }
 
 // The skin: outside voxel centres nearer the surface than a cell's diagonal
@@ -159,7 +175,8 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
   for (int i = 0; i < 65536 && s < span; ++i)
   {
     float sNext = min(cellExit(walk), span);
-    vec3 medium = mediumIn(walk.cell);
+    CellContents contents = contentsOf(walk.cell);
+    vec3 medium = contents.medium;
     if (sNext > safe)
     {
       float d = surfaceDistance(origin + sNext * direction);
@@ -167,13 +184,13 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
       {
         float sOut = bisectSurface(origin, direction, sNext, s);
         tau += medium * max(sOut - s, 0.0);
-        if (BRAGG_SHADOW) followShadow(shadow, domainIn(walk.cell), max(sOut - s, 0.0));
+        if (BRAGG_SHADOW) followShadow(shadow, contents.domain, max(sOut - s, 0.0));
         return t + sOut;
       }
       safe = sNext - 0.9 * d;
     }
     tau += medium * (sNext - s);
-    if (BRAGG_SHADOW) followShadow(shadow, domainIn(walk.cell), sNext - s);
+    if (BRAGG_SHADOW) followShadow(shadow, contents.domain, sNext - s);
     s = sNext;
     stepWalk(walk);
   }
