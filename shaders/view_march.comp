@@ -319,8 +319,19 @@ float scatterAt(float logNodes[SPECTRAL_NODES], float s)
   float x = (s - nodeFirst()) / nodeStep();
   int i = clamp(int(floor(x)) - 1, 0, SPECTRAL_NODES - 4);
   float u = x - float(i);
-  float g0 = logNodes[i], g1 = logNodes[i + 1];
-  float g2 = logNodes[i + 2], g3 = logNodes[i + 3];
+  // The four nodes by indices known when the pipeline is built (the loop
+  // unrolls over SPECTRAL_NODES): a read at the index i would keep the
+  // nodes in memory, which a CPU driver gathers lane by lane, for every
+  // access of the march (docs/design.md §3.4).
+  float g0 = 0.0, g1 = 0.0, g2 = 0.0, g3 = 0.0;
+  for (int j = 0; j <= SPECTRAL_NODES - 4; ++j)
+  {
+    bool here = j == i;
+    g0 = here ? logNodes[j] : g0;
+    g1 = here ? logNodes[j + 1] : g1;
+    g2 = here ? logNodes[j + 2] : g2;
+    g3 = here ? logNodes[j + 3] : g3;
+  }
   float logG = g0 * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g1 * u * (u - 2.0) * (u - 3.0) / 2.0 +
     g2 * u * (u - 1.0) * (u - 3.0) / -2.0 + g3 * u * (u - 1.0) * (u - 2.0) / 6.0;
   return s * exp(logG);
