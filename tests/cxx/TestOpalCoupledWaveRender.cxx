@@ -336,8 +336,33 @@ void checkFccPlanes(SceneRenderer& renderer)
 }
 } // namespace
 
+// The domains' centres the Bragg shadow table takes the light's direction
+// from (RenderVolume::domainCentres): the mean of a domain's voxel centres
+// is the centre of the square it rasterises, within the voxels' half
+// spacing (0.05 mm), for a tilted square and one flat beside it.
+void checkDomainCentres()
+{
+  SlabScene scene;
+  scene.WithDomain = true;
+  scene.DomainCentre = { 1.0, 1.0, -0.5 };
+  scene.DomainNormal = { 0.3, 1.0, 0.2 };
+  scene.DomainHalfSize = 1.5;
+  scene.MoreDomainCentres.push_back({ -2.0, 1.2, 2.0 });
+  const opal::RenderVolume volume = scene.build();
+  const std::vector<std::array<double, 3>> centres = volume.domainCentres();
+  const std::vector<glm::dvec3> expected{ scene.DomainCentre, scene.MoreDomainCentres[0] };
+  double worst = 0.0;
+  for (std::size_t d = 0; d < expected.size() && centres.size() == expected.size(); ++d)
+  {
+    worst = std::max(worst, glm::length(glm::dvec3(centres[d][0], centres[d][1], centres[d][2]) - expected[d]));
+  }
+  std::cout << "domain centres: worst distance from the squares' centres " << worst << " mm" << std::endl;
+  OPAL_CHECK(centres.size() == 2 && worst < 0.05, "each domain's centre is its square's within 0.05 mm");
+}
+
 int TestOpalCoupledWaveRender(int, char*[])
 {
+  checkDomainCentres();
   if (!opaltest::vulkanDeviceAvailable())
   {
     return opaltest::noDeviceReturnCode();
