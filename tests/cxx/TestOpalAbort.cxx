@@ -3,6 +3,7 @@
 // march), the request fails without partial output, and the pipeline works
 // normally once the abort is cleared.
 #include "OpalTestHarness.h"
+#include "OpalQuarterScaleRender.h"
 #include "OpalRenderScenes.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalSpectralRender.h"
@@ -21,11 +22,8 @@ int TestOpalAbort(int, char*[])
     return opaltest::noDeviceReturnCode();
   }
   opaltest::silenceExpectedErrors();
-  vtkNew<vtkOpalSource> source;
-  source->SetDimensions(80, 40, 100);
-  vtkNew<vtkOpalSpectralRender> render;
-  render->SetInputConnection(source->GetOutputPort(0));
-  render->SetImageSize(320, 240);
+  opaltest::QuarterScaleRender pipeline(320, 240);
+  vtkOpalSpectralRender* render = pipeline.Render;
   vtkNew<opaltest::AbortOnProgress> abort;
   render->AddObserver(vtkCommand::ProgressEvent, abort);
 

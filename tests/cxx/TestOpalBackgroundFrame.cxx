@@ -4,6 +4,7 @@
 // update abandons one still running and the session works on; the filter can
 // end with one running; bad settings do not start one. Run under the
 // sanitizers too (scripts/opal.sh test).
+#include "OpalQuarterScaleRender.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
@@ -59,11 +60,9 @@ int TestOpalBackgroundFrame(int, char*[])
     return opaltest::noDeviceReturnCode();
   }
   opaltest::silenceExpectedErrors();
-  vtkNew<vtkOpalSource> source;
-  source->SetDimensions(80, 40, 100);
-  vtkNew<vtkOpalSpectralRender> render;
-  render->SetInputConnection(source->GetOutputPort(0));
-  render->SetImageSize(160, 120);
+  opaltest::QuarterScaleRender pipeline(160, 120);
+  vtkOpalSource* source = pipeline.Source;
+  vtkOpalSpectralRender* render = pipeline.Render;
   OPAL_CHECK(render->GetExecutive()->Update() == 1, "the update renders");
 
   // The same settings in the background: the same image.
