@@ -7,6 +7,7 @@
 // diffraction (eq. 4, 9), each domain once per crossing. With ABSORPTION the
 // light and view paths are dimmed by the absorption too (docs/design.md §3.9).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const int WAVELENGTHS = 41;
@@ -23,6 +24,11 @@ layout(constant_id = 4) const bool COUPLED_WAVE = false;
 // light passing them on the light path (the light pass's Bragg shadows, §7.2);
 // always with COUPLED_WAVE.
 layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
+// The bins' centres, FIRST_WAVELENGTH + l WAVELENGTH_STEP (nm, §3.6), known
+// when the pipeline is built: the resampling's loops over the bins unroll, and
+// each bin's nodes and weights become constants (docs/design.md §3.4).
+layout(constant_id = 6) const float FIRST_WAVELENGTH = 380.0;
+layout(constant_id = 7) const float WAVELENGTH_STEP = 10.0;
 
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
@@ -287,16 +293,25 @@ void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauVi
   dimBehind(lattice, towardEye, lengthMm);
 }
 
+// s = (550/lambda)^4 of bin l from the specialisation constants: a constant
+// where l is (the unrolled loops).
+float binRayleighScale(int l)
+{
+  float r = 550.0 / (FIRST_WAVELENGTH + float(l) * WAVELENGTH_STEP);
+  r *= r;
+  return r * r;
+}
+
 // The nodes span the wavelength table's s: from the longest wavelength's
 // (smallest s) to the shortest's.
 float nodeFirst()
 {
-  return bins[WAVELENGTHS - 1].rayleighScale;
+  return binRayleighScale(WAVELENGTHS - 1);
 }
 
 float nodeStep()
 {
-  return (bins[0].rayleighScale - bins[WAVELENGTHS - 1].rayleighScale) / float(SPECTRAL_NODES - 1);
+  return (binRayleighScale(0) - nodeFirst()) / float(SPECTRAL_NODES - 1);
 }
 
 // The nodes' sums G turned into log G in place, once per resampling rather
@@ -311,18 +326,20 @@ bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
   return true;
 }
 
-// The scattering at s from log G on the nodes (nodesToLogs): cubic Lagrange
-// interpolation of log G through the four nearest nodes (G is a sum of
-// decaying exponentials in s, nearly linear in log), times s.
-float scatterAt(float logNodes[SPECTRAL_NODES], float s)
+// The scattering in bin l from log G on the nodes (nodesToLogs): cubic
+// Lagrange interpolation of log G through the four nearest nodes (G is a sum
+// of decaying exponentials in s, nearly linear in log), times s. Called in
+// unrolled loops over the bins, so l, the nodes and the weights are constants.
+float scatterAt(float logNodes[SPECTRAL_NODES], int l)
 {
+  float s = binRayleighScale(l);
   float x = (s - nodeFirst()) / nodeStep();
   int i = clamp(int(floor(x)) - 1, 0, SPECTRAL_NODES - 4);
   float u = x - float(i);
   // The four nodes by indices known when the pipeline is built (the loop
-  // unrolls over SPECTRAL_NODES): a read at the index i would keep the
-  // nodes in memory, which a CPU driver gathers lane by lane, for every
-  // access of the march (docs/design.md §3.4).
+  // unrolls over SPECTRAL_NODES, and folds where l is a constant): a read at
+  // the index i would keep the nodes in memory, which a CPU driver gathers
+  // lane by lane, for every access of the march (docs/design.md §3.4).
   float g0 = 0.0, g1 = 0.0, g2 = 0.0, g3 = 0.0;
   for (int j = 0; j <= SPECTRAL_NODES - 4; ++j)
   {
@@ -496,10 +513,9 @@ void flushScattering(inout WalkState state)
   if (shadowed) passShadow(state.shadow);
   bool open = !EXACT_SCATTERING && nodesToLogs(scatterNodes);
   bool behind = shadowed && !EXACT_SCATTERING && nodesToLogs(shadowNodes);
-  for (int l = 0; l < WAVELENGTHS; ++l)
+  [[unroll]] for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    float s = bins[l].rayleighScale;
-    float lit = (open ? scatterAt(scatterNodes, s) : 0.0) + (behind ? shadowPassed[l] * scatterAt(shadowNodes, s) : 0.0);
+    float lit = (open ? scatterAt(scatterNodes, l) : 0.0) + (behind ? shadowPassed[l] * scatterAt(shadowNodes, l) : 0.0);
     radiance[l] += viewTransmittance[l] * lit + (shadowed && EXACT_SCATTERING ? shadowPassed[l] * shadowRadiance[l] : 0.0);
     shadowRadiance[l] = 0.0;
   }
@@ -539,12 +555,14 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
 // ray carries 1 - F out of the opal (the highlight pass adds the mirrored light).
 void writePixel(int pixelIndex, float transmitted, float tHit)
 {
+  if (!EXACT_SCATTERING && nodesToLogs(scatterNodes))
+  {
+    [[unroll]] for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
+  }
   vec3 xyz = vec3(0.0);
-  bool scattered = !EXACT_SCATTERING && nodesToLogs(scatterNodes);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
-    float gathered = radiance[l] + (scattered ? scatterAt(scatterNodes, bins[l].rayleighScale) : 0.0);
-    float value = transmitted * gathered * bins[l].illuminant;
+    float value = transmitted * radiance[l] * bins[l].illuminant;
     xyz += value * bins[l].colourMatching * bins[l].width;
     if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
   }

@@ -6,6 +6,8 @@
 #include "OpalRenderSessionState.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace opal
@@ -152,25 +154,43 @@ ComputePipeline& RenderSession::shadowTablePass(int wavelengths, bool coupledWav
   return *pass;
 }
 
-// The march for a wavelength count: the scattering spectrum on nodes, or at
-// every wavelength where nodes are off or would not be fewer than the bins;
-// with ABSORPTION if the volume absorbs; with the Bragg model of `bragg`.
-ComputePipeline& RenderSession::marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg)
+namespace
 {
-  const bool exact = spectralNodes == 0 || wavelengths <= spectralNodes;
-  const int nodes = exact ? 4 : spectralNodes;
+// The bits of a float, as a specialisation constant takes them.
+std::int32_t floatBits(double value)
+{
+  const float single = static_cast<float>(value);
+  std::int32_t bits;
+  std::memcpy(&bits, &single, sizeof bits);
+  return bits;
+}
+} // namespace
+
+// The march for the frame's wavelength bins: the scattering spectrum on
+// nodes, or at every wavelength where nodes are off or would not be fewer
+// than the bins; with ABSORPTION if the volume absorbs; with the frame's
+// Bragg model. The bins' first centre and step are constants of the pipeline
+// (docs/design.md §3.4).
+ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
+{
+  const int wavelengths = static_cast<int>(setup.Bins.size());
+  const RenderParameters& p = setup.Parameters;
+  const bool exact = p.SpectralNodes == 0 || wavelengths <= p.SpectralNodes;
+  const int nodes = exact ? 4 : p.SpectralNodes;
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
-  const int coupled = bragg.BraggModel == BraggModelKind::CoupledWave ? 1 : 0;
-  const int energy = conservesEnergy(bragg) ? 1 : 0;
+  const int coupled = p.BraggModel == BraggModelKind::CoupledWave ? 1 : 0;
+  const int energy = conservesEnergy(p) ? 1 : 0;
+  const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
   std::unique_ptr<ComputePipeline>& march =
-    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy }];
+    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
     // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION,
-    // 4: COUPLED_WAVE, 5: ENERGY_CONSERVATION (docs/design.md §7.2).
+    // 4: COUPLED_WAVE, 5: ENERGY_CONSERVATION (docs/design.md §7.2), 6: FIRST_WAVELENGTH,
+    // 7: WAVELENGTH_STEP.
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy });
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy, first, step });
   }
   return *march;
 }
@@ -187,7 +207,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   block.rectSize = gpu::ivec2(rect[2], rect[3]);
   block.writeSpectrum = spectrum ? 1 : 0;
   this->Buffers->Parameters->upload(&block, sizeof(block));
-  ComputePipeline& march = this->marchPipeline(block.wavelengthCount, setup.Parameters.SpectralNodes, setup.Parameters);
+  ComputePipeline& march = this->marchPipeline(setup);
   const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
   const int rowsPerSubmit = static_cast<int>(

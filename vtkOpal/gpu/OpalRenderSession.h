@@ -108,7 +108,7 @@ private:
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
-  ComputePipeline& marchPipeline(int wavelengths, int spectralNodes, const RenderParameters& bragg);
+  ComputePipeline& marchPipeline(const FrameSetup& setup);
   ComputePipeline& lightPass(int mode, bool braggShadow);
   ComputePipeline& shadowTablePass(int wavelengths, bool coupledWave);
 
@@ -121,8 +121,10 @@ private:
   // The highlight pass's two modes (select and shade), by mode.
   std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
-  // By wavelength count, spectral nodes (0: every wavelength) and absorption (0 or 1).
-  std::map<std::array<int, 5>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // By wavelength count, spectral nodes (0: every wavelength), absorption,
+  // coupled-wave and energy conservation (0 or 1), and the bins' first centre
+  // and step (their float bits).
+  std::map<std::array<std::int32_t, 7>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;
