@@ -29,6 +29,9 @@ layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
 // each bin's nodes and weights become constants (docs/design.md §3.4).
 layout(constant_id = 6) const float FIRST_WAVELENGTH = 380.0;
 layout(constant_id = 7) const float WAVELENGTH_STEP = 10.0;
+// The preview reads the light field of the voxel a point lies in (one load)
+// instead of trilinearly (four): a view ray averages it over ~70 voxels.
+layout(constant_id = 8) const bool NEAREST_LIGHT = false;
 
 #include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
@@ -110,12 +113,23 @@ vec2 trilinearPairs(LightFieldPair p00, LightFieldPair p10, LightFieldPair p01, 
   return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
 }
 
+// The light field of the voxel holding p (NEAREST_LIGHT).
+LightSample voxelLightAt(vec3 p)
+{
+  int v = voxelIndex(clamp(voxelOf(p), ivec3(0), P.gridDimensions - 1));
+  vec2 light = lightField[v].voxel;
+  vec2 absorption = ABSORPTION ? lightAbsorption[v].voxel : vec2(0.0);
+  return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
+}
+
 // The light field at p, trilinear over voxel centres and clamped. Each pair
 // holds a voxel and its +x neighbour, so the eight corners take four loads
 // (and four more for the absorption). The light pass gives the outside
-// corners near the surface values continued from inside.
+// corners near the surface values continued from inside. With NEAREST_LIGHT
+// (the preview) the voxel's own.
 LightSample lightAt(vec3 p)
 {
+  if (NEAREST_LIGHT) return voxelLightAt(p);
   vec3 g = clamp((p - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
   ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
   ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);

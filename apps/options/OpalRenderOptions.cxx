@@ -56,7 +56,7 @@ void OpalRenderOptions::addTo(CLI::App& app)
     "The light's spectrum: D65 (normalised to luminance 1), or none (unit spectral irradiance)", group);
   addEnumOption(app, "--quality", p.Quality,
     { { "final", opal::RenderQuality::Final }, { "preview", opal::RenderQuality::Preview } },
-    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight, twice the march step", group);
+    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight, twice the march step, the light read per voxel", group);
   app.add_option("--specular-samples", p.SpecularSamples, "Sub-rays per pixel axis for the highlight")
     ->capture_default_str()
     ->group(group);

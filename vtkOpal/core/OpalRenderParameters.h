@@ -20,7 +20,8 @@ enum class LightSpectrum : int
 
 // Final renders the parameters as they are; Preview, for interaction, renders
 // half the width and height, 20 nm wavelength steps, 8 spectral nodes and a
-// 2 x 2 highlight (withQuality), and marches PreviewStepScale x the step.
+// 2 x 2 highlight (withQuality), marches PreviewStepScale x the step and reads
+// the light field per voxel, not trilinearly (docs/design.md §3.4).
 enum class RenderQuality : int
 {
   Final = 0,

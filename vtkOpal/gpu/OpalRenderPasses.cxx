@@ -169,8 +169,8 @@ std::int32_t floatBits(double value)
 // The march for the frame's wavelength bins: the scattering spectrum on
 // nodes, or at every wavelength where nodes are off or would not be fewer
 // than the bins; with ABSORPTION if the volume absorbs; with the frame's
-// Bragg model. The bins' first centre and step are constants of the pipeline
-// (docs/design.md §3.4).
+// Bragg model. The bins' first centre and step are constants of the pipeline,
+// and whether the light field is read per voxel (the preview; docs/design.md §3.4).
 ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
 {
   const int wavelengths = static_cast<int>(setup.Bins.size());
@@ -181,16 +181,17 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   const int coupled = p.BraggModel == BraggModelKind::CoupledWave ? 1 : 0;
   const int energy = conservesEnergy(p) ? 1 : 0;
   const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
+  const int nearestLight = setup.Preview ? 1 : 0;
   std::unique_ptr<ComputePipeline>& march =
-    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step }];
+    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
     // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION,
     // 4: COUPLED_WAVE, 5: ENERGY_CONSERVATION (docs/design.md §7.2), 6: FIRST_WAVELENGTH,
-    // 7: WAVELENGTH_STEP.
+    // 7: WAVELENGTH_STEP, 8: NEAREST_LIGHT.
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy, first, step });
+      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy, first, step, nearestLight });
   }
   return *march;
 }

@@ -295,6 +295,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   const RenderParameters p = withQuality(asked);
   FrameSetup setup;
   setup.Parameters = p;
+  setup.Preview = asked.Quality == RenderQuality::Preview;
   setup.Camera = cameraInModelFrame(p);
   const VolumeGeometry& geometry = this->Volume->Geometry;
   if (geometry.nearestSurfaceDistance(setup.Camera.Light) <= 0)

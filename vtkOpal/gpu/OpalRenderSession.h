@@ -122,9 +122,9 @@ private:
   std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength), absorption,
-  // coupled-wave and energy conservation (0 or 1), and the bins' first centre
-  // and step (their float bits).
-  std::map<std::array<std::int32_t, 7>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // coupled-wave and energy conservation (0 or 1), the bins' first centre
+  // and step (their float bits) and the preview's light read (0 or 1).
+  std::map<std::array<std::int32_t, 8>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;

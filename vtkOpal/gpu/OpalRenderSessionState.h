@@ -107,6 +107,7 @@ struct RenderSession::FrameSetup
   std::size_t PixelCapacity = 0; // the image rectangle or the exposure thumbnail, whichever is larger
   std::vector<WavelengthBin> Bins;
   gpu::RenderParameterBlock Block{};
+  bool Preview = false; // the preview quality (Parameters hold what it implies): the march reads the light field per voxel
 };
 
 // The caller's progress over the stages of a frame: light pass 20%, march
