@@ -38,17 +38,6 @@ float coupledModeReflectance(float kappa, float delta, float thickness)
   return ka2 / (1.0 + b * b * a * a);
 }
 
-// coupledModeReflectance where delta^2 > kappa^2 is known (outside the band):
-// the same value from its sin form alone, without the tanh form that SIMD
-// lanes would evaluate too.
-float sideLobeReflectance(float kappa, float delta, float thickness)
-{
-  float s = sqrt(abs(kappa * kappa - delta * delta));
-  float a = sideLobeAmplitude(s, s * thickness, thickness);
-  float ka2 = kappa * kappa * a * a;
-  return ka2 / (1.0 + kappa * kappa * a * a);
-}
-
 // 3 j1(x) / x, the sphere's form factor (1 at x = 0).
 float sphereFormFactor(float x)
 {
@@ -145,14 +134,28 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
 }
 
 // coupledWaveBinAverage of a bin beyond the band's reach whose centre lies
-// above lambda_B / 4 (so |delta| > kappa there for both polarisations):
-// the same value without the band's forms (coupledWaveBand says which bins).
+// above lambda_B / 4 (so |delta| > kappa there for both polarisations): the
+// same value without the band's forms (coupledWaveBand says which bins), and
+// with what both of its forms need computed once, since SIMD lanes evaluate
+// both: 1/centre, and per polarisation s = sqrt(delta^2 - kappa^2), from which
+// the side lobes' phase average is 1 - s/|delta| and the centre value
+// kappa^2 A^2 / (1 + kappa^2 A^2), A = sin(sL)/s (coupledModeReflectance's
+// form outside the band, without its tanh form). spansSideLobes's test without its divisions:
+// delta(c - w/2) - delta(c + w/2) = (pi k/d) lambda_B w / (c^2 - w^2/4).
 float coupledWaveWingAverage(CoupledWaveFamily f, float centre, float width)
 {
-  if (spansSideLobes(f, centre, width)) return sideLobePhaseAverage(f, centre);
-  float delta = coupledWaveDetuning(f, centre), kappaS = f.couplingLength / centre;
-  return 0.5 * (sideLobeReflectance(kappaS, delta, f.thickness) +
-    sideLobeReflectance(kappaS * f.polarisationP, delta, f.thickness));
+  float inverseCentre = 1.0 / centre;
+  float delta = f.detuningScale * (f.braggWavelength * inverseCentre - 1.0);
+  vec2 kappa = f.couplingLength * inverseCentre * vec2(1.0, f.polarisationP);
+  vec2 s = sqrt(max(vec2(delta * delta) - kappa * kappa, vec2(0.0)));
+  bool spans = f.detuningScale * f.braggWavelength * width * f.thickness >=
+    4.0 * OPAL_PI * (centre * centre - 0.25 * width * width);
+  if (spans) return 1.0 - 0.5 * (s.x + s.y) / abs(delta);
+  vec2 y = s * f.thickness;
+  vec2 a = vec2(sideLobeAmplitude(s.x, y.x, f.thickness), sideLobeAmplitude(s.y, y.y, f.thickness));
+  vec2 ka2 = kappa * kappa * a * a;
+  vec2 r = ka2 / (1.0 + ka2);
+  return 0.5 * (r.x + r.y);
 }
 
 // The wavelengths [lo, hi] that a bin must overlap to need
