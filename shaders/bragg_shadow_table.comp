@@ -18,7 +18,8 @@ layout(constant_id = 1) const bool COUPLED_WAVE = false;
 #include "opal_bragg_transmission.glsl"
 
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
-layout(std430, set = 0, binding = ShadowTableBinding) writeonly buffer ShadowTable { float shadowTable[]; };
+layout(std430, set = 0, binding = ShadowTableBinding) writeonly buffer ShadowTable { vec4 shadowTable[]; };
+const int ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
 
 // A path (mm) longer than any domain's: every family's N is CoherentLayers.
 const float SATURATING_LENGTH_MM = 1e6;
@@ -48,7 +49,16 @@ void main()
   DomainRecord lattice = domains[domain];
   vec3 towardLight = normalize(P.light - lattice.centre);
   passThroughDomain(lattice, towardLight, SATURATING_LENGTH_MM);
-  int row = domain * (WAVELENGTHS + 1);
-  for (int l = 0; l < WAVELENGTHS; ++l) shadowTable[row + l] = passed[l];
-  shadowTable[row + WAVELENGTHS] = saturationLength(lattice, towardLight);
+  float saturation = saturationLength(lattice, towardLight);
+  // The row's floats: the bins, the saturation length, zeros (opal_render_contract.h).
+  for (int j = 0; j < ROW_VEC4S; ++j)
+  {
+    vec4 quad = vec4(0.0);
+    for (int c = 0; c < 4; ++c)
+    {
+      int l = 4 * j + c;
+      quad[c] = l < WAVELENGTHS ? passed[min(l, WAVELENGTHS - 1)] : (l == WAVELENGTHS ? saturation : 0.0);
+    }
+    shadowTable[domain * ROW_VEC4S + j] = quad;
+  }
 }

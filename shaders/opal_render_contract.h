@@ -58,10 +58,10 @@ OPAL_CONSTANT int LightAbsorptionBinding = 17;  // LightFieldPair per voxel: abs
 // light pass and read by the march specialised on it; else a placeholder.
 OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
 // Per domain, what it passes of the light per bin and the light path's
-// length from which that holds (a row of wavelengthCount + 1 floats, see
-// ShadowTableGroupSize), written each frame by the Bragg shadow table pass
-// and read by the march, both specialised on energy conservation; else a placeholder.
-OPAL_CONSTANT int ShadowTableBinding = 19;      // float per domain and bin, and one more per domain
+// length from which that holds (a row of vec4s, see ShadowTableGroupSize),
+// written each frame by the Bragg shadow table pass and read by the march,
+// both specialised on energy conservation; else a placeholder.
+OPAL_CONSTANT int ShadowTableBinding = 19;      // a row of SHADOW_TABLE_ROW_VEC4S vec4s per domain
 OPAL_CONSTANT int BindingCount = 20;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
@@ -167,13 +167,17 @@ struct OPAL_ALIGNED DomainRecord
   float unused; // std430 padding after the vec3
 };
 
-// The Bragg shadow table (docs/design.md §7.2): domain i's row starts at
-// i (wavelengthCount + 1); its floats [0, wavelengthCount) are what the
-// domain passes of the light per bin, for a path long enough to cross
-// CoherentLayers layers of every family that reflects in the bins, and float
-// wavelengthCount is that path's least length in mm (0 in the paper's model,
-// where length does not matter). One invocation per domain, in groups of:
+// The Bragg shadow table (docs/design.md §7.2): domain i's row is vec4s
+// [i r, (i + 1) r), r = SHADOW_TABLE_ROW_VEC4S(wavelengthCount); of its floats,
+// [0, wavelengthCount) are what the domain passes of the light per bin, for a
+// path long enough to cross CoherentLayers layers of every family that
+// reflects in the bins, float wavelengthCount is that path's least length in
+// mm (0 in the paper's model, where length does not matter), and the rest is
+// padding: whole vec4s, because the march copies a row where a CPU driver
+// gathers each load lane by lane, a vec4 for about a float's cost.
+// One invocation per domain, in groups of:
 OPAL_CONSTANT int ShadowTableGroupSize = 64;
+#define SHADOW_TABLE_ROW_VEC4S(wavelengthCount) (((wavelengthCount) + 4) / 4)
 
 // The view march's result per pixel: CIE XYZ and the distance from the eye to
 // the surface (0 where the ray misses).

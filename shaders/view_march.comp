@@ -46,7 +46,8 @@ layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer Absorpt
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
-layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { float shadowTable[]; };
+layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
+const int SHADOW_ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
 // Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
@@ -152,9 +153,10 @@ float dominantLambda;
 float dominantY;
 
 // What the light passes of the last Bragg shadow evaluated for this pixel
-// (passShadow), and that shadow's domain: a ray leaves and re-enters one
-// domain's shadow, and each evaluation costs a crossing's families.
-float shadowPassed[WAVELENGTHS];
+// (passShadow; padded to the shadow table's whole rows), and that shadow's
+// domain: a ray leaves and re-enters one domain's shadow, and each
+// evaluation costs a crossing's families.
+float shadowPassed[4 * SHADOW_ROW_VEC4S];
 int shadowPassedDomain;
 // The crossing being reflected is lit through a Bragg shadow (passLight).
 bool lightShadowed;
@@ -211,10 +213,15 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
 void passShadow(LightShadow shadow)
 {
   if (shadow.domain == shadowPassedDomain) return;
-  int row = shadow.domain * (WAVELENGTHS + 1);
-  if (shadow.lengthMm >= shadowTable[row + WAVELENGTHS])
+  int row = shadow.domain * SHADOW_ROW_VEC4S;
+  if (shadow.lengthMm >= shadowTable[row + WAVELENGTHS / 4][WAVELENGTHS % 4])
   {
-    for (int l = 0; l < WAVELENGTHS; ++l) shadowPassed[l] = shadowTable[row + l];
+    // The row in vec4s, the bins and what pads them (opal_render_contract.h).
+    [[unroll]] for (int j = 0; j < SHADOW_ROW_VEC4S; ++j)
+    {
+      vec4 quad = shadowTable[row + j];
+      [[unroll]] for (int c = 0; c < 4; ++c) shadowPassed[4 * j + c] = quad[c];
+    }
   }
   else
   {

@@ -406,11 +406,12 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     rebind = true;
   }
   const std::size_t shadowTableFloats = conservesEnergy(setup.Parameters)
-    ? static_cast<std::size_t>(setup.Block.domainCount) * (setup.Bins.size() + 1) : std::size_t{ 1 };
+    ? static_cast<std::size_t>(setup.Block.domainCount) * 4 * SHADOW_TABLE_ROW_VEC4S(setup.Bins.size())
+    : std::size_t{ 4 };
   if (!b.ShadowTable || shadowTableFloats > b.ShadowTableFloats)
   {
     b.ShadowTable.reset();
-    b.ShadowTable = std::make_unique<VulkanBuffer>(context, std::max<std::size_t>(shadowTableFloats, 1) * sizeof(float),
+    b.ShadowTable = std::make_unique<VulkanBuffer>(context, std::max<std::size_t>(shadowTableFloats, 4) * sizeof(float),
       "Bragg shadow table", BufferPlacement::DeviceLocal);
     b.ShadowTableFloats = shadowTableFloats;
     rebind = true;
