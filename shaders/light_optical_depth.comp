@@ -304,10 +304,10 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   vec2 f = clamp(g - vec2(c0), 0.0, 1.0);
   int above = min(c.y + 1, P.gridDimensions.y - 1);
   int nearZ = voxelIndex(ivec3(c0.x, above, c0.y)), farZ = voxelIndex(ivec3(c0.x, above, c1.y));
-  int nearZNext = voxelIndex(ivec3(c1.x, above, c0.y)), farZNext = voxelIndex(ivec3(c1.x, above, c1.y));
+  // q's four corners' SurfaceDistance in two pairs (a corner and its +x neighbour).
+  vec2 nearCorners = surfaceDistancePairs[nearZ], farCorners = surfaceDistancePairs[farZ];
   bool skin = c.y == P.gridDimensions.y - 1 || voxelSurfaceDistance(index) > 0.0 ||
-    max(max(voxelSurfaceDistance(nearZ), voxelSurfaceDistance(nearZNext)),
-      max(voxelSurfaceDistance(farZ), voxelSurfaceDistance(farZNext))) > 0.0;
+    max(max(nearCorners.x, nearCorners.y), max(farCorners.x, farCorners.y)) > 0.0;
   if (skin)
   {
     queueVoxel(index, c.y);
