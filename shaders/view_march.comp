@@ -25,8 +25,8 @@ layout(constant_id = 4) const bool COUPLED_WAVE = false;
 // always with COUPLED_WAVE.
 layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
 // The bins' centres, FIRST_WAVELENGTH + l WAVELENGTH_STEP (nm, §3.6), known
-// when the pipeline is built: the resampling's loops over the bins unroll, and
-// each bin's nodes and weights become constants (docs/design.md §3.4).
+// when the pipeline is built: the rounds' resampling unrolls over the bins,
+// and each bin's nodes and weights become constants (docs/design.md §3.4).
 layout(constant_id = 6) const float FIRST_WAVELENGTH = 380.0;
 layout(constant_id = 7) const float WAVELENGTH_STEP = 10.0;
 // The preview reads the light field of the voxel a point lies in (one load)
@@ -349,8 +349,10 @@ bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
 
 // The scattering in bin l from log G on the nodes (nodesToLogs): cubic
 // Lagrange interpolation of log G through the four nearest nodes (G is a sum
-// of decaying exponentials in s, nearly linear in log), times s. Called in
-// unrolled loops over the bins, so l, the nodes and the weights are constants.
+// of decaying exponentials in s, nearly linear in log), times s. In the
+// rounds' resampling (flushScattering) the loop over the bins unrolls, so l,
+// the nodes and the weights are constants; once per pixel (writePixel) they
+// are computed, which builds the pipeline faster (docs/design.md §3.4).
 float scatterAt(float logNodes[SPECTRAL_NODES], int l)
 {
   float s = binRayleighScale(l);
@@ -578,7 +580,7 @@ void writePixel(int pixelIndex, float transmitted, float tHit)
 {
   if (!EXACT_SCATTERING && nodesToLogs(scatterNodes))
   {
-    [[unroll]] for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
+    for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
   }
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
