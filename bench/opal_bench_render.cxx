@@ -3,9 +3,9 @@
 // RenderSession (docs/design.md §5), printing frames' splits: the first
 // frame (pipeline creation and, with a cold Mesa shader cache, the LLVM
 // compile), then the medians of warm frames (7, each with a light pass),
-// camera-only re-renders (7, no upload, no light pass) and preview frames (9);
-// then the whole opal-render process (median of 5) with Mesa's shader cache
-// warm and disabled. Usage: opal-bench-render [WIDTH HEIGHT]
+// camera-only re-renders (7, no upload, no light pass) and preview frames (9),
+// each with its median CPU time; then the whole opal-render process (median
+// of 5) with Mesa's shader cache warm and disabled. Usage: opal-bench-render [WIDTH HEIGHT]
 #include "OpalRenderSession.h"
 #include "OpalVolumeBuild.h"
 
@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -62,28 +63,47 @@ void benchProcess()
 }
 } // namespace
 
+// The process's CPU seconds (all its threads: lavapipe's workers too).
+double cpuSeconds()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+// The median of some figures.
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 // `count` frames, each after `vary`(p, run), which should (or should not)
-// rerun the light pass; prints the median frame's split and the best and
-// median totals (the machine is shared and noisy: one frame says little).
+// rerun the light pass; prints the median frame's split, the best and median
+// totals (the machine is shared and noisy: one frame says little) and the
+// median CPU time per frame, which a neighbour's load moves less than the
+// wall clock (the figure to compare builds by on a busy hour).
 template <typename Vary>
 void benchFrames(const char* what, opal::RenderSession& session, opal::RenderParameters p, int count,
   bool lightPass, Vary vary)
 {
   std::vector<std::pair<double, opal::RenderFrame>> frames(static_cast<std::size_t>(count));
+  std::vector<double> cpu;
   for (int run = 0; run < count; ++run)
   {
     vary(p, run);
     auto& [seconds, frame] = frames[static_cast<std::size_t>(run)];
+    const double cpuStart = cpuSeconds();
     seconds = secondsOf(session, p, frame);
+    cpu.push_back(cpuSeconds() - cpuStart);
     if (frame.Ran.LightPass != lightPass)
     {
       std::printf("  %s: the light pass %s, unexpectedly\n", what, frame.Ran.LightPass ? "ran" : "did not run");
     }
   }
   std::sort(frames.begin(), frames.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  const auto& median = frames[frames.size() / 2];
-  printFrame(what, median.second, median.first);
-  std::printf("  %-22s (the median of %d; best %.3f s)\n", "", count, frames.front().first);
+  const auto& middle = frames[frames.size() / 2];
+  printFrame(what, middle.second, middle.first);
+  std::printf("  %-22s (the median of %d; best %.3f s; CPU %.3f s a frame, median)\n", "", count,
+    frames.front().first, median(cpu));
 }
 
 // The best of four full frames (each with its light pass) of the volume with
