@@ -35,6 +35,13 @@ double secondsOf(opal::RenderSession& session, const opal::RenderParameters& p, 
   frame = session.render(p);
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+// The median of some figures.
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 // Median wall time of five runs of a shell command.
 double medianSeconds(const std::string& command)
 {
@@ -48,8 +55,7 @@ double medianSeconds(const std::string& command)
     }
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
-  std::sort(times.begin(), times.end());
-  return times[2];
+  return median(times);
 }
 
 void benchProcess()
@@ -67,13 +73,6 @@ void benchProcess()
 double cpuSeconds()
 {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
-}
-
-// The median of some figures.
-double median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
 }
 
 // `count` frames, each after `vary`(p, run), which should (or should not)

@@ -98,10 +98,11 @@ float sideLobeAverage(float kappa, float delta)
 
 // Where a wing bin spans four side-lobe periods (pi / L each in delta) or
 // more, it takes their phase average, else its centre value.
+// Without divisions: delta(c - w/2) - delta(c + w/2) = (pi k/d) lambda_B w / (c^2 - w^2/4).
 bool spansSideLobes(CoupledWaveFamily f, float centre, float width)
 {
-  float shortEdge = coupledWaveDetuning(f, centre - 0.5 * width), longEdge = coupledWaveDetuning(f, centre + 0.5 * width);
-  return (shortEdge - longEdge) * f.thickness >= 4.0 * OPAL_PI;
+  return f.detuningScale * f.braggWavelength * width * f.thickness >=
+    4.0 * OPAL_PI * (centre * centre - 0.25 * width * width);
 }
 
 float sideLobePhaseAverage(CoupledWaveFamily f, float centre)
@@ -140,17 +141,14 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
 // both: 1/centre, and per polarisation s = sqrt(delta^2 - kappa^2), from which
 // the side lobes' phase average is 1 - s/|delta| and the centre value
 // kappa^2 A^2 / (1 + kappa^2 A^2), A = sin(sL)/s (coupledModeReflectance's
-// form outside the band, without its tanh form). spansSideLobes's test without its divisions:
-// delta(c - w/2) - delta(c + w/2) = (pi k/d) lambda_B w / (c^2 - w^2/4).
+// form outside the band, without its tanh form).
 float coupledWaveWingAverage(CoupledWaveFamily f, float centre, float width)
 {
   float inverseCentre = 1.0 / centre;
   float delta = f.detuningScale * (f.braggWavelength * inverseCentre - 1.0);
   vec2 kappa = f.couplingLength * inverseCentre * vec2(1.0, f.polarisationP);
   vec2 s = sqrt(max(vec2(delta * delta) - kappa * kappa, vec2(0.0)));
-  bool spans = f.detuningScale * f.braggWavelength * width * f.thickness >=
-    4.0 * OPAL_PI * (centre * centre - 0.25 * width * width);
-  if (spans) return 1.0 - 0.5 * (s.x + s.y) / abs(delta);
+  if (spansSideLobes(f, centre, width)) return 1.0 - 0.5 * (s.x + s.y) / abs(delta);
   vec2 y = s * f.thickness;
   vec2 a = vec2(sideLobeAmplitude(s.x, y.x, f.thickness), sideLobeAmplitude(s.y, y.y, f.thickness));
   vec2 ka2 = kappa * kappa * a * a;
