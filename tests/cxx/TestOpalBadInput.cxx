@@ -17,14 +17,14 @@
 #include <vector>
 
 using BadCase = opaltest::BadCase<vtkOpalSource>;
+using opaltest::MessageRecorder;
 
-int TestOpalBadInput(int, char*[])
+namespace
 {
-  using opaltest::MessageRecorder;
-  // The executive reports failed requests on the output window; keep the log readable.
-  opaltest::silenceExpectedErrors();
-
-  const std::vector<BadCase> cases = {
+// Each case breaks one parameter of a working source; the error must name it.
+std::vector<BadCase> badSourceCases()
+{
+  return {
     { "zero dimension", [](vtkOpalSource* s) { s->SetDimensions(40, 0, 50); }, "Dimensions" },
     { "negative dimension", [](vtkOpalSource* s) { s->SetDimensions(-4, 20, 50); }, "Dimensions" },
     { "zero size", [](vtkOpalSource* s) { s->SetPhysicalSize(16, 0, 20); }, "PhysicalSize" },
@@ -87,8 +87,13 @@ int TestOpalBadInput(int, char*[])
     { "matrix index 4", [](vtkOpalSource* s) { s->SetMatrixRefractiveIndex(4.0); }, "MatrixRefractiveIndex" },
     { "more voxels than memory", [](vtkOpalSource* s) { s->SetDimensions(4000, 4000, 4000); }, "of memory" },
   };
+}
 
-  for (const BadCase& bad : cases)
+// Each bad case fails the request naming its parameter, and the same
+// source works again once the parameter is fixed.
+void checkBadCases()
+{
+  for (const BadCase& bad : badSourceCases())
   {
     auto source = opaltest::makeSmallSource();
     vtkNew<MessageRecorder> recorder;
@@ -106,12 +111,11 @@ int TestOpalBadInput(int, char*[])
     OPAL_CHECK(source->GetExecutive()->Update() == 1 && recorder->Errors.empty(),
       bad.Description + ": the source recovers once fixed");
   }
+}
 
-  {
-    vtkNew<vtkOpalSource> source;
-    OPAL_CHECK(!source->SetPresetByName("fig99"), "an unknown preset name is refused");
-  }
-
+// Placement that cannot do all it is asked warns and still builds.
+void checkPlacementWarnings()
+{
   // Far more big domains than fit: a warning naming DomainCount, the placed count, no hang.
   auto crowded = opaltest::makeSmallSource();
   crowded->SetDomainCount(400);
@@ -132,5 +136,19 @@ int TestOpalBadInput(int, char*[])
   recorder->watch(tiny);
   OPAL_CHECK(tiny->GetExecutive()->Update() == 1, "a tiny opal still builds");
   OPAL_CHECK(recorder->anyContains(recorder->Warnings, "SemiAxes"), "a tiny opal warns naming SemiAxes");
+}
+} // namespace
+
+int TestOpalBadInput(int, char*[])
+{
+  // The executive reports failed requests on the output window; keep the log readable.
+  opaltest::silenceExpectedErrors();
+  checkBadCases();
+  {
+    vtkNew<vtkOpalSource> source;
+    OPAL_CHECK(!source->SetPresetByName("fig99"), "an unknown preset name is refused");
+  }
+  checkPlacementWarnings();
   return opaltest::finish("TestOpalBadInput");
 }
+

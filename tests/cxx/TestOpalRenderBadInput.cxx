@@ -102,30 +102,11 @@ void checkBadArrays(vtkImageData* good, opaltest::MessageRecorder* recorder, vtk
   recorder->clear();
   OPAL_CHECK(render->GetExecutive()->Update() == 1 && recorder->Errors.empty(), "the good volume renders again");
 }
-} // namespace
 
-int TestOpalRenderBadInput(int argc, char* argv[])
+// Each case breaks one parameter of a working render; the error must name it.
+std::vector<BadCase> badRenderCases()
 {
-  opaltest::silenceExpectedErrors();
-  auto source = opaltest::makeSmallSource();
-  vtkNew<vtkOpalSpectralRender> render;
-  render->SetInputConnection(source->GetOutputPort(0));
-  render->SetImageSize(32, 24);
-  vtkNew<opaltest::MessageRecorder> recorder;
-  recorder->watch(render);
-
-  if (argc > 1 && std::string(argv[1]) == "no-device")
-  {
-    OPAL_CHECK(render->GetExecutive()->Update() == 0, "without a Vulkan driver the request fails");
-    OPAL_CHECK(recorder->anyContains(recorder->Errors, "No Vulkan device"), "the error says: No Vulkan device");
-    return opaltest::finish("TestOpalRenderNoDevice");
-  }
-  if (!opaltest::vulkanDeviceAvailable())
-  {
-    return opaltest::noDeviceReturnCode();
-  }
-
-  const std::vector<BadCase> cases = {
+  return {
     { "zero image width", [](vtkOpalSpectralRender* r) { r->SetImageSize(0, 24); }, "ImageSize" },
     { "zero wavelength step", [](vtkOpalSpectralRender* r) { r->SetWavelengthStep(0); }, "WavelengthStep" },
     { "reversed wavelength range", [](vtkOpalSpectralRender* r) { r->SetWavelengthRange(780, 380); },
@@ -152,7 +133,12 @@ int TestOpalRenderBadInput(int argc, char* argv[])
       },
       "device memory limit" },
   };
-  for (const BadCase& bad : cases)
+}
+
+// Each bad case fails the request naming its parameter; fixed, the filter renders again.
+void checkBadParameters(vtkOpalSpectralRender* render, opaltest::MessageRecorder* recorder)
+{
+  for (const BadCase& bad : badRenderCases())
   {
     vtkNew<vtkOpalSpectralRender> fresh;
     render->SetRenderParameters(fresh->GetRenderParameters());
@@ -165,26 +151,52 @@ int TestOpalRenderBadInput(int argc, char* argv[])
       bad.Description + ": the message names " + bad.Expected +
         (recorder->Errors.empty() ? std::string(" (no message)") : " (got: " + recorder->Errors.front() + ")"));
   }
+  vtkNew<vtkOpalSpectralRender> fresh;
+  render->SetRenderParameters(fresh->GetRenderParameters());
+  render->SetImageSize(32, 24);
+  render->SetDeviceMemoryLimit(0);
+  recorder->clear();
+  OPAL_CHECK(render->GetExecutive()->Update() == 1 && recorder->Errors.empty(),
+    "the filter recovers once fixed" + (recorder->Errors.empty() ? std::string() : ": " + recorder->Errors.front()));
+}
+
+// Image data that is not an opal volume fails, naming the missing array.
+void checkNotAnOpalVolume()
+{
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  vtkNew<vtkOpalSpectralRender> other;
+  other->SetInputConnection(wavelet->GetOutputPort());
+  vtkNew<opaltest::MessageRecorder> otherRecorder;
+  otherRecorder->watch(other);
+  OPAL_CHECK(other->GetExecutive()->Update() == 0, "a volume without the opal arrays fails");
+  OPAL_CHECK(otherRecorder->anyContains(otherRecorder->Errors, "ScatteringCoefficient"),
+    "the message names the missing array");
+}
+} // namespace
+
+int TestOpalRenderBadInput(int argc, char* argv[])
+{
+  opaltest::silenceExpectedErrors();
+  auto source = opaltest::makeSmallSource();
+  vtkNew<vtkOpalSpectralRender> render;
+  render->SetInputConnection(source->GetOutputPort(0));
+  render->SetImageSize(32, 24);
+  vtkNew<opaltest::MessageRecorder> recorder;
+  recorder->watch(render);
+
+  if (argc > 1 && std::string(argv[1]) == "no-device")
   {
-    vtkNew<vtkOpalSpectralRender> fresh;
-    render->SetRenderParameters(fresh->GetRenderParameters());
-    render->SetImageSize(32, 24);
-    render->SetDeviceMemoryLimit(0);
-    recorder->clear();
-    OPAL_CHECK(render->GetExecutive()->Update() == 1 && recorder->Errors.empty(),
-      "the filter recovers once fixed" + (recorder->Errors.empty() ? std::string() : ": " + recorder->Errors.front()));
+    OPAL_CHECK(render->GetExecutive()->Update() == 0, "without a Vulkan driver the request fails");
+    OPAL_CHECK(recorder->anyContains(recorder->Errors, "No Vulkan device"), "the error says: No Vulkan device");
+    return opaltest::finish("TestOpalRenderNoDevice");
   }
+  if (!opaltest::vulkanDeviceAvailable())
   {
-    // Image data that is not an opal volume.
-    vtkNew<vtkRTAnalyticSource> wavelet;
-    vtkNew<vtkOpalSpectralRender> other;
-    other->SetInputConnection(wavelet->GetOutputPort());
-    vtkNew<opaltest::MessageRecorder> otherRecorder;
-    otherRecorder->watch(other);
-    OPAL_CHECK(other->GetExecutive()->Update() == 0, "a volume without the opal arrays fails");
-    OPAL_CHECK(otherRecorder->anyContains(otherRecorder->Errors, "ScatteringCoefficient"),
-      "the message names the missing array");
+    return opaltest::noDeviceReturnCode();
   }
+
+  checkBadParameters(render, recorder);
+  checkNotAnOpalVolume();
   source->Update();
   vtkNew<vtkImageData> good;
   good->DeepCopy(source->GetOutput());

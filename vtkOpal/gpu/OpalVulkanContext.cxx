@@ -167,6 +167,25 @@ VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int 
   }
   return best;
 }
+// The environment's memory limit, which must be a whole number of MB (no
+// silent "no limit" for a typo); 0 when unset.
+std::uint64_t environmentMemoryLimit()
+{
+  const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB");
+  if (!limit || !*limit)
+  {
+    return 0;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long megabytes = std::strtoull(limit, &end, 10);
+  if (*end != '\0' || errno == ERANGE || limit[0] == '-' || megabytes > (1ull << 40))
+  {
+    throw VulkanError(std::string("OPAL_VULKAN_MEMORY_LIMIT_MB must be a whole number of MB, got \"") + limit + "\"",
+      VK_ERROR_INITIALIZATION_FAILED);
+  }
+  return static_cast<std::uint64_t>(megabytes) << 20;
+}
 } // namespace
 
 VulkanContext::VulkanContext(const VulkanOptions& options)
@@ -179,32 +198,48 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
       VK_ERROR_LAYER_NOT_PRESENT);
   }
   this->Instance = createInstance(validation);
-  VkInstance instance = this->Instance.get();
   if (validation)
   {
-    auto info = vulkanStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
-    info.messageSeverity =
-      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-      VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    info.pfnUserCallback = &VulkanContext::onValidationMessage;
-    info.pUserData = this;
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-      vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
-    if (!create)
-    {
-      throw VulkanError("vkGetInstanceProcAddr(vkCreateDebugUtilsMessengerEXT) found no function",
-        VK_ERROR_EXTENSION_NOT_PRESENT);
-    }
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-      vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    checkVulkan(create(instance, &info, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
-    this->Messenger = VulkanHandle<VkDebugUtilsMessengerEXT>(
-      messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+    this->createMessenger();
   }
+  this->choosePhysicalDevice(options);
+  this->createDevice();
+  this->createCommandObjects();
+  this->StagingUploads = options.StagingUploads;
+  // An explicit limit wins over the environment's.
+  this->MemoryLimit = options.MemoryLimitBytes ? options.MemoryLimitBytes : environmentMemoryLimit();
+}
 
-  const std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+// Routes the validation layer's warnings and errors to onValidationMessage.
+void VulkanContext::createMessenger()
+{
+  VkInstance instance = this->Instance.get();
+  auto info = vulkanStruct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = &VulkanContext::onValidationMessage;
+  info.pUserData = this;
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+    vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+  if (!create)
+  {
+    throw VulkanError(
+      "vkGetInstanceProcAddr(vkCreateDebugUtilsMessengerEXT) found no function", VK_ERROR_EXTENSION_NOT_PRESENT);
+  }
+  auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+    vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  checkVulkan(create(instance, &info, nullptr, &messenger), "vkCreateDebugUtilsMessengerEXT");
+  this->Messenger = VulkanHandle<VkDebugUtilsMessengerEXT>(
+    messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+}
+
+// The physical device (OPAL_VULKAN_DEVICE or options.DeviceIndex, else the
+// best), its properties and its compute queue family.
+void VulkanContext::choosePhysicalDevice(const VulkanOptions& options)
+{
+  const std::vector<VkPhysicalDevice> devices = physicalDevices(this->Instance.get());
   if (devices.empty())
   {
     throw NoVulkanDeviceError("no Vulkan device; install mesa-vulkan-drivers for the CPU device lavapipe");
@@ -213,7 +248,11 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   vkGetPhysicalDeviceProperties(this->PhysicalDevice, &this->Properties);
   vkGetPhysicalDeviceMemoryProperties(this->PhysicalDevice, &this->MemoryProperties);
   this->QueueFamily = static_cast<std::uint32_t>(computeQueueFamily(this->PhysicalDevice));
+}
 
+// The logical device with one compute queue.
+void VulkanContext::createDevice()
+{
   const float priority = 1.0f;
   auto queueInfo = vulkanStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
   queueInfo.queueFamilyIndex = this->QueueFamily;
@@ -226,7 +265,12 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   checkVulkan(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");
   this->Device = VulkanHandle<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
   vkGetDeviceQueue(device, this->QueueFamily, 0, &this->Queue);
+}
 
+// The command pool and the fence every submission waits on.
+void VulkanContext::createCommandObjects()
+{
+  VkDevice device = this->Device.get();
   auto poolInfo = vulkanStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
   poolInfo.queueFamilyIndex = this->QueueFamily;
   poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT | VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -234,29 +278,10 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   checkVulkan(vkCreateCommandPool(device, &poolInfo, nullptr, &pool), "vkCreateCommandPool");
   this->CommandPool =
     VulkanHandle<VkCommandPool>(pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
-
   auto fenceInfo = vulkanStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
   VkFence fence = VK_NULL_HANDLE;
   checkVulkan(vkCreateFence(device, &fenceInfo, nullptr, &fence), "vkCreateFence");
   this->Fence = VulkanHandle<VkFence>(fence, [device](VkFence f) { vkDestroyFence(device, f, nullptr); });
-
-  this->StagingUploads = options.StagingUploads;
-  // An explicit limit wins over the environment's, which must be a whole
-  // number of MB (no silent "no limit" for a typo).
-  this->MemoryLimit = options.MemoryLimitBytes;
-  const char* limit = std::getenv("OPAL_VULKAN_MEMORY_LIMIT_MB");
-  if (this->MemoryLimit == 0 && limit && *limit)
-  {
-    char* end = nullptr;
-    errno = 0;
-    const unsigned long long megabytes = std::strtoull(limit, &end, 10);
-    if (*end != '\0' || errno == ERANGE || limit[0] == '-' || megabytes > (1ull << 40))
-    {
-      throw VulkanError(std::string("OPAL_VULKAN_MEMORY_LIMIT_MB must be a whole number of MB, got \"") + limit + "\"",
-        VK_ERROR_INITIALIZATION_FAILED);
-    }
-    this->MemoryLimit = static_cast<std::uint64_t>(megabytes) << 20;
-  }
 }
 
 VulkanContext::~VulkanContext()

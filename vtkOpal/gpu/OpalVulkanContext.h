@@ -98,6 +98,11 @@ private:
   static VkBool32 VKAPI_PTR onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
     VkDebugUtilsMessageTypeFlagsEXT types, const VkDebugUtilsMessengerCallbackDataEXT* data,
     void* user);
+  // The constructor's steps, in order.
+  void createMessenger();
+  void choosePhysicalDevice(const VulkanOptions& options);
+  void createDevice();
+  void createCommandObjects();
 
   // Declared in creation order: members are destroyed in reverse.
   VulkanHandle<VkInstance> Instance;
