@@ -96,13 +96,16 @@ float sideLobeAverage(float kappa, float delta)
   return 1.0 - sqrt(max(1.0 - (kappa * kappa) / (delta * delta), 0.0));
 }
 
-// Where a wing bin spans four side-lobe periods (pi / L each in delta) or
-// more, it takes their phase average, else its centre value.
+// Whether a bin spans `periods` side-lobe periods (pi / L each in delta) or
+// more: a wing bin spanning 4 takes their phase average, else its centre
+// value; a band bin spanning 1.5 the closed form (coupledWaveBandAverage).
 // Without divisions: delta(c - w/2) - delta(c + w/2) = (pi k/d) lambda_B w / (c^2 - w^2/4).
-bool spansSideLobes(CoupledWaveFamily f, float centre, float width)
+const float CW_PHASE_AVERAGE_PERIODS = 4.0;
+const float CW_CLOSED_BAND_PERIODS = 1.5;
+bool spansSideLobes(CoupledWaveFamily f, float centre, float width, float periods)
 {
   return f.detuningScale * f.braggWavelength * width * f.thickness >=
-    4.0 * OPAL_PI * (centre * centre - 0.25 * width * width);
+    periods * OPAL_PI * (centre * centre - 0.25 * width * width);
 }
 
 float sideLobePhaseAverage(CoupledWaveFamily f, float centre)
@@ -111,11 +114,43 @@ float sideLobePhaseAverage(CoupledWaveFamily f, float centre)
   return 0.5 * (sideLobeAverage(kappaS, delta) + sideLobeAverage(kappaS * f.polarisationP, delta));
 }
 
+// The integral from 0 to x (odd in x) over x = lambda - lambda_B of a band of
+// half-width c (per polarisation) with the side lobes' phase average beside
+// it: 1 within |x| <= c, 1 - sqrt(1 - c^2/x^2) beyond (OpalCoupledWave.cxx
+// bandIntegral, which derives it).
+vec2 bandIntegral(float x, vec2 c)
+{
+  float ax = max(abs(x), 1e-30);
+  vec2 outside = c * c / (ax + sqrt(max(vec2(ax * ax) - c * c, vec2(0.0)))) + c * acos(min(c / ax, vec2(1.0)));
+  return sign(x) * mix(vec2(ax), outside, greaterThan(vec2(ax), c));
+}
+
+// y / tanh y, 1 at y = 0.
+float overTanh(float y)
+{
+  return y < CW_SERIES_BELOW ? 1.0 + y * y / 3.0 : y / tanh(min(y, CW_TANH_SATURATES));
+}
+
+// R averaged over a bin in closed form, s and p (OpalCoupledWave.cxx
+// coupledWaveBandAverage): per polarisation a band of peak tanh^2(kappa L)
+// and half-width c / tanh(kappa L), the side lobes' phase average beside it,
+// which keeps coupled-mode theory's integral of R, pi kappa tanh(kappa L).
+float coupledWaveBandAverage(CoupledWaveFamily f, float centre, float width)
+{
+  vec2 kappaL = f.couplingLength / f.braggWavelength * f.thickness * vec2(1.0, f.polarisationP);
+  vec2 depth = tanh(min(kappaL, vec2(CW_TANH_SATURATES)));
+  vec2 halfWidth = f.braggWavelength / (f.detuningScale * f.thickness) * vec2(overTanh(kappaL.x), overTanh(kappaL.y));
+  float x = centre - 0.5 * width - f.braggWavelength;
+  return 0.5 * dot(depth * depth, bandIntegral(x + width, halfWidth) - bandIntegral(x, halfWidth)) / width;
+}
+
 // R averaged over a wavelength bin (docs/design.md §7.2). Where the bin comes
-// within CW_BAND_KAPPAS couplings of the band: at CW_BIN_SAMPLES points (the
-// stop band, about 1.5% of lambda for silica in water, is narrower than a
-// 10 nm bin, so one sample could miss it). In the wings: the side lobes'
-// phase average or the centre value (spansSideLobes).
+// within CW_BAND_KAPPAS couplings of the band: in closed form where the bin
+// spans 1.5 side-lobe periods, else at CW_BIN_SAMPLES points (the stop band,
+// about 1.5% of lambda for silica in water, is narrower than a 10 nm bin, so
+// one sample could miss it; 4 points of its flat top's sharp edges may miss
+// the bin's mean by 0.19). In the wings: the side lobes' phase average or the
+// centre value (spansSideLobes).
 const int CW_BIN_SAMPLES = 4;
 const float CW_BAND_KAPPAS = 4.0;
 float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
@@ -124,8 +159,10 @@ float coupledWaveBinAverage(CoupledWaveFamily f, float centre, float width)
   float shortEdge = coupledWaveDetuning(f, centre - 0.5 * width), longEdge = coupledWaveDetuning(f, centre + 0.5 * width);
   if (longEdge > reach || shortEdge < -reach)
   {
-    return spansSideLobes(f, centre, width) ? sideLobePhaseAverage(f, centre) : coupledWaveReflectance(f, centre);
+    return spansSideLobes(f, centre, width, CW_PHASE_AVERAGE_PERIODS) ? sideLobePhaseAverage(f, centre)
+                                                                      : coupledWaveReflectance(f, centre);
   }
+  if (spansSideLobes(f, centre, width, CW_CLOSED_BAND_PERIODS)) return coupledWaveBandAverage(f, centre, width);
   float sum = 0.0;
   for (int i = 0; i < CW_BIN_SAMPLES; ++i)
   {
@@ -148,7 +185,7 @@ float coupledWaveWingAverage(CoupledWaveFamily f, float centre, float width)
   float delta = f.detuningScale * (f.braggWavelength * inverseCentre - 1.0);
   vec2 kappa = f.couplingLength * inverseCentre * vec2(1.0, f.polarisationP);
   vec2 s = sqrt(max(vec2(delta * delta) - kappa * kappa, vec2(0.0)));
-  if (spansSideLobes(f, centre, width)) return 1.0 - 0.5 * (s.x + s.y) / abs(delta);
+  if (spansSideLobes(f, centre, width, CW_PHASE_AVERAGE_PERIODS)) return 1.0 - 0.5 * (s.x + s.y) / abs(delta);
   vec2 y = s * f.thickness;
   vec2 a = vec2(sideLobeAmplitude(s.x, y.x, f.thickness), sideLobeAmplitude(s.y, y.y, f.thickness));
   vec2 ka2 = kappa * kappa * a * a;
