@@ -41,9 +41,13 @@ layout(constant_id = 8) const bool NEAREST_LIGHT = false;
 #include "opal_voxel_walk.glsl"
 #include "opal_bragg_transmission.glsl"
 
-layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPair lightField[]; };
+// The light and absorption fields' LightFieldPairs read as one vec4 each
+// (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
+// members one by one, a vec4 at once (lavapipe, Session 9: paper march ~14% faster,
+// with absorption ~19%; images bit-identical).
+layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { vec4 lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
-layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { vec4 lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
@@ -103,14 +107,14 @@ struct LightSample
   float geometry;
 };
 
-// Trilinear interpolation of a pair field's four pairs (each a voxel and its
-// +x neighbour), f the position within the cell.
-vec2 trilinearPairs(LightFieldPair p00, LightFieldPair p10, LightFieldPair p01, LightFieldPair p11, vec3 f)
+// Trilinear interpolation of a pair field's four pairs (each a voxel in xy
+// and its +x neighbour in zw), f the position within the cell.
+vec2 trilinearPairs(vec4 p00, vec4 p10, vec4 p01, vec4 p11, vec3 f)
 {
-  vec2 x00 = mix(p00.voxel, p00.nextVoxel, f.x);
-  vec2 x10 = mix(p10.voxel, p10.nextVoxel, f.x);
-  vec2 x01 = mix(p01.voxel, p01.nextVoxel, f.x);
-  vec2 x11 = mix(p11.voxel, p11.nextVoxel, f.x);
+  vec2 x00 = mix(p00.xy, p00.zw, f.x);
+  vec2 x10 = mix(p10.xy, p10.zw, f.x);
+  vec2 x01 = mix(p01.xy, p01.zw, f.x);
+  vec2 x11 = mix(p11.xy, p11.zw, f.x);
   return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
 }
 
@@ -118,8 +122,8 @@ vec2 trilinearPairs(LightFieldPair p00, LightFieldPair p10, LightFieldPair p01, 
 LightSample voxelLightAt(vec3 p)
 {
   int v = voxelIndex(clamp(voxelOf(p), ivec3(0), P.gridDimensions - 1));
-  vec2 light = lightField[v].voxel;
-  vec2 absorption = ABSORPTION ? lightAbsorption[v].voxel : vec2(0.0);
+  vec2 light = lightField[v].xy;
+  vec2 absorption = ABSORPTION ? lightAbsorption[v].xy : vec2(0.0);
   return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
 }
 
