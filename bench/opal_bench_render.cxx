@@ -67,7 +67,6 @@ void benchProcess()
               "cold (MESA_SHADER_CACHE_DISABLE=true) %.3f s\n",
     medianSeconds(render), medianSeconds("MESA_SHADER_CACHE_DISABLE=true " + render));
 }
-} // namespace
 
 // The process's CPU seconds (all its threads: lavapipe's workers too).
 double cpuSeconds()
@@ -140,6 +139,7 @@ void benchBraggModels(opal::RenderSession& session, opal::RenderParameters p)
               "+ absorption %.3f s (x%.2f)\n",
     paper, coupled, coupled / paper, fcc, fcc / paper, fccAbsorbing, fccAbsorbing / paper);
 }
+} // namespace
 
 int main(int argc, char** argv)
 {
