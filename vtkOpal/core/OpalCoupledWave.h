@@ -63,7 +63,7 @@ CoupledWaveReflectance coupledWaveReflectance(const CoupledWaveInput& input);
 // side-lobe periods or more (docs/design.md §7.2): per polarisation a band of
 // peak tanh^2(kappa L) with the side lobes' phase average beside it, as wide
 // as keeps the integral of R over delta at pi kappa tanh(kappa L). Exact in
-// that integral; for the saturated band (kappa L >= 3) within 0.013 of the
+// that integral; for the saturated band (kappa L >= 3) within 0.014 of the
 // bin's true mean at 10 nm bins. input.WavelengthNm is not used.
 double coupledWaveBandAverage(const CoupledWaveInput& input, double centre, double width);
 
