@@ -5,8 +5,11 @@
 #include "vtkOpalSource.h"
 
 #include "vtkDataArray.h"
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
+#include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkRTAnalyticSource.h"
 #include "vtkSmartPointer.h"
 
 #include <array>
@@ -79,4 +82,17 @@ inline long long countDifferences(vtkImageData* whole, vtkImageData* piece, cons
   return differences;
 }
 
+// A Filter fed image data that is not an opal volume (VTK's wavelet): the
+// request fails and the error names `missingArray`.
+template <typename Filter>
+void checkRefusesNonOpalVolume(const std::string& missingArray)
+{
+  vtkNew<vtkRTAnalyticSource> wavelet;
+  vtkNew<Filter> filter;
+  filter->SetInputConnection(wavelet->GetOutputPort());
+  vtkNew<MessageRecorder> recorder;
+  recorder->watch(filter);
+  OPAL_CHECK(filter->GetExecutive()->Update() == 0, "a volume without the opal arrays fails");
+  OPAL_CHECK(recorder->anyContains(recorder->Errors, missingArray), "the message names the missing array " + missingArray);
+}
 } // namespace opaltest

@@ -41,20 +41,11 @@ void checkBadDomainValue(vtkImageData* good, const std::string& what,
 }
 } // namespace
 #include "vtkOutputWindow.h"
-#include "vtkRTAnalyticSource.h"
 
 int TestOpalBraggMapBadInput(int, char*[])
 {
   opaltest::silenceExpectedErrors();
-  {
-    vtkNew<vtkRTAnalyticSource> wavelet;
-    vtkNew<vtkOpalBraggMap> map;
-    map->SetInputConnection(wavelet->GetOutputPort());
-    vtkNew<opaltest::MessageRecorder> recorder;
-    recorder->watch(map);
-    OPAL_CHECK(map->GetExecutive()->Update() == 0, "data without the opal arrays fails");
-    OPAL_CHECK(recorder->anyContains(recorder->Errors, "DomainId"), "the message names the missing array DomainId");
-  }
+  opaltest::checkRefusesNonOpalVolume<vtkOpalBraggMap>("DomainId");
   {
     auto source = opaltest::makeSmallSource();
     vtkNew<vtkOpalBraggMap> map;

@@ -181,14 +181,15 @@ void smoothScattering(vtkImageData* volume)
 // millimetres) and the grainy field on its mean. With `absorption` > 0: a
 // body absorbing blue (that much /mm at 550 nm, p 3), domains that scatter
 // (0.3 /mm) and a grey backing 2 mm high absorbing `backing` /mm,
-// docs/design.md §2.10. `voxelMm`: the voxels' size (the 16 x 8 x 20 mm box).
+// docs/design.md §2.10. `voxelMm`: the voxels' size in the preset's box (16 x 8 x 20 mm).
 vtkSmartPointer<vtkImageData> buildVolume(int domains, bool smooth, double scattering = 1.0, double absorption = 0.0,
   double backing = 0.0, double voxelMm = 0.2)
 {
   auto source = opaltest::makeSmallSource(3);
   source->SetPresetByName("fig15");
-  source->SetDimensions(static_cast<int>(std::lround(16.0 / voxelMm)), static_cast<int>(std::lround(8.0 / voxelMm)),
-    static_cast<int>(std::lround(20.0 / voxelMm)));
+  const double* size = source->GetPhysicalSize();
+  source->SetDimensions(static_cast<int>(std::lround(size[0] / voxelMm)), static_cast<int>(std::lround(size[1] / voxelMm)),
+    static_cast<int>(std::lround(size[2] / voxelMm)));
   source->SetDomainCount(domains);
   if (absorption > 0)
   {

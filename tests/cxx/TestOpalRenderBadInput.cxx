@@ -17,7 +17,6 @@
 #include "vtkNew.h"
 #include "vtkOutputWindow.h"
 #include "vtkPointData.h"
-#include "vtkRTAnalyticSource.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -160,18 +159,6 @@ void checkBadParameters(vtkOpalSpectralRender* render, opaltest::MessageRecorder
     "the filter recovers once fixed" + (recorder->Errors.empty() ? std::string() : ": " + recorder->Errors.front()));
 }
 
-// Image data that is not an opal volume fails, naming the missing array.
-void checkNotAnOpalVolume()
-{
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  vtkNew<vtkOpalSpectralRender> other;
-  other->SetInputConnection(wavelet->GetOutputPort());
-  vtkNew<opaltest::MessageRecorder> otherRecorder;
-  otherRecorder->watch(other);
-  OPAL_CHECK(other->GetExecutive()->Update() == 0, "a volume without the opal arrays fails");
-  OPAL_CHECK(otherRecorder->anyContains(otherRecorder->Errors, "ScatteringCoefficient"),
-    "the message names the missing array");
-}
 } // namespace
 
 int TestOpalRenderBadInput(int argc, char* argv[])
@@ -196,7 +183,7 @@ int TestOpalRenderBadInput(int argc, char* argv[])
   }
 
   checkBadParameters(render, recorder);
-  checkNotAnOpalVolume();
+  opaltest::checkRefusesNonOpalVolume<vtkOpalSpectralRender>("ScatteringCoefficient");
   source->Update();
   vtkNew<vtkImageData> good;
   good->DeepCopy(source->GetOutput());
