@@ -43,7 +43,7 @@ double vulkanSeconds(vtkOpalSource* source, int width, int height)
 
 int main(int argc, char** argv)
 {
-  const std::string cie = argc > 1 ? argv[1] : "vtkOpal/core/data";
+  const std::string cie = argc > 1 ? argv[1] : "vtkOpal/core/colour/data";
   vtkNew<vtkOpalSource> source; // fig12, paper scale
   source->Update();
   vtkImageData* volume = source->GetOutput();

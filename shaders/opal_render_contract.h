@@ -111,7 +111,7 @@ struct OPAL_ALIGNED RenderParameterBlock
   int latticeFamilies;                // 1: (111) only; 13: the FCC families
 };
 
-// One wavelength bin (core/OpalSpectralSampling.h): its centre and width,
+// One wavelength bin (core/colour/OpalSpectralSampling.h): its centre and width,
 // the Rayleigh scale (550/lambda)^4, the normalised D65 power and the
 // bin-averaged CIE 1931 colour-matching functions.
 struct OPAL_ALIGNED WavelengthBinRecord

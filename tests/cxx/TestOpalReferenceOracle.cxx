@@ -275,7 +275,7 @@ int TestOpalReferenceOracle(int argc, char* argv[])
 {
   if (!opaltest::vulkanDeviceAvailable())
     return opaltest::noDeviceReturnCode();
-  // VTK's -D: the folder of the official CIE tables (vtkOpal/core/data).
+  // VTK's -D: the folder of the official CIE tables (vtkOpal/core/colour/data).
   vtkNew<vtkTesting> testing;
   testing->AddArguments(argc, argv);
   const std::string cie = testing->GetDataRoot() ? testing->GetDataRoot() : "";

@@ -1,4 +1,4 @@
-// The official CIE tables (core/data/), embedded into the library at build
+// The official CIE tables (core/colour/data/), embedded into the library at build
 // time (cmake/OpalEmbed.cmake), so no data file has to be found at run time.
 #pragma once
 
