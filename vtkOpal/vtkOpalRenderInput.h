@@ -7,6 +7,7 @@
 #pragma once
 
 #include "OpalModelParameters.h"
+#include "OpalRenderFrame.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderVolume.h"
 
@@ -36,11 +37,7 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
 // preset's placement come from the volume's field data (RefractiveIndex,
 // Preset) when `volume` is given; the image size keeps the render's default
 // (it is needed before any data exists).
-struct VolumeSettings
-{
-  std::array<int, 2> ImageSize = opal::RenderParameters().ImageSize;
-  std::array<double, 3> PresetRotation = opal::RenderParameters().PresetRotation;
-  double RefractiveIndex = opal::ModelParameters().RefractiveIndex;
-};
+// What the volume records for its render (core decides what it implies: resolveFrame).
+using VolumeSettings = opal::VolumeRenderHints;
 VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume = nullptr);
 } // namespace vtkOpalRenderInput

@@ -166,30 +166,17 @@ int vtkOpalSpectralRender::GetNumberOfValidationMessages() const
   return this->ValidationMessages;
 }
 
-opal::RenderParameters vtkOpalSpectralRender::GetResolvedRenderParameters(
-  vtkInformation* inputInformation, vtkImageData* input) const
+opal::ResolvedFrame vtkOpalSpectralRender::GetResolvedFrame(vtkInformation* inputInformation, vtkImageData* input) const
 {
   return this->Resolve(this->GetRenderParameters(), inputInformation, input);
 }
 
-opal::RenderParameters vtkOpalSpectralRender::Resolve(
-  opal::RenderParameters p, vtkInformation* inputInformation, vtkImageData* input) const
+opal::ResolvedFrame vtkOpalSpectralRender::Resolve(
+  const opal::RenderParameters& parameters, vtkInformation* inputInformation, vtkImageData* input) const
 {
-  const vtkOpalRenderInput::VolumeSettings volume = vtkOpalRenderInput::ReadSettings(inputInformation, input);
-  if (p.ImageSize[0] == 0 && p.ImageSize[1] == 0)
-  {
-    p.ImageSize = volume.ImageSize;
-  }
-  if (p.RefractiveIndex == 0)
-  {
-    p.RefractiveIndex = volume.RefractiveIndex;
-  }
-  if (this->PresetPlacement)
-  {
-    p.PresetRotation = volume.PresetRotation;
-  }
   // The image a preview renders is the smaller one: extent and data agree.
-  return opal::withQuality(p);
+  return opal::resolveFrame(
+    parameters, vtkOpalRenderInput::ReadSettings(inputInformation, input), this->PresetPlacement);
 }
 
 int vtkOpalSpectralRender::FillInputPortInformation(int, vtkInformation* info)
@@ -201,8 +188,9 @@ int vtkOpalSpectralRender::FillInputPortInformation(int, vtkInformation* info)
 int vtkOpalSpectralRender::RequestInformation(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  const opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0));
-  const std::string error = opal::validate(p);
+  const opal::ResolvedFrame resolved = this->GetResolvedFrame(inputVector[0]->GetInformationObject(0));
+  const opal::RenderParameters& p = resolved.Parameters;
+  const std::string& error = resolved.Error;
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   if (!error.empty())
   {
@@ -320,7 +308,8 @@ int vtkOpalSpectralRender::RequestData(
     return 0;
   }
   // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::RenderParameters p = this->GetResolvedRenderParameters(inputVector[0]->GetInformationObject(0), input);
+  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputVector[0]->GetInformationObject(0), input);
+  opal::RenderParameters& p = resolved.Parameters;
   int extent[6];
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
   if (extent[1] < extent[0] || extent[3] < extent[2])
@@ -335,7 +324,7 @@ int vtkOpalSpectralRender::RequestData(
     {
       return 0;
     }
-    const opal::RenderFrame frame = this->Session().render(p, [this](double fraction) {
+    const opal::RenderFrame frame = this->Session().render(resolved, [this](double fraction) {
       this->UpdateProgress(fraction);
       return !this->GetAbortExecute();
     });
@@ -381,8 +370,8 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
     vtkErrorMacro("The render has no input to render in the background; update it first.");
     return false;
   }
-  const opal::RenderParameters p = this->Resolve(parameters, this->GetInputInformation(0, 0), input);
-  const std::string error = opal::validate(p);
+  const opal::ResolvedFrame frame = this->Resolve(parameters, this->GetInputInformation(0, 0), input);
+  const std::string& error = frame.Error;
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
@@ -398,10 +387,10 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
     this->BackgroundWork = std::make_unique<BackgroundFrame>();
     BackgroundFrame* work = this->BackgroundWork.get();
     // No VTK object is touched on the worker: the session and its own state only.
-    work->Worker = std::thread([work, session, p]() {
+    work->Worker = std::thread([work, session, frame]() {
       try
       {
-        work->Frame = session->render(p, [work](double) { return !work->Cancel.load(); });
+        work->Frame = session->render(frame, [work](double) { return !work->Cancel.load(); });
       }
       catch (const std::exception& e)
       {

@@ -53,6 +53,7 @@ namespace opal
 {
 struct RenderFrame;
 struct RenderParameters;
+struct ResolvedFrame;
 class RenderSession;
 }
 
@@ -183,12 +184,12 @@ public:
   /// Sets every render parameter at once (PresetRotation is ignored: it is the volume's).
   void SetRenderParameters(const opal::RenderParameters& parameters);
 
-  /// The parameters a render of this input uses: the properties with the
-  /// volume's settings where ImageSize and RefractiveIndex are 0 and the
-  /// preset's placement (from the input's pipeline information; without it,
-  /// the refractive index and placement from the input volume's field data).
-  opal::RenderParameters GetResolvedRenderParameters(
-    vtkInformation* inputInformation, vtkImageData* input = nullptr) const;
+  /// The frame a render of this input renders (opal::resolveFrame): the
+  /// properties with the volume's settings where ImageSize and RefractiveIndex
+  /// are 0 and the preset's placement (from the input's pipeline information;
+  /// without it, the refractive index and placement from the input volume's
+  /// field data), the quality's reductions applied and the preview kept.
+  opal::ResolvedFrame GetResolvedFrame(vtkInformation* inputInformation, vtkImageData* input = nullptr) const;
 
   /// Validation-layer messages of the last render (OPAL_VULKAN_VALIDATION=1).
   int GetNumberOfValidationMessages() const;
@@ -266,10 +267,9 @@ private:
   opal::RenderSession& Session();
   // Uploads the input volume unless the session already holds this version of it.
   bool UploadVolume(vtkImageData* input);
-  // The parameters with the volume's settings where they are 0, the preset's
-  // placement, and the quality's reductions (GetResolvedRenderParameters).
-  opal::RenderParameters Resolve(
-    opal::RenderParameters p, vtkInformation* inputInformation, vtkImageData* input) const;
+  // `parameters` resolved against this input (GetResolvedFrame).
+  opal::ResolvedFrame Resolve(
+    const opal::RenderParameters& parameters, vtkInformation* inputInformation, vtkImageData* input) const;
   // A rendered frame into `output`; false, with an error, for validation-layer
   // messages or an aborted frame.
   bool Publish(const opal::RenderFrame& frame, vtkImageData* output);

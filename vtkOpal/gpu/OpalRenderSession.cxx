@@ -220,6 +220,11 @@ void RenderSession::setVolume(const RenderVolume& volume)
 
 RenderFrame RenderSession::render(const RenderParameters& parameters, const RenderProgress& callback)
 {
+  return this->render(resolveFrame(parameters), callback);
+}
+
+RenderFrame RenderSession::render(const ResolvedFrame& resolved, const RenderProgress& callback)
+{
   if (!this->Volume)
   {
     throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
@@ -227,7 +232,8 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
   RenderFrame frame;
   RenderTimings& timings = frame.Image.Timings;
   const auto setupStart = Clock::now();
-  const FrameSetup setup = this->setUpFrame(parameters);
+  const FrameSetup setup = this->setUpFrame(resolved);
+  frame.Ran.Preview = setup.Preview;
   this->checkMemoryBudget(setup);
   this->prepareFrameBuffers(setup);
   timings.Setup = secondsSince(setupStart);
@@ -285,17 +291,16 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
 
 // Frame set-up: validation, the camera and light in the model's frame, the
 // rectangles, the wavelength bins and the parameter block.
-RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& asked) const
+RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) const
 {
-  const std::string error = validate(asked);
-  if (!error.empty())
+  if (!frame.Error.empty())
   {
-    throw std::invalid_argument(error);
+    throw std::invalid_argument(frame.Error);
   }
-  const RenderParameters p = withQuality(asked);
+  const RenderParameters& p = frame.Parameters;
   FrameSetup setup;
   setup.Parameters = p;
-  setup.Preview = asked.Quality == RenderQuality::Preview;
+  setup.Preview = frame.Preview;
   setup.Camera = cameraInModelFrame(p);
   const VolumeGeometry& geometry = this->Volume->Geometry;
   if (geometry.nearestSurfaceDistance(setup.Camera.Light) <= 0)
@@ -321,7 +326,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const RenderParameters& aske
   block.smallestSpacing = static_cast<float>(geometry.smallestSpacing());
   block.gridSpacing = toVec3(shape.Spacing);
   block.marchStep = static_cast<float>((p.StepSize > 0 ? p.StepSize : geometry.smallestSpacing()) *
-    (asked.Quality == RenderQuality::Preview ? PreviewStepScale : 1.0));
+    (frame.Preview ? PreviewStepScale : 1.0));
   block.eye = toVec3(setup.Camera.Eye);
   block.tanHalfViewAngle = static_cast<float>(std::tan(glm::radians(p.ViewAngle) / 2));
   block.forward = toVec3(setup.Camera.Forward);

@@ -8,6 +8,7 @@
 // Plain C++ over OpalCore and Vulkan: the VTK filter and the programs wrap it.
 #pragma once
 
+#include "OpalRenderFrame.h"
 #include "OpalRenderImage.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderVolume.h"
@@ -38,6 +39,7 @@ struct FrameStages
   bool March = false;
   bool Colour = false;
   bool Readback = false;
+  bool Preview = false;   // the preview's own stages: the per-voxel light read and the longer step
 };
 
 enum class FrameStatus
@@ -74,6 +76,8 @@ public:
   // parameters (naming the parameter) or without a volume, VulkanError for
   // device failures.
   RenderFrame render(const RenderParameters& parameters, const RenderProgress& progress = nullptr);
+  // Renders a frame resolved by resolveFrame (what the VTK filter renders).
+  RenderFrame render(const ResolvedFrame& frame, const RenderProgress& progress = nullptr);
 
   VulkanContext& context() { return *this->Context; }
 
@@ -92,7 +96,7 @@ private:
   class Progress;
 
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
-  FrameSetup setUpFrame(const RenderParameters& parameters) const;
+  FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   void prepareFrameBuffers(const FrameSetup& setup);
   void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
