@@ -10,8 +10,8 @@
 #include "opal_render_bindings.glsl"
 
 layout(local_size_x = ShadowTableGroupSize) in;
-layout(constant_id = 0) const int WAVELENGTHS = 41;
-layout(constant_id = 1) const bool COUPLED_WAVE = false;
+layout(constant_id = ShadowTableWavelengthsConstant) const int WAVELENGTHS = 41;
+layout(constant_id = ShadowTableCoupledWaveConstant) const bool COUPLED_WAVE = false;
 
 #include "opal_optics.glsl"
 #include "opal_coupled_wave.glsl"

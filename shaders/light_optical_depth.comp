@@ -28,9 +28,9 @@
 #include "opal_render_bindings.glsl"
 
 layout(local_size_x = LightPassGroupSize) in;
-layout(constant_id = 0) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
-layout(constant_id = 1) const bool ABSORPTION = false;
-layout(constant_id = 2) const bool BRAGG_SHADOW = false;
+layout(constant_id = LightPassModeConstant) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
+layout(constant_id = LightAbsorptionConstant) const bool ABSORPTION = false;
+layout(constant_id = LightBraggShadowConstant) const bool BRAGG_SHADOW = false;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"

@@ -15,6 +15,7 @@
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 
+#include <cstddef>
 #include <cstdint>
 
 namespace opal::gpu
@@ -204,7 +205,7 @@ struct PixelBragg
   int hit;                            // 1 where the ray meets the opal
 };
 
-// The light pass's modes, one pipeline each (specialisation constant 0).
+// The light pass's modes, one pipeline each (LightPassModeConstant).
 OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the light
 OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
 OPAL_CONSTANT int LightPassMarchQueued = 2;       // the skin voxels the sweep queued: each marches to the light
@@ -247,10 +248,46 @@ struct ColourRange
   int first;
 };
 
+// Specialisation constants, by constant_id: each pass's layout(constant_id =
+// ...) and the host's pipeline keys name these ids, so neither side counts
+// positions (OpalGpu's specialisation() places each value at its id).
+// The light pass:
+OPAL_CONSTANT int LightPassModeConstant = 0;        // int: one of the light pass's modes above
+OPAL_CONSTANT int LightAbsorptionConstant = 1;      // bool: the volume absorbs (docs/design.md §3.9)
+OPAL_CONSTANT int LightBraggShadowConstant = 2;     // bool: record the Bragg shadows (§7.2)
+OPAL_CONSTANT int LightPassConstantCount = 3;
+// The highlight pass:
+OPAL_CONSTANT int HighlightModeConstant = 0;        // int: HighlightSelect or HighlightShade
+OPAL_CONSTANT int HighlightConstantCount = 1;
+// The Bragg shadow table:
+OPAL_CONSTANT int ShadowTableWavelengthsConstant = 0; // int: the frame's wavelength count
+OPAL_CONSTANT int ShadowTableCoupledWaveConstant = 1; // bool: the coupled-wave model
+OPAL_CONSTANT int ShadowTableConstantCount = 2;
+// The view march (docs/design.md §3.4):
+OPAL_CONSTANT int MarchWavelengthsConstant = 0;        // int: the frame's wavelength count
+OPAL_CONSTANT int MarchSpectralNodesConstant = 1;      // int: nodes of the scattering spectrum (>= 4)
+OPAL_CONSTANT int MarchExactScatteringConstant = 2;    // bool: every wavelength instead of nodes
+OPAL_CONSTANT int MarchAbsorptionConstant = 3;         // bool: the volume absorbs
+OPAL_CONSTANT int MarchCoupledWaveConstant = 4;        // bool: the coupled-wave Bragg model (§7.2)
+OPAL_CONSTANT int MarchEnergyConservationConstant = 5; // bool: 1 - R behind a crossing
+OPAL_CONSTANT int MarchFirstWavelengthConstant = 6;    // float: the first bin's centre, nm
+OPAL_CONSTANT int MarchWavelengthStepConstant = 7;     // float: the bins' step, nm
+OPAL_CONSTANT int MarchNearestLightConstant = 8;       // bool: the preview's per-voxel light read
+OPAL_CONSTANT int MarchConstantCount = 9;
+
+// The march reads a LightFieldPair (and the absorption's) as one vec4,
+// (voxel.x, voxel.y, nextVoxel.x, nextVoxel.y): one load where lavapipe
+// gathers the struct member by member (docs/design.md §3.3). The view's
+// element type; TestOpalShaderContract holds its stride to sizeof(LightFieldPair).
+#define LightFieldPairAsVec4 vec4
+
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
     sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
   "std140/std430 sizes of the contract's structs");
+static_assert(offsetof(LightFieldPair, voxel) == 0 && offsetof(LightFieldPair, nextVoxel) == 8 &&
+    sizeof(LightFieldPair) == sizeof(LightFieldPairAsVec4),
+  "a LightFieldPair is the vec4 (voxel.xy, nextVoxel.xy) the march reads");
 } // namespace opal::gpu
 #endif
 #undef OPAL_CONSTANT

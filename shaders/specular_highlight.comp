@@ -15,7 +15,7 @@
 #include "opal_render_bindings.glsl"
 
 layout(local_size_x = HighlightGroupSize) in;
-layout(constant_id = 0) const int HIGHLIGHT_MODE = HighlightSelect;
+layout(constant_id = HighlightModeConstant) const int HIGHLIGHT_MODE = HighlightSelect;
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"

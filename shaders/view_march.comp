@@ -9,31 +9,32 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
+#include "opal_render_bindings.glsl"
+
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(constant_id = 0) const int WAVELENGTHS = 41;
+layout(constant_id = MarchWavelengthsConstant) const int WAVELENGTHS = 41;
 // The body's scattering spectrum (docs/design.md §3.4): accumulated on
 // SPECTRAL_NODES (>= 4) nodes uniform in s = (550/lambda)^4 and resampled once
 // per pixel, or with EXACT_SCATTERING evaluated at every wavelength.
-layout(constant_id = 1) const int SPECTRAL_NODES = 16;
-layout(constant_id = 2) const bool EXACT_SCATTERING = false;
+layout(constant_id = MarchSpectralNodesConstant) const int SPECTRAL_NODES = 16;
+layout(constant_id = MarchExactScatteringConstant) const bool EXACT_SCATTERING = false;
 // The volume absorbs: read the absorption cells and their light field.
-layout(constant_id = 3) const bool ABSORPTION = false;
+layout(constant_id = MarchAbsorptionConstant) const bool ABSORPTION = false;
 // The coupled-wave Bragg model instead of the paper's box band (docs/design.md §7.2).
-layout(constant_id = 4) const bool COUPLED_WAVE = false;
+layout(constant_id = MarchCoupledWaveConstant) const bool COUPLED_WAVE = false;
 // Crossings keep 1 - R of the light behind them on the view path, and of the
 // light passing them on the light path (the light pass's Bragg shadows, §7.2);
 // always with COUPLED_WAVE.
-layout(constant_id = 5) const bool ENERGY_CONSERVATION = false;
+layout(constant_id = MarchEnergyConservationConstant) const bool ENERGY_CONSERVATION = false;
 // The bins' centres, FIRST_WAVELENGTH + l WAVELENGTH_STEP (nm, §3.6), known
 // when the pipeline is built: the rounds' resampling unrolls over the bins,
 // and each bin's nodes and weights become constants (docs/design.md §3.4).
-layout(constant_id = 6) const float FIRST_WAVELENGTH = 380.0;
-layout(constant_id = 7) const float WAVELENGTH_STEP = 10.0;
+layout(constant_id = MarchFirstWavelengthConstant) const float FIRST_WAVELENGTH = 380.0;
+layout(constant_id = MarchWavelengthStepConstant) const float WAVELENGTH_STEP = 10.0;
 // The preview reads the light field of the voxel a point lies in (one load)
 // instead of trilinearly (four): a view ray averages it over ~70 voxels.
-layout(constant_id = 8) const bool NEAREST_LIGHT = false;
+layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false;
 
-#include "opal_render_bindings.glsl"
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"
@@ -45,9 +46,9 @@ layout(constant_id = 8) const bool NEAREST_LIGHT = false;
 // (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
 // members one by one, a vec4 at once (lavapipe, Session 9: paper march ~14% faster,
 // with absorption ~19%; images bit-identical).
-layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { vec4 lightField[]; };
+layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
-layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { vec4 lightAbsorption[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };

@@ -166,6 +166,20 @@ std::set<std::string> checkShader(const std::string& shader, const std::string& 
     }
     seen.insert(name);
   }
+  // The march's vec4 views of the light fields (LightFieldPairAsVec4): one
+  // element a LightFieldPair.
+  const std::regex view(R"(^(lightField|lightAbsorption): offset 0,[^\n]*topLevelArrayStride (\d+)$)");
+  lines.clear();
+  lines.str(reflection);
+  while (std::getline(lines, text))
+  {
+    if (std::regex_match(text, m, view))
+    {
+      OPAL_CHECK(std::stoul(m[2]) == sizeof(LightFieldPair), shader + ": the vec4 view " + m[1].str() + " has stride " +
+          m[2].str() + " = sizeof(LightFieldPair) " + std::to_string(sizeof(LightFieldPair)));
+      seen.insert(m[1].str() + " as vec4");
+    }
+  }
   // The parameter block's size, where the shader declares it.
   const std::regex block(R"(ParameterBlock: offset -1, type [0-9a-f]+, size (\d+),)");
   if (std::regex_search(reflection, m, block))
@@ -195,6 +209,10 @@ int TestOpalShaderContract(int argc, char* argv[])
   for (const auto& [name, offset] : expectedOffsets())
   {
     OPAL_CHECK(seen.count(name) == 1, name + " is declared by some pass and so compared");
+  }
+  for (const char* view : { "lightField as vec4", "lightAbsorption as vec4" })
+  {
+    OPAL_CHECK(seen.count(view) == 1, std::string("the march's ") + view + " is compared");
   }
   return opaltest::finish("TestOpalShaderContract");
 }

@@ -4,6 +4,7 @@
 #include "OpalVulkanContext.h"
 #include "OpalVulkanError.h"
 
+#include <stdexcept>
 #include <string>
 
 namespace opal
@@ -170,6 +171,26 @@ void ComputePipeline::dispatchIndirectRecorded(
 {
   vkCmdDispatchIndirect(commands, arguments.buffer(), offset);
   barrierAfterDispatch(commands);
+}
+
+std::vector<std::int32_t> specialisation(int count, std::initializer_list<std::pair<int, std::int32_t>> byId)
+{
+  std::vector<std::int32_t> values(static_cast<std::size_t>(count));
+  std::vector<bool> given(values.size(), false);
+  for (const auto& [id, value] : byId)
+  {
+    if (id < 0 || id >= count || given[static_cast<std::size_t>(id)])
+    {
+      throw std::logic_error("specialisation constant " + std::to_string(id) + " is out of range or given twice");
+    }
+    given[static_cast<std::size_t>(id)] = true;
+    values[static_cast<std::size_t>(id)] = value;
+  }
+  if (byId.size() != values.size())
+  {
+    throw std::logic_error("a pass's specialisation constants are not all given");
+  }
+  return values;
 }
 
 } // namespace opal

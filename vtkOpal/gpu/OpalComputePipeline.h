@@ -6,6 +6,8 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <initializer_list>
+#include <utility>
 #include <vector>
 
 namespace opal
@@ -39,6 +41,11 @@ private:
   VulkanHandle<VkDescriptorPool> Pool;
   VkDescriptorSet Set = VK_NULL_HANDLE;
 };
+
+// A pass's specialisation constants from (constant_id, value) pairs, the ids
+// the contract names (shaders/opal_render_contract.h): the values in id
+// order. Throws std::logic_error unless each of the pass's `count` ids is given once.
+std::vector<std::int32_t> specialisation(int count, std::initializer_list<std::pair<int, std::int32_t>> byId);
 
 // One compute shader as a pipeline; `specialisation` sets constant_id 0..n-1.
 class ComputePipeline

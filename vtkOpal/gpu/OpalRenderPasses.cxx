@@ -99,9 +99,9 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
   if (!pass)
   {
     const embedded::Spirv code = embedded::lightOpticalDepthShader();
-    // constant_id 0: the mode, 1: ABSORPTION, 2: BRAGG_SHADOW.
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ mode, absorbs, shadow });
+      specialisation(gpu::LightPassConstantCount, { { gpu::LightPassModeConstant, mode },
+        { gpu::LightAbsorptionConstant, absorbs }, { gpu::LightBraggShadowConstant, shadow } }));
   }
   return *pass;
 }
@@ -147,9 +147,9 @@ ComputePipeline& RenderSession::shadowTablePass(int wavelengths, bool coupledWav
   if (!pass)
   {
     const embedded::Spirv code = embedded::braggShadowTableShader();
-    // constant_id 0: WAVELENGTHS, 1: COUPLED_WAVE.
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, coupledWave ? 1 : 0 });
+      specialisation(gpu::ShadowTableConstantCount, { { gpu::ShadowTableWavelengthsConstant, wavelengths },
+        { gpu::ShadowTableCoupledWaveConstant, coupledWave ? 1 : 0 } }));
   }
   return *pass;
 }
@@ -187,11 +187,13 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
-    // constant_id 0: WAVELENGTHS, 1: SPECTRAL_NODES, 2: EXACT_SCATTERING, 3: ABSORPTION,
-    // 4: COUPLED_WAVE, 5: ENERGY_CONSERVATION (docs/design.md §7.2), 6: FIRST_WAVELENGTH,
-    // 7: WAVELENGTH_STEP, 8: NEAREST_LIGHT.
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      std::vector<std::int32_t>{ wavelengths, nodes, exact ? 1 : 0, absorbs, coupled, energy, first, step, nearestLight });
+      specialisation(gpu::MarchConstantCount,
+        { { gpu::MarchWavelengthsConstant, wavelengths }, { gpu::MarchSpectralNodesConstant, nodes },
+          { gpu::MarchExactScatteringConstant, exact ? 1 : 0 }, { gpu::MarchAbsorptionConstant, absorbs },
+          { gpu::MarchCoupledWaveConstant, coupled }, { gpu::MarchEnergyConservationConstant, energy },
+          { gpu::MarchFirstWavelengthConstant, first }, { gpu::MarchWavelengthStepConstant, step },
+          { gpu::MarchNearestLightConstant, nearestLight } }));
   }
   return *march;
 }

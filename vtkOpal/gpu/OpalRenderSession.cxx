@@ -138,12 +138,13 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
   const embedded::Spirv light = embedded::lightOpticalDepthShader();
   const embedded::Spirv colour = embedded::spectrumToColourShader();
-  // constant_id 0: the mode, 1: ABSORPTION, 2: BRAGG_SHADOW (pipelines with
-  // either made on first use).
+  // Without absorption and Bragg shadows (pipelines with either made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[{ mode, 0, 0 }] = std::make_unique<ComputePipeline>(
-      *this->Context, *this->Bindings, light.Words, light.WordCount, std::vector<std::int32_t>{ mode, 0, 0 });
+    this->LightPasses[{ mode, 0, 0 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
+      light.Words, light.WordCount,
+      specialisation(gpu::LightPassConstantCount,
+        { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, 0 }, { gpu::LightBraggShadowConstant, 0 } }));
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
@@ -151,7 +152,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
   for (int mode : { gpu::HighlightSelect, gpu::HighlightShade })
   {
     this->HighlightPasses[mode] = std::make_unique<ComputePipeline>(
-      *this->Context, *this->Bindings, highlight.Words, highlight.WordCount, std::vector<std::int32_t>{ mode });
+      *this->Context, *this->Bindings, highlight.Words, highlight.WordCount,
+      specialisation(gpu::HighlightConstantCount, { { gpu::HighlightModeConstant, mode } }));
   }
   this->Buffers->Parameters =
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
