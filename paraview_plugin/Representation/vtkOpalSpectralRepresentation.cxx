@@ -1,6 +1,5 @@
 #include "vtkOpalSpectralRepresentation.h"
 
-#include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -60,6 +59,9 @@ int vtkOpalSpectralRepresentation::GetNumberOfAbandonedFinalFrames()
 vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
 {
   this->Actor->SetRender(this->Render);
+  // The stone stays where the scene has it (its Domains, slices): no preset
+  // placement (fig13's 5 degrees), only OpalModelRotation.
+  this->Render->SetPresetPlacement(false);
 }
 
 vtkOpalSpectralRepresentation::~vtkOpalSpectralRepresentation() = default;
@@ -104,9 +106,6 @@ int vtkOpalSpectralRepresentation::RequestData(
   if (input)
   {
     this->Volume->ShallowCopy(input);
-    // The stone stays where the scene has it (its Domains, slices): no
-    // preset placement (fig13's 5 degrees), only OpalModelRotation.
-    this->Volume->GetFieldData()->RemoveArray("Preset");
   }
   this->Volume->GetBounds(this->Bounds);
   // Voxel centres are the points: the stone's box reaches half a voxel further.
