@@ -44,7 +44,7 @@ layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false
 
 // The light and absorption fields' LightFieldPairs read as one vec4 each
 // (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
-// members one by one, a vec4 at once (lavapipe, Session 9: paper march ~14% faster,
+// members one by one, a vec4 at once (lavapipe: paper march ~14% faster,
 // with absorption ~19%; images bit-identical).
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };

@@ -1,4 +1,4 @@
-// Prints OpalCore's coupled-wave reflectance (DESIGN.md §7) at the
+// Prints OpalCore's coupled-wave reflectance (docs/design.md §7.1) at the
 // wavelengths (nm) read from standard input, one line "lambda R_s R_p
 // R_average" each, for tests/python/TestOpalCoupledWave.py to hold against a
 // transfer-matrix computation of the same index profile.

@@ -1,10 +1,10 @@
-// The FCC lattice planes and their coupled-wave reflectance (DESIGN.md §7,
-// docs/design.md §7): the sphere form factors 3 j1(x)/x of (111), (200),
+// The FCC lattice planes and their coupled-wave reflectance (docs/design.md
+// §7.1): the sphere form factors 3 j1(x)/x of (111), (200),
 // (220) and (222) against the closed form written out here, the spacings and
 // the angles between the families, the lattice orientation (it stands [111]
 // on the domain's normal and the spin turns the other families about it), the
 // orders, and the reflectance's closed forms: tanh^2(kappa L) at the Bragg
-// wavelength, DESIGN.md's sinh / sin forms on either side of the band edge,
+// wavelength, coupled-mode theory's sinh / sin forms on either side of the band edge,
 // continuity at the edge, symmetry, decay off the band, no NaN at the limits.
 // The band's shape against an exact transfer-matrix computation is
 // tests/python/TestOpalCoupledWave.py.
@@ -48,9 +48,9 @@ void checkFourierRatios()
   struct Case
   {
     int Plane, Order, H, K, L;
-    double X, Design; // x and the value DESIGN.md quotes, to 3 digits where it is right
+    double X, Design; // x and the value docs/design.md §7.1 quotes, to 3 digits
   };
-  // (222) is order 2 of (111); DESIGN.md's "about -0.0011" is -0.0015.
+  // (222) is order 2 of (111): -0.0015.
   const Case cases[] = { { 0, 1, 1, 1, 1, 3.8476, 0.1200 }, { 4, 1, 2, 0, 0, 4.4429, 0.00749 },
     { 7, 1, 2, 2, 0, 2 * opal::Pi, -0.0760 }, { 0, 2, 2, 2, 2, 7.6953, -0.00150 } };
   for (const Case& c : cases)
@@ -64,7 +64,7 @@ void checkFourierRatios()
     OPAL_CHECK(near(ratio, c.Design, 5e-5), name + " form factor " + std::to_string(ratio));
     OPAL_CHECK(near(c.Order * plane.X, c.X, 1e-4), name + " x = |G| r");
   }
-  // DESIGN.md §7: silica/water |eps_111| ~ 0.0296, rho = eps_G / eps_bar ~ 1.5%; silica/air ~ 5.4%.
+  // docs/design.md §7.1: silica/water |eps_111| ~ 0.0296, rho = eps_G / eps_bar ~ 1.5%; silica/air ~ 5.4%.
   const opal::ColloidalCrystal water;
   const double eps111 = opal::permittivityFourierComponent(water, planes[0].X);
   OPAL_CHECK(near(eps111, 0.0296, 1e-4), "silica/water eps_111 " + std::to_string(eps111));
@@ -97,13 +97,13 @@ void checkSpacings()
 }
 
 // The angles of every family to (111) (planes[0]) among `normals`, and that
-// each family's angles come out as DESIGN.md's 70.53, 54.74, 35.26 / 90.
+// each family's angles come out as docs/design.md §7.1's 70.53, 54.74, 35.26 / 90.
 void checkAngles(const std::array<glm::dvec3, opal::FccPlaneCount>& normals, const std::string& frame)
 {
   const double a111 = std::acos(1.0 / 3.0) * 180.0 / opal::Pi;          // 70.53
   const double a200 = std::acos(1.0 / std::sqrt(3.0)) * 180.0 / opal::Pi; // 54.74
   const double a220 = std::acos(std::sqrt(2.0 / 3.0)) * 180.0 / opal::Pi; // 35.26
-  OPAL_CHECK(near(a111, 70.53, 0.005) && near(a200, 54.74, 0.005) && near(a220, 35.26, 0.005), "DESIGN.md's angles");
+  OPAL_CHECK(near(a111, 70.53, 0.005) && near(a200, 54.74, 0.005) && near(a220, 35.26, 0.005), "the FCC families' angles");
   int at35 = 0, at90 = 0;
   for (std::size_t i = 1; i < normals.size(); ++i)
   {
@@ -173,7 +173,7 @@ void checkOrders()
   OPAL_CHECK(opal::braggOrderCount(planes[0].SpacingNm, n, 1.0, 0.0) == 0, "no orders for a bad range");
 }
 
-// DESIGN.md §7's two forms as written, for the reflectance's rewrite to hold to.
+// Coupled-mode theory's two forms as written, for the reflectance's rewrite to hold to.
 double designReflectance(double kappa, double delta, double length)
 {
   if (std::fabs(delta) < kappa)
@@ -197,7 +197,7 @@ void checkCoupledModeForms()
       const double delta = sign * ratio * kappa;
       const double r = opal::coupledModeReflectance(kappa, delta, length);
       OPAL_CHECK(near(r, designReflectance(kappa, delta, length), 1e-14),
-        "R at delta = " + std::to_string(sign * ratio) + " kappa is DESIGN.md's form, got " + std::to_string(r));
+        "R at delta = " + std::to_string(sign * ratio) + " kappa is coupled-mode theory's form, got " + std::to_string(r));
       OPAL_CHECK(ratio <= 1 || r <= kappa * kappa / (delta * delta - kappa * kappa),
         "off the band R <= kappa^2 / (delta^2 - kappa^2)");
     }

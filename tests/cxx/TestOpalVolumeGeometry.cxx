@@ -58,7 +58,7 @@ VolumeArrays volumeArrays(vtkPointData* pd)
     pd->GetArray("ScatteringCoefficient"), pd->GetArray("SurfaceDistance") };
 }
 
-// Every array of DESIGN.md §2 exists, with its documented type.
+// Every array of docs/design.md §2.5 exists, with its documented type.
 void checkArrayTypes(vtkPointData* pd, const VolumeArrays& a)
 {
   for (const char* name : opaltest::volumeArrayNames())

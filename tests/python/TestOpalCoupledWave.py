@@ -1,4 +1,4 @@
-"""python3 + numpy: OpalCore's coupled-wave Bragg reflectance (DESIGN.md §7)
+"""python3 + numpy: OpalCore's coupled-wave Bragg reflectance (docs/design.md §7.1)
 against an independent transfer-matrix computation of the same index profile.
 
 The profile is the one whose Fourier component at G = 2 pi / d is eps_G:
@@ -48,7 +48,7 @@ SAMPLES = 8001       # wavelengths per curve (see wavelength_grid)
 
 
 def crystal(sphere, matrix):
-    """eps_bar and eps_111 of close-packed spheres, DESIGN.md §7, written out here."""
+    """eps_bar and eps_111 of close-packed spheres, docs/design.md §7.1, written out here."""
     eps_mean = FILLING * sphere ** 2 + (1 - FILLING) * matrix ** 2
     j1 = (math.sin(X111) - X111 * math.cos(X111)) / X111 ** 2
     return eps_mean, FILLING * (sphere ** 2 - matrix ** 2) * 3 * j1 / X111

@@ -84,7 +84,7 @@ double permittivityFourierComponent(const ColloidalCrystal& c, double x)
 }
 
 // Written as R = kappa^2 A^2 / (1 + b^2 A^2), one expression for both sides of
-// the band edge (divide the DESIGN.md §7 forms by s^2 cosh^2(sL), resp. use
+// the band edge (divide coupled-mode theory's forms by s^2 cosh^2(sL), resp. use
 // cos^2 = 1 - sin^2 and delta^2 = s^2 + kappa^2):
 //   inside the band  (s^2 = kappa^2 - delta^2 >= 0): A = tanh(sL) / s, b = delta;
 //   outside the band (s^2 = delta^2 - kappa^2 > 0):  A = sin(sL) / s,  b = kappa.
@@ -110,7 +110,7 @@ double coupledModeReflectance(double kappa, double delta, double thickness)
   return ka2 / (1.0 + b * b * a * a);
 }
 
-// DESIGN.md §7. Order k reflects off the reciprocal vector k G: the planes
+// docs/design.md §7.1. Order k reflects off the reciprocal vector k G: the planes
 // act as a grating of period d / k, so lambda_B = 2 (d/k) n_bar sin theta2 and
 // delta = (pi k / d)(lambda_B / lambda - 1), with the Fourier component of k G
 // (the caller's, x multiplied by k). The crystal is as thick as before: L = N d.

@@ -1,5 +1,5 @@
-// Coupled-wave Bragg reflectance of a colloidal crystal (DESIGN.md §7,
-// docs/design.md §7): the permittivity of close-packed spheres as a mean plus
+// Coupled-wave Bragg reflectance of a colloidal crystal (docs/design.md
+// §7.1): the permittivity of close-packed spheres as a mean plus
 // Fourier components, and the reflectance of N coherent lattice layers of one
 // plane family from first-order coupled-mode theory, s and p polarisation.
 // Plain C++ shared by the renderer's host code, the Bragg map and the tests;
@@ -16,12 +16,12 @@ double sphericalBesselJ1(double x);
 // at G = 0: 3 j1(x) / x. 1 at x = 0; zero at x = 4.493, 7.725, ...
 double sphereFormFactor(double x);
 
-// Spheres of one index in a matrix of another, close-packed (DESIGN.md §7).
+// Spheres of one index in a matrix of another, close-packed (docs/design.md §7.1).
 struct ColloidalCrystal
 {
   double SphereIndex = 1.45;                  // n_s, silica
   double MatrixIndex = 1.33;                  // n_m, water
-  double Filling = 0.74048048969306104;       // f = pi / sqrt(18), close packing (DESIGN.md's 0.74)
+  double Filling = 0.74048048969306104;       // f = pi / sqrt(18), close packing (~0.74)
 };
 
 // eps_bar = f n_s^2 + (1 - f) n_m^2: the zeroth Fourier component.
@@ -55,7 +55,7 @@ struct CoupledWaveReflectance
   double average() const { return 0.5 * (this->S + this->P); }
 };
 
-// R(lambda) of N layers for the input's family and order, DESIGN.md §7.
+// R(lambda) of N layers for the input's family and order, docs/design.md §7.1.
 CoupledWaveReflectance coupledWaveReflectance(const CoupledWaveInput& input);
 
 // R of the input's family and order (s and p averaged) averaged over the

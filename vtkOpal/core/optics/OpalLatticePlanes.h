@@ -1,5 +1,5 @@
 // The reflecting plane families of a domain's FCC lattice and the domain's
-// lattice orientation (DESIGN.md §7 "Lattice planes", docs/design.md §7):
+// lattice orientation (docs/design.md §7.1, "The plane families"):
 // the four {111}, three {200} and six {220} families with their spacings and
 // sphere form factors, and the rotation that stands the crystal's [111] on
 // the domain's (111) normal, spun about it.
