@@ -49,6 +49,10 @@ int parseArguments(CLI::App& app, int argc, char** argv)
   {
     return app.exit(help);
   }
+  catch (const CLI::Success&)
+  {
+    return 0; // a flag that did its work and ends the program (--list-parameters)
+  }
   catch (const CLI::ParseError& error)
   {
     app.exit(error); // prints the one line of app.failure_message

@@ -8,6 +8,7 @@
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
 #include "OpalOutputModules.h"
+#include "OpalParameterList.h"
 #include "OpalRenderOptions.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderSession.h"
@@ -186,6 +187,14 @@ int main(int argc, char** argv)
   render.addTo(app);
   Outputs outputs;
   addOutputOptions(app, outputs);
+  app.add_flag_callback(
+       "--list-parameters",
+       [] {
+         std::cout << renderParameterListJson() << std::endl;
+         throw CLI::Success();
+       },
+       "Print every render parameter (name, type, range, flag, default, description) as JSON and exit")
+    ->group("Output");
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-render", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {

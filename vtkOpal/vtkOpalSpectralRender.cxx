@@ -37,11 +37,6 @@ struct vtkOpalSpectralRender::BackgroundFrame
 
 namespace
 {
-using vtkOpalArrayCopy::copy;
-} // namespace
-
-namespace
-{
 // Every render filter alive, so their Vulkan sessions can be ended at exit
 // before the Vulkan layers and driver tear down their own state: ParaView
 // deletes its filters only in its libraries' static destruction, after the
@@ -77,10 +72,16 @@ vtkOpalSpectralRender::vtkOpalSpectralRender()
     std::lock_guard<std::mutex> guard(filtersLock());
     liveFilters().insert(this);
   }
-  this->SetRenderParameters(opal::RenderParameters());
-  // The volume's image size and refractive index unless set.
-  this->ImageSize[0] = this->ImageSize[1] = 0;
-  this->RefractiveIndex = 0;
+  // The table's defaults; 0 where a row takes the volume's value.
+  opal::RenderParameters defaults;
+  for (const auto& row : opal::renderParameterRows())
+  {
+    if (row.FromVolume)
+    {
+      row.Set(defaults, std::vector<double>(row.Components, 0.0));
+    }
+  }
+  this->SetRenderParameters(defaults);
   this->DeviceIndex = -1;
   this->DeviceMemoryLimit = 0;
 }
@@ -95,69 +96,13 @@ vtkOpalSpectralRender::~vtkOpalSpectralRender()
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
 {
   opal::RenderParameters p;
-  copy(this->ImageSize, p.ImageSize);
-  copy(this->ImageRegion, p.ImageRegion);
-  copy(this->EyePosition, p.EyePosition);
-  copy(this->FocalPoint, p.FocalPoint);
-  copy(this->ViewUp, p.ViewUp);
-  p.ViewAngle = this->ViewAngle;
-  copy(this->LightPosition, p.LightPosition);
-  p.LightRadius = this->LightRadius;
-  copy(this->ModelRotation, p.ModelRotation);
-  copy(this->WavelengthRange, p.WavelengthRange);
-  p.WavelengthStep = this->WavelengthStep;
-  p.RefractiveIndex = this->RefractiveIndex;
-  p.BraggBandwidth = this->BraggBandwidth;
-  p.DiffractionGain = this->DiffractionGain;
-  p.BraggOrders = this->BraggOrders;
-  p.MosaicSpread = this->MosaicSpread;
-  p.BraggModel = static_cast<opal::BraggModelKind>(this->BraggModel);
-  p.LatticePlanes = static_cast<opal::LatticePlaneSet>(this->LatticePlanes);
-  p.CoherentLayers = this->CoherentLayers;
-  p.EnergyConservation = this->EnergyConservation;
-  p.Exposure = this->Exposure;
-  copy(this->Background, p.Background);
-  p.StepSize = this->StepSize;
-  p.SpecularSamples = this->SpecularSamples;
-  p.SpectralNodes = this->SpectralNodes;
-  p.LightFalloffAtEntry = this->LightFalloffAtEntry;
-  p.WriteSpectrum = this->WriteSpectrum;
-  p.Quality = static_cast<opal::RenderQuality>(this->Quality);
-  p.Illuminant = static_cast<opal::LightSpectrum>(this->Illuminant);
+  OPAL_RENDER_PARAMETERS(OPAL_VTK_TO_STRUCT)
   return p;
 }
 
 void vtkOpalSpectralRender::SetRenderParameters(const opal::RenderParameters& p)
 {
-  copy(p.ImageSize, this->ImageSize);
-  copy(p.ImageRegion, this->ImageRegion);
-  copy(p.EyePosition, this->EyePosition);
-  copy(p.FocalPoint, this->FocalPoint);
-  copy(p.ViewUp, this->ViewUp);
-  this->ViewAngle = p.ViewAngle;
-  copy(p.LightPosition, this->LightPosition);
-  this->LightRadius = p.LightRadius;
-  copy(p.ModelRotation, this->ModelRotation);
-  copy(p.WavelengthRange, this->WavelengthRange);
-  this->WavelengthStep = p.WavelengthStep;
-  this->RefractiveIndex = p.RefractiveIndex;
-  this->BraggBandwidth = p.BraggBandwidth;
-  this->DiffractionGain = p.DiffractionGain;
-  this->BraggOrders = p.BraggOrders;
-  this->MosaicSpread = p.MosaicSpread;
-  this->BraggModel = static_cast<int>(p.BraggModel);
-  this->LatticePlanes = static_cast<int>(p.LatticePlanes);
-  this->CoherentLayers = p.CoherentLayers;
-  this->EnergyConservation = p.EnergyConservation;
-  this->Exposure = p.Exposure;
-  copy(p.Background, this->Background);
-  this->StepSize = p.StepSize;
-  this->SpecularSamples = p.SpecularSamples;
-  this->SpectralNodes = p.SpectralNodes;
-  this->LightFalloffAtEntry = p.LightFalloffAtEntry;
-  this->WriteSpectrum = p.WriteSpectrum;
-  this->Quality = static_cast<int>(p.Quality);
-  this->Illuminant = static_cast<int>(p.Illuminant);
+  OPAL_RENDER_PARAMETERS(OPAL_VTK_FROM_STRUCT)
   this->Modified();
 }
 
@@ -451,44 +396,8 @@ void vtkOpalSpectralRender::CancelBackgroundFrame()
 void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  auto print = [&os, indent](const char* name, const auto* values, int count) {
-    os << indent << name << ":";
-    for (int i = 0; i < count; ++i)
-    {
-      os << " " << values[i];
-    }
-    os << "\n";
-  };
-  print("ImageSize", this->ImageSize, 2);
-  print("ImageRegion", this->ImageRegion, 4);
-  print("EyePosition", this->EyePosition, 3);
-  print("FocalPoint", this->FocalPoint, 3);
-  print("ViewUp", this->ViewUp, 3);
-  print("ViewAngle", &this->ViewAngle, 1);
-  print("LightPosition", this->LightPosition, 3);
-  print("LightRadius", &this->LightRadius, 1);
-  print("ModelRotation", this->ModelRotation, 3);
-  print("PresetPlacement", &this->PresetPlacement, 1);
-  print("WavelengthRange", this->WavelengthRange, 2);
-  print("WavelengthStep", &this->WavelengthStep, 1);
-  print("RefractiveIndex", &this->RefractiveIndex, 1);
-  print("BraggBandwidth", &this->BraggBandwidth, 1);
-  print("DiffractionGain", &this->DiffractionGain, 1);
-  print("BraggOrders", &this->BraggOrders, 1);
-  print("MosaicSpread", &this->MosaicSpread, 1);
-  print("BraggModel", &this->BraggModel, 1);
-  print("LatticePlanes", &this->LatticePlanes, 1);
-  print("CoherentLayers", &this->CoherentLayers, 1);
-  print("EnergyConservation", &this->EnergyConservation, 1);
-  print("Exposure", &this->Exposure, 1);
-  print("Background", this->Background, 3);
-  print("StepSize", &this->StepSize, 1);
-  print("SpecularSamples", &this->SpecularSamples, 1);
-  print("SpectralNodes", &this->SpectralNodes, 1);
-  print("LightFalloffAtEntry", &this->LightFalloffAtEntry, 1);
-  print("WriteSpectrum", &this->WriteSpectrum, 1);
-  print("Quality", &this->Quality, 1);
-  print("Illuminant", &this->Illuminant, 1);
-  print("DeviceIndex", &this->DeviceIndex, 1);
-  print("DeviceMemoryLimit", &this->DeviceMemoryLimit, 1);
+  OPAL_RENDER_PARAMETERS(OPAL_VTK_PRINT)
+  vtkOpalArrayCopy::print(os, indent, "PresetPlacement", this->PresetPlacement);
+  vtkOpalArrayCopy::print(os, indent, "DeviceIndex", this->DeviceIndex);
+  vtkOpalArrayCopy::print(os, indent, "DeviceMemoryLimit", this->DeviceMemoryLimit);
 }

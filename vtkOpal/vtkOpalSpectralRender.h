@@ -43,8 +43,10 @@
  */
 #pragma once
 
+#include "OpalRenderParameterTable.h" // for OPAL_RENDER_PARAMETERS
 #include "vtkImageAlgorithm.h"
 #include "vtkOpalModule.h" // for export macro
+#include "vtkOpalTableMacros.h" // for OPAL_VTK_SET_GET, OPAL_VTK_MEMBER
 
 #include <memory>
 #include <string>
@@ -66,111 +68,21 @@ public:
   vtkTypeMacro(vtkOpalSpectralRender, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Image width and height in pixels; 0 x 0 (the default): the volume's
-  /// preset's (640 x 480, paper §7; fig15 and fig17 300 x 300).
-  vtkSetVector2Macro(ImageSize, int);
-  vtkGetVector2Macro(ImageSize, int);
-  /// Sub-rectangle x0, y0 (from the top left), width, height to render; a
-  /// width or height <= 0 reaches the image's edge. Default: all.
-  vtkSetVector4Macro(ImageRegion, int);
-  vtkGetVector4Macro(ImageRegion, int);
-  /// Eye position in mm. Default (0, 60, 0): above the base's centre.
-  vtkSetVector3Macro(EyePosition, double);
-  vtkGetVector3Macro(EyePosition, double);
-  /// Point the eye looks at, mm. Default the base's centre.
-  vtkSetVector3Macro(FocalPoint, double);
-  vtkGetVector3Macro(FocalPoint, double);
-  /// Image up direction. Default (0, 0, -1): the opal's long axis vertical.
-  vtkSetVector3Macro(ViewUp, double);
-  vtkGetVector3Macro(ViewUp, double);
-  /// Vertical view angle in degrees. Default 24.
-  vtkSetMacro(ViewAngle, double);
-  vtkGetMacro(ViewAngle, double);
-  /// D65 point light position in mm. Default (0, 60, 0), at the eye (paper §7).
-  vtkSetVector3Macro(LightPosition, double);
-  vtkGetVector3Macro(LightPosition, double);
-  /// Radius of the light's sphere in mm (for its highlight). Default 0.5.
-  vtkSetMacro(LightRadius, double);
-  vtkGetMacro(LightRadius, double);
-  /// Turns the stone by degrees about x, then y, then z, after the volume's
-  /// preset placement (fig13: 5 about x). Default 0.
-  vtkSetVector3Macro(ModelRotation, double);
-  vtkGetVector3Macro(ModelRotation, double);
+  ///@{
+  /// Every render parameter of opal::RenderParameters, one Set/Get pair each
+  /// (booleans also XOn/XOff), generated from OPAL_RENDER_PARAMETERS
+  /// (OpalRenderParameterTable.h), which gives each one's default, range and
+  /// meaning. ImageSize 0 x 0 and RefractiveIndex 0, the defaults here, take
+  /// the volume's (its preset's image size, 640 x 480 for custom; the model's
+  /// index).
+  OPAL_RENDER_PARAMETERS(OPAL_VTK_SET_GET)
+  ///@}
   /// Whether the volume's preset placement (fig13: 5 degrees about x) turns the
   /// stone before ModelRotation. Default on; off when ModelRotation already
   /// holds the whole turn (as ParaView's proxy fills it in).
   vtkSetMacro(PresetPlacement, bool);
   vtkGetMacro(PresetPlacement, bool);
   vtkBooleanMacro(PresetPlacement, bool);
-  /// Wavelength range in nm. Default 380-780.
-  vtkSetVector2Macro(WavelengthRange, double);
-  vtkGetVector2Macro(WavelengthRange, double);
-  /// Wavelength step in nm. Default 10 (41 wavelengths).
-  vtkSetMacro(WavelengthStep, double);
-  vtkGetMacro(WavelengthStep, double);
-  /// Refractive index mu of opal; 0 (the default): the volume's.
-  vtkSetMacro(RefractiveIndex, double);
-  vtkGetMacro(RefractiveIndex, double);
-  /// Relative full width of the Bragg band B. Default 0.04.
-  vtkSetMacro(BraggBandwidth, double);
-  vtkGetMacro(BraggBandwidth, double);
-  /// Gain G of diffraction (paper: 4, the doubled amplitude).
-  vtkSetMacro(DiffractionGain, double);
-  vtkGetMacro(DiffractionGain, double);
-  /// Bragg orders k = 1..BraggOrders. Default 1 (the paper).
-  vtkSetMacro(BraggOrders, int);
-  vtkGetMacro(BraggOrders, int);
-  /// Angular spread in degrees gating diffraction towards the mirror direction; 0 = off (paper).
-  vtkSetMacro(MosaicSpread, double);
-  vtkGetMacro(MosaicSpread, double);
-  /// The Bragg reflection (docs/design.md §7.2): 0 paper (default; the box band
-  /// of gain G), 1 coupled-wave (the reflectance of the lattice layers into a
-  /// lobe of MosaicSpread, 3 degrees where that is 0).
-  vtkSetClampMacro(BraggModel, int, 0, 1);
-  vtkGetMacro(BraggModel, int);
-  /// 0 the (111) stacking planes (default), 1 all 13 FCC families (coupled-wave only).
-  vtkSetClampMacro(LatticePlanes, int, 0, 1);
-  vtkGetMacro(LatticePlanes, int);
-  /// The most lattice layers that reflect coherently. Default 200.
-  vtkSetMacro(CoherentLayers, int);
-  vtkGetMacro(CoherentLayers, int);
-  /// Light behind a domain keeps 1 - R of it on the view path; always with coupled-wave. Default off.
-  vtkSetMacro(EnergyConservation, bool);
-  vtkGetMacro(EnergyConservation, bool);
-  vtkBooleanMacro(EnergyConservation, bool);
-  /// Exposure multiplier; 0 = automatic (median body luminance to 0.18).
-  vtkSetMacro(Exposure, double);
-  vtkGetMacro(Exposure, double);
-  /// Background colour, sRGB in [0, 1]. Default black.
-  vtkSetVector3Macro(Background, double);
-  vtkGetVector3Macro(Background, double);
-  /// Longest march sub-step in mm; 0 = one voxel. Default 0.
-  vtkSetMacro(StepSize, double);
-  vtkGetMacro(StepSize, double);
-  /// Sub-rays per pixel axis for the light's highlight. Default 4.
-  vtkSetMacro(SpecularSamples, int);
-  vtkGetMacro(SpecularSamples, int);
-  /// Nodes of the body's scattering spectrum, resampled to every wavelength
-  /// (16: within 3e-5 of evaluating each); 0 evaluates every wavelength. Default 16.
-  vtkSetMacro(SpectralNodes, int);
-  vtkGetMacro(SpectralNodes, int);
-  /// The paper's eq. 6: the 1/r^2 fall-off stops at the light's entry point. Default off.
-  vtkSetMacro(LightFalloffAtEntry, bool);
-  vtkGetMacro(LightFalloffAtEntry, bool);
-  vtkBooleanMacro(LightFalloffAtEntry, bool);
-  /// 0 final (default); 1 preview, for interaction: half the width and height,
-  /// 20 nm wavelength steps, 8 spectral nodes, a 2 x 2 highlight.
-  vtkSetClampMacro(Quality, int, 0, 1);
-  vtkGetMacro(Quality, int);
-  /// The light's spectrum: 0 D65 (default, normalised to luminance 1), 1 none
-  /// (unit spectral irradiance: Spectrum is radiance per unit source
-  /// spectrum). The field data Illuminant and IlluminantScale record it.
-  vtkSetClampMacro(Illuminant, int, 0, 1);
-  vtkGetMacro(Illuminant, int);
-  /// Add the Spectrum array (one value per wavelength per pixel). Default off.
-  vtkSetMacro(WriteSpectrum, bool);
-  vtkGetMacro(WriteSpectrum, bool);
-  vtkBooleanMacro(WriteSpectrum, bool);
   /// Vulkan device index; -1 picks OPAL_VULKAN_DEVICE or the best device. Default -1.
   vtkSetMacro(DeviceIndex, int);
   vtkGetMacro(DeviceIndex, int);
@@ -224,36 +136,8 @@ protected:
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int ImageSize[2];
-  int ImageRegion[4];
-  double EyePosition[3];
-  double FocalPoint[3];
-  double ViewUp[3];
-  double ViewAngle;
-  double LightPosition[3];
-  double LightRadius;
-  double ModelRotation[3];
+  OPAL_RENDER_PARAMETERS(OPAL_VTK_MEMBER)
   bool PresetPlacement = true;
-  double WavelengthRange[2];
-  double WavelengthStep;
-  double RefractiveIndex;
-  double BraggBandwidth;
-  double DiffractionGain;
-  int BraggOrders;
-  double MosaicSpread;
-  int BraggModel;
-  int LatticePlanes;
-  int CoherentLayers;
-  bool EnergyConservation;
-  double Exposure;
-  double Background[3];
-  double StepSize;
-  int SpecularSamples;
-  int SpectralNodes;
-  bool LightFalloffAtEntry;
-  bool WriteSpectrum;
-  int Quality;
-  int Illuminant;
   int DeviceIndex;
   int DeviceMemoryLimit;
 

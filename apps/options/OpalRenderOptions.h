@@ -1,12 +1,14 @@
-// Command-line flags for every render parameter, named after the render
-// filter's properties in kebab-case (--wavelength-step, --mosaic-spread, ...).
-// No VTK here: the argument fuzzer uses it too.
+// Command-line flags for every render parameter, from the render parameters'
+// table (OPAL_RENDER_PARAMETERS: --wavelength-step, --mosaic-spread, ...), with
+// --width, --height and --rotate-x for one component of a row, and the device's
+// flags. No VTK here: the argument fuzzer uses it too.
 #pragma once
 
 #include "OpalRenderParameters.h"
 
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <string>
 
 class OpalRenderOptions
@@ -22,13 +24,13 @@ public:
   int deviceMemoryLimit() const { return this->DeviceMemoryLimit; }
 
 private:
-  void addBraggModelOptions(CLI::App& app);
+  // True if the row's own flag was given.
+  bool given(const char* name) const;
 
   opal::RenderParameters Parameters;
   int DeviceIndex = -1;
   int DeviceMemoryLimit = 0;
   CLI::Option* WidthOption = nullptr;
   CLI::Option* HeightOption = nullptr;
-  CLI::Option* BraggModelOption = nullptr;
-  CLI::Option* LatticePlanesOption = nullptr;
+  std::map<std::string, CLI::Option*> RowOptions; // by row name
 };

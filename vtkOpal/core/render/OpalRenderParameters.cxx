@@ -10,6 +10,16 @@
 namespace opal
 {
 
+const std::vector<ParameterRow<RenderParameters>>& renderParameterRows()
+{
+  using P = RenderParameters;
+#define OPAL_RENDER_ROW(Name, Type, Count, Min, Max, Choices, Flag, FromVolume, Description)                 \
+  parameterRow<P, &P::Name, Type, Count>(#Name, Min, Max, Choices, Flag, FromVolume, Description),
+  static const std::vector<ParameterRow<P>> rows = { OPAL_RENDER_PARAMETERS(OPAL_RENDER_ROW) };
+#undef OPAL_RENDER_ROW
+  return rows;
+}
+
 int wavelengthCount(const RenderParameters& p)
 {
   return wavelengthBinCount(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
@@ -101,10 +111,6 @@ std::string cameraError(const RenderParameters& p)
   {
     m << "ViewAngle must lie in (0, 179) degrees, got " << p.ViewAngle << ".";
   }
-  else if (!(p.LightRadius >= 1e-6 && p.LightRadius <= 1000))
-  {
-    m << "LightRadius must lie in [1e-6, 1000] mm, got " << p.LightRadius << " mm.";
-  }
   else if (!finite3(p.ModelRotation) || !finite3(p.PresetRotation))
   {
     m << (finite3(p.ModelRotation) ? "PresetRotation" : "ModelRotation") << " must be finite.";
@@ -134,10 +140,6 @@ std::string spectrumError(const RenderParameters& p)
     m << "WavelengthStep " << p.WavelengthStep << " nm gives " << wavelengthCount(p) << " wavelengths; at most "
       << MaxWavelengths << " are supported.";
   }
-  else if (p.Illuminant != LightSpectrum::D65 && p.Illuminant != LightSpectrum::None)
-  {
-    m << "Illuminant must be 0 (D65) or 1 (none), got " << static_cast<int>(p.Illuminant) << ".";
-  }
   else if (p.SpectralNodes != 0 && (p.SpectralNodes < 4 || p.SpectralNodes > 64))
   {
     m << "SpectralNodes must be 0 (every wavelength) or 4-64, got " << p.SpectralNodes << ".";
@@ -156,19 +158,6 @@ std::string opticsError(const RenderParameters& p)
   {
     m << "BraggBandwidth must lie in (0, 1), got " << p.BraggBandwidth << ".";
   }
-  else if (!(p.DiffractionGain >= 0 && p.DiffractionGain <= 1000))
-  {
-    // The paper's is 4; beyond 1000 the radiance leaves float's range.
-    m << "DiffractionGain must lie in [0, 1000], got " << p.DiffractionGain << ".";
-  }
-  else if (p.BraggOrders < 1 || p.BraggOrders > 8)
-  {
-    m << "BraggOrders must be 1-8, got " << p.BraggOrders << ".";
-  }
-  else if (!(p.MosaicSpread >= 0 && p.MosaicSpread <= 90))
-  {
-    m << "MosaicSpread must lie in [0, 90] degrees, got " << p.MosaicSpread << ".";
-  }
   return m.str();
 }
 
@@ -176,56 +165,24 @@ std::string opticsError(const RenderParameters& p)
 std::string braggModelError(const RenderParameters& p)
 {
   std::ostringstream m = messageStream();
-  if (p.BraggModel != BraggModelKind::Paper && p.BraggModel != BraggModelKind::CoupledWave)
-  {
-    m << "BraggModel must be 0 (paper) or 1 (coupled-wave), got " << static_cast<int>(p.BraggModel) << ".";
-  }
-  else if (p.LatticePlanes != LatticePlaneSet::Stacking111 && p.LatticePlanes != LatticePlaneSet::Fcc)
-  {
-    m << "LatticePlanes must be 0 (111) or 1 (fcc), got " << static_cast<int>(p.LatticePlanes) << ".";
-  }
-  else if (p.LatticePlanes == LatticePlaneSet::Fcc && p.BraggModel != BraggModelKind::CoupledWave)
+  if (p.LatticePlanes == LatticePlaneSet::Fcc && p.BraggModel == BraggModelKind::Paper)
   {
     // The paper's box band has no strength per family to give the others.
     m << "LatticePlanes fcc needs BraggModel coupled-wave.";
   }
-  else if (p.CoherentLayers < 1 || p.CoherentLayers > MaxCoherentLayers)
-  {
-    m << "CoherentLayers must be 1-" << MaxCoherentLayers << ", got " << p.CoherentLayers << ".";
-  }
   return m.str();
 }
 
-std::string samplingError(const RenderParameters& p)
+// Every row's range (OPAL_RENDER_PARAMETERS).
+std::string rangeError(const RenderParameters& p)
 {
-  std::ostringstream m = messageStream();
-  if (!(p.Exposure >= 0 && std::isfinite(p.Exposure)))
-  {
-    m << "Exposure must be 0 (automatic) or positive, got " << p.Exposure << ".";
-  }
-  else if (!(p.StepSize >= 0 && std::isfinite(p.StepSize)))
-  {
-    m << "StepSize must be 0 (one voxel) or positive, got " << p.StepSize << " mm.";
-  }
-  else if (p.SpecularSamples < 1 || p.SpecularSamples > 16)
-  {
-    m << "SpecularSamples must be 1-16, got " << p.SpecularSamples << ".";
-  }
-  else if (p.Quality != RenderQuality::Final && p.Quality != RenderQuality::Preview)
-  {
-    m << "Quality must be 0 (final) or 1 (preview), got " << static_cast<int>(p.Quality) << ".";
-  }
-  else if (!std::all_of(p.Background.begin(), p.Background.end(), [](double b) { return b >= 0 && b <= 1; }))
-  {
-    m << "Background components must lie in [0, 1].";
-  }
-  return m.str();
+  return tableRangeError(renderParameterRows(), p);
 }
 } // namespace
 
 std::string validate(const RenderParameters& p)
 {
-  return firstError(p, { imageError, cameraError, spectrumError, opticsError, braggModelError, samplingError });
+  return firstError(p, { imageError, cameraError, spectrumError, opticsError, braggModelError, rangeError });
 }
 
 } // namespace opal

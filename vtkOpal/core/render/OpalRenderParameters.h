@@ -3,8 +3,12 @@
 // point 60 mm above the base's centre, looking down. Plain data.
 #pragma once
 
+#include "OpalParameterRow.h"
+#include "OpalRenderParameterTable.h"
+
 #include <array>
 #include <string>
+#include <vector>
 
 namespace opal
 {
@@ -98,7 +102,12 @@ struct RenderParameters
 // radiance per wavelength in registers).
 constexpr int MaxWavelengths = 401;
 
-// Empty if valid, else one sentence naming the parameter.
+// One row per parameter of OPAL_RENDER_PARAMETERS, in its order
+// (PresetRotation is the volume's, not a parameter a user sets).
+const std::vector<ParameterRow<RenderParameters>>& renderParameterRows();
+
+// Empty if valid, else one sentence naming the parameter: the rules between
+// parameters and the open bounds first, then every row's range.
 std::string validate(const RenderParameters& parameters);
 
 // The parameters a frame renders with (Quality Final, the settings the
