@@ -16,10 +16,12 @@ namespace opal
 using namespace sessiondetail;
 
 // Light pass: the optical depth to the light and its geometry factor for
-// every voxel (docs/design.md §3.3). The field counts as held only once the
-// pass completes, so an aborted pass leaves nothing stale behind.
+// every voxel (docs/design.md §3.3). The buffers hold no light from the
+// pass's first write until it completes, so an aborted pass leaves nothing
+// stale behind: not the new light, nor the old one it half overwrote.
 bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 {
+  this->LightField.reset();
   const bool braggShadow = conservesEnergy(setup.Parameters);
   if (braggShadow)
   {
