@@ -23,11 +23,22 @@
 #include <future>
 #include <memory>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace
 {
+// Ctrl-C stopped the render.
+struct Interrupted : std::runtime_error
+{
+  Interrupted()
+    : std::runtime_error("interrupted; nothing is written")
+  {
+  }
+};
+
 struct Outputs
 {
   std::vector<std::string> Images;
@@ -81,6 +92,32 @@ opal::BuiltVolume buildRenderVolume(const opal::ModelParameters& model)
   return std::move(*volume);
 }
 
+// Renders on the session's worker (its frame ticket) while this thread shows
+// the progress and watches for Ctrl-C, which cancels the frame: nothing is
+// written then, and the program exits with 130.
+opal::RenderFrame renderInBackground(opal::RenderSession& session, const opal::RenderParameters& parameters)
+{
+  static volatile std::sig_atomic_t interrupted = 0;
+  interrupted = 0;
+  const auto previous = std::signal(SIGINT, [](int) { interrupted = 1; });
+  ProgressBar renderBar("render");
+  session.startFrame(opal::resolveFrame(parameters));
+  while (session.backgroundState() == opal::BackgroundState::Running && !interrupted)
+  {
+    renderBar.show(session.backgroundProgress());
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::signal(SIGINT, previous);
+  if (interrupted)
+  {
+    session.cancelFrame();
+    throw Interrupted();
+  }
+  std::optional<opal::RenderFrame> frame = session.takeFrame(); // rethrows the worker's exception
+  renderBar.show(1.0);
+  return std::move(*frame);
+}
+
 // Builds the volume and renders the frame; throws on failure. The Vulkan
 // device starts on a thread of its own while the volume builds (the loader,
 // the driver and the pipelines: about 0.1 s of one core on lavapipe).
@@ -95,11 +132,7 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   const opal::BuiltVolume volume = buildRenderVolume(model);
   const std::unique_ptr<opal::RenderSession> session = starting.get();
   session->setVolume(volume.renderVolume());
-  ProgressBar renderBar("render");
-  opal::RenderFrame frame = session->render(parameters, [&renderBar](double fraction) {
-    renderBar.show(fraction);
-    return true;
-  });
+  const opal::RenderFrame frame = renderInBackground(*session, parameters);
   deviceName = session->context().deviceName();
   // With OPAL_VULKAN_VALIDATION set, what the validation layer said is shown, and fails the run.
   const std::vector<std::string> messages = session->context().validationMessages();
@@ -233,6 +266,11 @@ int main(int argc, char** argv)
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     printSummary(model.presetName(), image, deviceName, seconds, written);
     return 0;
+  }
+  catch (const Interrupted& e)
+  {
+    std::cerr << "opal-render: " << e.what() << std::endl;
+    return 130;
   }
   catch (const opal::NoVulkanDeviceError& e)
   {

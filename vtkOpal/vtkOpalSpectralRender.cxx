@@ -15,25 +15,13 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <stdexcept>
-#include <thread>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
-
-// A frame rendered on a worker thread. The worker writes Frame and Error and
-// then sets Finished; the caller's thread reads them only after joining.
-struct vtkOpalSpectralRender::BackgroundFrame
-{
-  std::thread Worker;
-  std::atomic<bool> Cancel{ false };
-  std::atomic<bool> Finished{ false };
-  opal::RenderFrame Frame;
-  std::string Error;
-};
 
 namespace
 {
@@ -60,9 +48,7 @@ void vtkOpalSpectralRender::EndAllSessions()
   std::lock_guard<std::mutex> guard(filtersLock());
   for (vtkOpalSpectralRender* filter : liveFilters())
   {
-    filter->CancelBackgroundFrame();
-    filter->RenderSession.reset();
-    filter->UploadedVolume = nullptr;
+    filter->EndSession();
   }
 }
 
@@ -90,7 +76,7 @@ vtkOpalSpectralRender::~vtkOpalSpectralRender()
 {
   std::lock_guard<std::mutex> guard(filtersLock());
   liveFilters().erase(this);
-  this->CancelBackgroundFrame();
+  this->EndSession();
 }
 
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
@@ -198,8 +184,7 @@ opal::RenderSession& vtkOpalSpectralRender::Session()
   if (!this->RenderSession || this->SessionDeviceIndex != this->DeviceIndex ||
     this->SessionMemoryLimit != this->DeviceMemoryLimit)
   {
-    this->RenderSession.reset();
-    this->UploadedVolume = nullptr;
+    this->EndSession();
     opal::VulkanOptions options;
     options.DeviceIndex = this->DeviceIndex;
     options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
@@ -316,10 +301,9 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
     return false;
   }
   const opal::ResolvedFrame frame = this->Resolve(parameters, this->GetInputInformation(0, 0), input);
-  const std::string& error = frame.Error;
-  if (!error.empty())
+  if (!frame.Error.empty())
   {
-    vtkErrorMacro(<< error);
+    vtkErrorMacro(<< frame.Error);
     return false;
   }
   try
@@ -328,69 +312,64 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
     {
       return false;
     }
-    opal::RenderSession* session = &this->Session();
-    this->BackgroundWork = std::make_unique<BackgroundFrame>();
-    BackgroundFrame* work = this->BackgroundWork.get();
-    // No VTK object is touched on the worker: the session and its own state only.
-    work->Worker = std::thread([work, session, frame]() {
-      try
-      {
-        work->Frame = session->render(frame, [work](double) { return !work->Cancel.load(); });
-      }
-      catch (const std::exception& e)
-      {
-        work->Error = e.what();
-      }
-      work->Finished.store(true);
-    });
+    this->Session().startFrame(frame); // the session's own worker (the frame ticket)
     return true;
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
   }
-  this->BackgroundWork.reset(); // no worker started
   return false;
 }
 
 int vtkOpalSpectralRender::GetBackgroundFrameState() const
 {
-  if (!this->BackgroundWork)
-  {
-    return 0;
-  }
-  return this->BackgroundWork->Finished.load() ? 2 : 1;
+  return this->RenderSession ? static_cast<int>(this->RenderSession->backgroundState()) : 0;
 }
 
 bool vtkOpalSpectralRender::TakeBackgroundFrame(vtkImageData* image)
 {
-  if (this->GetBackgroundFrameState() != 2)
+  try
   {
-    return false;
+    const std::optional<opal::RenderFrame> frame =
+      this->RenderSession ? this->RenderSession->takeFrame() : std::nullopt;
+    return frame && this->Publish(*frame, image);
   }
-  this->BackgroundWork->Worker.join();
-  const std::unique_ptr<BackgroundFrame> work = std::move(this->BackgroundWork);
-  if (!work->Error.empty())
+  catch (const std::exception& e)
   {
-    vtkErrorMacro(<< work->Error);
-    return false;
+    vtkErrorMacro(<< e.what());
   }
-  this->NumberOfCompletedBackgroundFrames += work->Frame.Status == opal::FrameStatus::Completed ? 1 : 0;
-  return this->Publish(work->Frame, image);
+  return false;
 }
 
 void vtkOpalSpectralRender::CancelBackgroundFrame()
 {
-  if (!this->BackgroundWork)
+  if (this->RenderSession)
   {
-    return;
+    this->RenderSession->cancelFrame();
   }
-  this->BackgroundWork->Cancel.store(true);
-  this->BackgroundWork->Worker.join();
-  const bool completed = this->BackgroundWork->Error.empty() &&
-    this->BackgroundWork->Frame.Status == opal::FrameStatus::Completed;
-  (completed ? this->NumberOfCompletedBackgroundFrames : this->NumberOfAbandonedBackgroundFrames) += 1;
-  this->BackgroundWork.reset();
+}
+
+int vtkOpalSpectralRender::GetNumberOfCompletedBackgroundFrames() const
+{
+  return this->EndedSessionFrames[0] + (this->RenderSession ? this->RenderSession->completedBackgroundFrames() : 0);
+}
+
+int vtkOpalSpectralRender::GetNumberOfAbandonedBackgroundFrames() const
+{
+  return this->EndedSessionFrames[1] + (this->RenderSession ? this->RenderSession->abandonedBackgroundFrames() : 0);
+}
+
+void vtkOpalSpectralRender::EndSession()
+{
+  if (this->RenderSession)
+  {
+    this->RenderSession->cancelFrame();
+    this->EndedSessionFrames[0] += this->RenderSession->completedBackgroundFrames();
+    this->EndedSessionFrames[1] += this->RenderSession->abandonedBackgroundFrames();
+  }
+  this->RenderSession.reset();
+  this->UploadedVolume = nullptr;
 }
 
 void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)

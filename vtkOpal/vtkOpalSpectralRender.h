@@ -33,11 +33,11 @@
  * light, the rotation and the refractive index are, so a new camera re-renders
  * without upload or light pass.
  *
- * A frame can also be rendered on a worker thread while the caller goes on
- * (StartBackgroundFrame; the live view's final frames, docs/design.md §5.2).
- * Only the render session is touched there, never a VTK object; the session
- * is then the worker's, so every use of it on the caller's thread (an update,
- * a new background frame, a new device, the filter's end) first cancels the
+ * A frame can also be rendered in the background while the caller goes on
+ * (StartBackgroundFrame; the live view's final frames, docs/design.md §5.2):
+ * the render session's frame ticket, on the session's own worker thread,
+ * which touches no VTK object. Every other use of the session (an update, a
+ * new background frame, a new device, the filter's end) first cancels the
  * frame and waits for it, which stops at its next check (between light-pass
  * slabs or march tiles).
  */
@@ -123,8 +123,8 @@ public:
   ///@{
   /// Background frames that completed, and that were cancelled before they
   /// completed (abandoned), since the filter was made (for tests).
-  vtkGetMacro(NumberOfCompletedBackgroundFrames, int);
-  vtkGetMacro(NumberOfAbandonedBackgroundFrames, int);
+  int GetNumberOfCompletedBackgroundFrames() const;
+  int GetNumberOfAbandonedBackgroundFrames() const;
   ///@}
 
 protected:
@@ -158,11 +158,10 @@ private:
   // messages or an aborted frame.
   bool Publish(const opal::RenderFrame& frame, vtkImageData* output);
 
-  // A frame on a worker thread (StartBackgroundFrame); defined in the .cxx.
-  struct BackgroundFrame;
-  std::unique_ptr<BackgroundFrame> BackgroundWork;
-  int NumberOfCompletedBackgroundFrames = 0;
-  int NumberOfAbandonedBackgroundFrames = 0;
+  // Ends the session (its background frame first), keeping its frame counts.
+  void EndSession();
+  // Completed and abandoned background frames of the sessions ended so far.
+  int EndedSessionFrames[2] = { 0, 0 };
 
   std::unique_ptr<opal::RenderSession> RenderSession;
   int SessionDeviceIndex = -2;

@@ -10,7 +10,11 @@
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
 
+#include <chrono>
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace
 {
@@ -53,6 +57,57 @@ void checkStagingUploads(
     "the validation layer is silent about the staging copies" + (messages.empty() ? "" : ": " + messages.front()));
 }
 } // namespace
+
+// The frame ticket (RenderSession::startFrame, what opal-render and the
+// filter's background frames use): a frame taken from the session's worker
+// equals the frame render() gives on the caller's thread, pixel for pixel; a
+// cancelled one is counted abandoned and the session renders on; nothing is
+// taken while none has finished.
+void checkFrameTicket(opal::RenderSession& session, const opal::RenderParameters& parameters,
+  const opal::RenderImage& foreground)
+{
+  OPAL_CHECK(!session.takeFrame() && session.backgroundState() == opal::BackgroundState::None,
+    "nothing to take before a frame starts");
+  session.startFrame(opal::resolveFrame(parameters));
+  while (session.backgroundState() == opal::BackgroundState::Running)
+  {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  OPAL_CHECK(session.backgroundProgress() == 1.0, "a finished frame's progress is 1");
+  const std::optional<opal::RenderFrame> background = session.takeFrame();
+  OPAL_CHECK(background && background->Status == opal::FrameStatus::Completed &&
+      identical(background->Image, foreground),
+    "a background frame equals the foreground frame pixel for pixel");
+  OPAL_CHECK(session.completedBackgroundFrames() == 1, "the taken frame is counted completed");
+
+  opal::RenderParameters lit = parameters;
+  lit.LightPosition = { 3.0, 60.0, 2.0 }; // a light pass to cancel in
+  session.startFrame(opal::resolveFrame(lit));
+  session.cancelFrame();
+  OPAL_CHECK(session.backgroundState() == opal::BackgroundState::None &&
+      session.completedBackgroundFrames() + session.abandonedBackgroundFrames() == 2,
+    "a cancelled frame is gone and counted");
+  // The cancelled light pass had overwritten part of the held light field.
+  OPAL_CHECK(identical(session.render(parameters).Image, foreground),
+    "after a cancel in the light pass the session renders the same (the half-written field is not reused)");
+  session.startFrame(opal::resolveFrame(lit));
+  const opal::RenderFrame over = session.render(parameters); // cancels the running frame first
+  OPAL_CHECK(identical(over.Image, foreground) && session.backgroundState() == opal::BackgroundState::None,
+    "render() takes the session back from a running background frame");
+  opal::RenderParameters bad = parameters;
+  bad.WavelengthStep = 0;
+  bool refused = false;
+  try
+  {
+    session.startFrame(opal::resolveFrame(bad));
+  }
+  catch (const std::invalid_argument& e)
+  {
+    refused = std::string(e.what()).find("WavelengthStep") != std::string::npos;
+  }
+  OPAL_CHECK(refused && session.backgroundState() == opal::BackgroundState::None,
+    "a bad frame does not start, naming the parameter");
+}
 
 int TestOpalRenderSession(int, char*[])
 {
@@ -118,6 +173,7 @@ int TestOpalRenderSession(int, char*[])
     "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
 
   checkStagingUploads(volume->renderVolume(), moved, b.Image);
+  checkFrameTicket(session, moved, b.Image);
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

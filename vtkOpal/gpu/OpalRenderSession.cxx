@@ -161,10 +161,14 @@ RenderSession::RenderSession(const VulkanOptions& options)
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::DispatchQueue), "highlight queue header");
 }
 
-RenderSession::~RenderSession() = default;
+RenderSession::~RenderSession()
+{
+  this->cancelFrame(); // the worker renders with the members below
+}
 
 void RenderSession::setVolume(const RenderVolume& volume)
 {
+  this->cancelFrame();
   const std::string error = validate(volume);
   if (!error.empty())
   {
@@ -226,6 +230,61 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
 }
 
 RenderFrame RenderSession::render(const ResolvedFrame& resolved, const RenderProgress& callback)
+{
+  this->cancelFrame();
+  return this->renderFrame(resolved, callback);
+}
+
+void RenderSession::startFrame(const ResolvedFrame& frame)
+{
+  this->cancelFrame();
+  if (!frame.Error.empty())
+  {
+    throw std::invalid_argument(frame.Error); // as render() would, before any work
+  }
+  this->Background = std::make_unique<FrameWorker<RenderFrame>>(
+    [this, frame](const RenderProgress& progress) { return this->renderFrame(frame, progress); });
+}
+
+BackgroundState RenderSession::backgroundState() const
+{
+  if (!this->Background)
+  {
+    return BackgroundState::None;
+  }
+  return this->Background->finished() ? BackgroundState::Finished : BackgroundState::Running;
+}
+
+double RenderSession::backgroundProgress() const
+{
+  return this->Background ? this->Background->progress() : 0.0;
+}
+
+std::optional<RenderFrame> RenderSession::takeFrame()
+{
+  if (this->backgroundState() != BackgroundState::Finished)
+  {
+    return std::nullopt;
+  }
+  const std::unique_ptr<FrameWorker<RenderFrame>> worker = std::move(this->Background);
+  RenderFrame frame = worker->take(); // rethrows the worker's exception
+  this->CompletedFrames += frame.Status == FrameStatus::Completed ? 1 : 0;
+  return frame;
+}
+
+void RenderSession::cancelFrame()
+{
+  if (!this->Background)
+  {
+    return;
+  }
+  this->Background->cancel();
+  const bool completed = !this->Background->failed() && this->Background->frame().Status == FrameStatus::Completed;
+  (completed ? this->CompletedFrames : this->AbandonedFrames) += 1;
+  this->Background.reset();
+}
+
+RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
 {
   if (!this->Volume)
   {

@@ -8,6 +8,7 @@
 // Plain C++ over OpalCore and Vulkan: the VTK filter and the programs wrap it.
 #pragma once
 
+#include "OpalFrameWorker.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderImage.h"
 #include "OpalRenderParameters.h"
@@ -58,6 +59,14 @@ struct RenderFrame
 // Called with the fraction done; returning false aborts the frame.
 using RenderProgress = std::function<bool(double)>;
 
+// A background frame's state: none started (or taken), running, or finished and waiting to be taken.
+enum class BackgroundState
+{
+  None,
+  Running,
+  Finished,
+};
+
 class RenderSession
 {
 public:
@@ -79,6 +88,25 @@ public:
   // Renders a frame resolved by resolveFrame (what the VTK filter renders).
   RenderFrame render(const ResolvedFrame& frame, const RenderProgress& progress = nullptr);
 
+  // The frame ticket (docs/design.md §5.2): startFrame renders `frame` on the
+  // session's own worker thread and returns; the caller polls
+  // backgroundState() (and backgroundProgress()), takes the finished frame
+  // with takeFrame() or stops it with cancelFrame(). While a frame runs the
+  // session is the worker's: setVolume, render, a new startFrame and the
+  // destructor first cancel it and wait (it stops at its next check).
+  void startFrame(const ResolvedFrame& frame);
+  BackgroundState backgroundState() const;
+  double backgroundProgress() const;
+  // The finished frame (Completed), or nothing if none has finished; the
+  // worker's exception is rethrown here.
+  std::optional<RenderFrame> takeFrame();
+  // Cancels a running frame and waits for it; drops a finished one not taken.
+  void cancelFrame();
+  // Background frames that completed (taken, or finished before a cancel)
+  // and that a cancel stopped before their end, since the session began.
+  int completedBackgroundFrames() const { return this->CompletedFrames; }
+  int abandonedBackgroundFrames() const { return this->AbandonedFrames; }
+
   VulkanContext& context() { return *this->Context; }
 
 private:
@@ -95,6 +123,8 @@ private:
   };
   class Progress;
 
+  // A frame on the caller's thread (render, and the worker's startFrame).
+  RenderFrame renderFrame(const ResolvedFrame& frame, const RenderProgress& progress);
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
@@ -136,6 +166,9 @@ private:
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
+  std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
+  int CompletedFrames = 0;
+  int AbandonedFrames = 0;
 };
 
 } // namespace opal
