@@ -21,6 +21,10 @@ std::string defaultText(const opal::ParameterRow<Parameters>& row)
     return " (default: the volume's)";
   }
   const std::vector<double> values = row.Get(Parameters());
+  if (row.Type == opal::ParameterType::Bool)
+  {
+    return values.at(0) != 0 ? " (default: on)" : " (default: off)";
+  }
   std::ostringstream text;
   text << " (default:";
   const std::vector<std::string> names = opal::choicesOf(row.Choices);

@@ -16,7 +16,7 @@ std::string renderParameterListJson()
       defaults.assign(defaults.size(), 0.0);
     }
     rows.push_back({ { "name", row.Name }, { "type", typeNames[static_cast<int>(row.Type)] },
-      { "components", row.Components }, { "min", row.Min },
+      { "components", row.Components }, { "min", row.Min == -opal::Unbounded ? nlohmann::json() : nlohmann::json(row.Min) },
       { "max", row.Max == opal::Unbounded ? nlohmann::json() : nlohmann::json(row.Max) },
       { "choices", opal::choicesOf(row.Choices) }, { "flag", row.Flag }, { "fromVolume", row.FromVolume },
       { "default", defaults }, { "description", row.Description } });

@@ -26,8 +26,9 @@ std::vector<double> otherValue(const Row& row)
   std::vector<double> values = row.Get(opal::RenderParameters());
   for (double& v : values)
   {
-    const double upper = row.Max == opal::Unbounded ? row.Min + 2 : row.Max;
-    v = v == upper ? row.Min : upper;
+    const double lower = row.Min == -opal::Unbounded ? -2 : row.Min;
+    const double upper = row.Max == opal::Unbounded ? lower + 2 : row.Max;
+    v = v == upper ? lower : upper;
   }
   return values;
 }
@@ -92,7 +93,8 @@ void checkRange(const Row& row)
   {
     return;
   }
-  for (const double beyond : { row.Min - 1, row.Max == opal::Unbounded ? HUGE_VAL : row.Max + 1 })
+  for (const double beyond : { row.Min == -opal::Unbounded ? -HUGE_VAL : row.Min - 1,
+         row.Max == opal::Unbounded ? HUGE_VAL : row.Max + 1 })
   {
     opal::RenderParameters p;
     std::vector<double> values = row.Get(p);

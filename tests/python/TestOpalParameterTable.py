@@ -70,7 +70,8 @@ def check_range(row, element):
     kind = "int" if row["type"] == "int" else "double"
     low, high = numbers(domain.get("min"), kind), numbers(domain.get("max", ""), kind)
     if name in NARROWER_RANGES:
-        check(all(row["min"] <= v <= row["max"] for v in low + high),
+        check(all((row["min"] is None or row["min"] <= v) and (row["max"] is None or v <= row["max"])
+                  for v in low + high),
               f"{name}: the XML's range {low}-{high} lies within the row's [{row['min']}, {row['max']}]")
         return
     upper = [] if row["max"] is None else [row["max"]] * row["components"]

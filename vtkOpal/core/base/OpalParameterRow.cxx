@@ -51,14 +51,18 @@ std::string rowRangeError(
     return {};
   }
   std::ostringstream m = messageStream();
-  m << name << (values.size() > 1 ? " components" : "") << " must lie in [" << min << ", ";
-  if (max == Unbounded)
+  m << name << (values.size() > 1 ? " components" : "");
+  if (min == -Unbounded && max == Unbounded)
   {
-    m << "inf)";
+    m << " must be finite";
+  }
+  else if (max == Unbounded)
+  {
+    m << " must lie in [" << min << ", inf)";
   }
   else
   {
-    m << max << "]";
+    m << " must lie in [" << min << ", " << max << "]";
   }
   m << ", got";
   for (const double v : values)

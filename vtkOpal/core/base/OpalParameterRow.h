@@ -28,7 +28,7 @@ enum class ParameterType : int
   Bool = 2,
 };
 
-// No upper bound (an unbounded row still refuses infinity and NaN).
+// No bound (Min -Unbounded, Max Unbounded): an unbounded row still refuses infinity and NaN.
 constexpr double Unbounded = std::numeric_limits<double>::max();
 
 template <typename Parameters>
@@ -38,7 +38,7 @@ struct ParameterRow
   ParameterType Type;      // int, double or bool
   int Components;          // 1-4
   double Min;              // each component's allowed range, inclusive
-  double Max;              //   (Unbounded: none above)
+  double Max;              //   (-Unbounded, Unbounded: none, only finite)
   const char* Choices;     // an enumeration's names for 0, 1, ..., space-separated; "" otherwise
   const char* Flag;        // the CLI flag, "--step-size"; "" where the CLI sets it otherwise
   bool FromVolume;         // VTK's and ParaView's default is 0: the volume's value

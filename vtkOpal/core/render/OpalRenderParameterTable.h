@@ -5,7 +5,7 @@
 // Type        int, double or bool as VTK and ParaView hold it (enumerations: int)
 // Count       components (1-4)
 // Min, Max    each component's allowed range, inclusive (validate refuses
-//             beyond; OPAL_UNBOUNDED: no upper bound)
+//             beyond; -OPAL_UNBOUNDED, OPAL_UNBOUNDED: none, only finite)
 // Choices     an enumeration's names for 0, 1, ..., space-separated; "" otherwise
 // Flag        opal-render's flag; "" where it sets the parameter otherwise
 // FromVolume  1: VTK's and ParaView's default is 0, which takes the volume's
@@ -30,7 +30,7 @@
   X(LightPosition, double, 3, -1e6, 1e6, "", "--light-position", 0,                                        \
     "D65 point light position in mm (at the eye: paper section 7)")                                        \
   X(LightRadius, double, 1, 1e-6, 1000, "", "--light-radius", 0, "Radius of the light's sphere in mm")     \
-  X(ModelRotation, double, 3, -1e6, 1e6, "", "--model-rotation", 0,                                        \
+  X(ModelRotation, double, 3, -OPAL_UNBOUNDED, OPAL_UNBOUNDED, "", "--model-rotation", 0,                                        \
     "Turns the stone by degrees about x, then y, then z, after the preset's placement (fig13: 5 about x)")  \
   X(WavelengthRange, double, 2, 200, 1000, "", "--wavelength-range", 0, "Wavelengths min max in nm")       \
   X(WavelengthStep, double, 1, 0.01, 800, "", "--wavelength-step", 0, "Wavelength step in nm")             \
