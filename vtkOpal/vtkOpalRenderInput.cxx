@@ -2,14 +2,13 @@
 
 #include "OpalDomainLayout.h"
 #include "OpalPresets.h"
+#include "OpalRenderFrame.h"
 #include "vtkOpalSource.h"
 
 #include "vtkAOSDataArrayTemplate.h"
 #include "vtkArrayDispatch.h"
-#include "vtkAlgorithm.h"
 #include "vtkDataArrayRange.h"
-#include "vtkExecutive.h"
-#include "vtkInformationExecutivePortKey.h"
+#include "vtkInformationDoubleVectorKey.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -137,43 +136,24 @@ void readCrystal(vtkFieldData* fields, opal::RenderVolume& volume)
   }
 }
 
-// The output information of the nearest vtkOpalSource upstream: the input's
-// own, or that of a producer a few pass-through filters up (ParaView puts a
-// post filter after every source). nullptr if there is none.
-vtkInformation* sourceInformation(vtkInformation* info)
-{
-  for (int depth = 0; info && depth < 8; ++depth)
-  {
-    if (info->Has(vtkOpalSource::PRESET_IMAGE_SIZE()))
-    {
-      return info;
-    }
-    vtkExecutive* producer = vtkExecutive::PRODUCER()->GetExecutive(info);
-    vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
-    const bool hasInput = algorithm && algorithm->GetNumberOfInputPorts() > 0 &&
-      algorithm->GetNumberOfInputConnections(0) > 0;
-    info = hasInput ? algorithm->GetInputInformation(0, 0) : nullptr;
-  }
-  return nullptr;
-}
-
-// What a saved volume's field data says of the settings. Not the image size:
-// RequestInformation announces the extent before any data exists.
+// What a saved volume's field data (Preset, RefractiveIndex) implies, but
+// the default image size: RequestInformation announces the extent before any
+// data exists.
 vtkOpalRenderInput::VolumeSettings settingsFromFieldData(vtkFieldData* fields)
 {
-  vtkOpalRenderInput::VolumeSettings settings;
+  double refractiveIndex = vtkOpalRenderInput::VolumeSettings().RefractiveIndex;
   if (vtkDataArray* index = fields->GetArray("RefractiveIndex"))
   {
-    settings.RefractiveIndex = index->GetNumberOfTuples() > 0 ? index->GetComponent(0, 0) : settings.RefractiveIndex;
+    refractiveIndex = index->GetNumberOfTuples() > 0 ? index->GetComponent(0, 0) : refractiveIndex;
   }
-  auto* preset = vtkStringArray::SafeDownCast(fields->GetAbstractArray("Preset"));
-  if (preset && preset->GetNumberOfValues() > 0)
+  int preset = opal::CustomPreset;
+  auto* name = vtkStringArray::SafeDownCast(fields->GetAbstractArray("Preset"));
+  if (name && name->GetNumberOfValues() > 0)
   {
-    if (const opal::PresetSettings* settingsOfPreset = opal::presetByIndex(opal::presetIndexByName(preset->GetValue(0))))
-    {
-      settings.PresetRotation = { settingsOfPreset->RotateXDegrees, 0.0, 0.0 };
-    }
+    preset = opal::presetIndexByName(name->GetValue(0));
   }
+  vtkOpalRenderInput::VolumeSettings settings = opal::renderHints(preset, refractiveIndex);
+  settings.ImageSize = vtkOpalRenderInput::VolumeSettings().ImageSize;
   return settings;
 }
 } // namespace
@@ -212,20 +192,11 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
 
 VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume)
 {
-  VolumeSettings settings = volume ? settingsFromFieldData(volume->GetFieldData()) : VolumeSettings();
-  vtkInformation* info = sourceInformation(inputInformation);
-  if (info && info->Has(vtkOpalSource::PRESET_IMAGE_SIZE()))
+  vtkInformationDoubleVectorKey* key = vtkOpalSource::RENDER_HINTS();
+  if (inputInformation && inputInformation->Has(key) && inputInformation->Length(key) == opal::RenderHintsSize)
   {
-    info->Get(vtkOpalSource::PRESET_IMAGE_SIZE(), settings.ImageSize.data());
+    return opal::unpackHints(inputInformation->Get(key));
   }
-  if (info && info->Has(vtkOpalSource::PRESET_ROTATION()))
-  {
-    info->Get(vtkOpalSource::PRESET_ROTATION(), settings.PresetRotation.data());
-  }
-  if (info && info->Has(vtkOpalSource::REFRACTIVE_INDEX()))
-  {
-    settings.RefractiveIndex = info->Get(vtkOpalSource::REFRACTIVE_INDEX());
-  }
-  return settings;
+  return volume ? settingsFromFieldData(volume->GetFieldData()) : VolumeSettings();
 }
 } // namespace vtkOpalRenderInput

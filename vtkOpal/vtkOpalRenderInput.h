@@ -32,12 +32,11 @@ struct Storage
 // it cannot (naming the array).
 std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage);
 
-// The settings an upstream vtkOpalSource records in its output information.
-// Without those keys (a volume read from a file) the refractive index and the
-// preset's placement come from the volume's field data (RefractiveIndex,
-// Preset) when `volume` is given; the image size keeps the render's default
-// (it is needed before any data exists).
-// What the volume records for its render (core decides what it implies: resolveFrame).
+// What the volume implies for its render (opal::renderHints): the upstream
+// vtkOpalSource's RENDER_HINTS in the input information. Without it (a
+// volume read from a file) the hints of the volume's field data (Preset,
+// RefractiveIndex) when `volume` is given, but the render's default image
+// size (it is needed before any data exists).
 using VolumeSettings = opal::VolumeRenderHints;
 VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume = nullptr);
 } // namespace vtkOpalRenderInput

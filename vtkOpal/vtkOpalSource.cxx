@@ -1,5 +1,7 @@
 #include "vtkOpalSource.h"
 
+#include "OpalRenderFrame.h"
+
 #include "OpalCellBoundaries.h"
 #include "OpalDomainLayout.h"
 #include "OpalVolumeBuild.h"
@@ -17,9 +19,7 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkInformationDoubleKey.h"
 #include "vtkInformationDoubleVectorKey.h"
-#include "vtkInformationIntegerVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
@@ -36,9 +36,35 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkOpalSource);
-vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_IMAGE_SIZE, IntegerVector, 2);
-vtkInformationKeyRestrictedMacro(vtkOpalSource, PRESET_ROTATION, DoubleVector, 3);
-vtkInformationKeyMacro(vtkOpalSource, REFRACTIVE_INDEX, Double);
+namespace
+{
+// A key the executives copy from input to output in REQUEST_INFORMATION (as
+// VTK's data-object meta-data keys are): every filter below the source sees
+// the hints, however many pass-through filters lie between.
+class vtkOpalDownstreamKey : public vtkInformationDoubleVectorKey
+{
+public:
+  vtkOpalDownstreamKey(const char* name, const char* location, int length)
+    : vtkInformationDoubleVectorKey(name, location, length)
+  {
+  }
+  void CopyDefaultInformation(vtkInformation* request, vtkInformation* fromInfo, vtkInformation* toInfo) override
+  {
+    if (request->Has(vtkStreamingDemandDrivenPipeline::REQUEST_INFORMATION()) && fromInfo->Has(this))
+    {
+      this->ShallowCopy(fromInfo, toInfo);
+    }
+  }
+};
+
+vtkInformationDoubleVectorKey* renderHintsKey = new vtkOpalDownstreamKey(
+  "RENDER_HINTS", "vtkOpalSource", opal::RenderHintsSize);
+} // namespace
+
+vtkInformationDoubleVectorKey* vtkOpalSource::RENDER_HINTS()
+{
+  return renderHintsKey;
+}
 
 namespace
 {
@@ -185,12 +211,8 @@ int vtkOpalSource::RequestInformation(
   outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin.data(), 3);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 1);
-  const opal::PresetSettings* preset = opal::presetByIndex(this->Preset);
-  const opal::RenderParameters defaults;
-  outInfo->Set(PRESET_IMAGE_SIZE(), preset ? preset->ImageSize.data() : defaults.ImageSize.data(), 2);
-  const double rotation[3] = { preset ? preset->RotateXDegrees : 0.0, 0.0, 0.0 };
-  outInfo->Set(PRESET_ROTATION(), rotation, 3);
-  outInfo->Set(REFRACTIVE_INDEX(), this->RefractiveIndex);
+  outInfo->Set(RENDER_HINTS(), opal::packHints(opal::renderHints(this->Preset, this->RefractiveIndex)).data(),
+    opal::RenderHintsSize);
   return 1;
 }
 

@@ -14,9 +14,11 @@
  * Voronoi cell (voronoi). Both carry the parameters used and DomainsPlaced as
  * field data.
  *
- * The render settings the preset implies travel in port 0's information
- * (PRESET_IMAGE_SIZE, PRESET_ROTATION, REFRACTIVE_INDEX), so a
- * vtkOpalSpectralRender downstream renders what opal-render renders.
+ * What the volume implies for its render (opal::renderHints: the preset's
+ * image size, placement, Bragg model and planes, the model's refractive
+ * index) travels in port 0's information (RENDER_HINTS), which every
+ * executive copies downstream, so a vtkOpalSpectralRender anywhere below
+ * renders what opal-render renders.
  *
  * The source can produce any sub-extent; every value derives from the global
  * voxel index and the seed, so pieces agree exactly with the whole volume.
@@ -35,9 +37,7 @@
 #include <optional>
 #include <string>
 
-class vtkInformationDoubleKey;
 class vtkInformationDoubleVectorKey;
-class vtkInformationIntegerVectorKey;
 
 class vtkImageData;
 
@@ -223,14 +223,10 @@ public:
   /// Sets every model parameter at once; the preset is left as it is.
   void SetModelParameters(const opal::ModelParameters& parameters);
 
-  ///@{
-  /// Output information keys for the render downstream: the preset's image
-  /// size (pixels), its placement of the stone (degrees about x, y, z) and
-  /// the refractive index of the model.
-  static vtkInformationIntegerVectorKey* PRESET_IMAGE_SIZE();
-  static vtkInformationDoubleVectorKey* PRESET_ROTATION();
-  static vtkInformationDoubleKey* REFRACTIVE_INDEX();
-  ///@}
+  /// Output information key for the render downstream: opal::packHints of
+  /// what the volume implies for its render. Copied downstream in
+  /// REQUEST_INFORMATION by every executive (as VTK's meta-data keys are).
+  static vtkInformationDoubleVectorKey* RENDER_HINTS();
 
 protected:
   vtkOpalSource();

@@ -20,10 +20,11 @@
  * With no Vulkan device the request fails with an error saying so.
  *
  * By default the settings a volume implies come from it (a vtkOpalSource
- * records them in its output information): ImageSize 0 x 0 takes the preset's
- * image size (640 x 480 for custom), RefractiveIndex 0 the model's, and the
+ * records them in its output information, a saved volume in its field data):
+ * ImageSize 0 x 0 takes the preset's image size (640 x 480 for custom),
+ * RefractiveIndex 0 the model's, and unless PresetPlacement is off the
  * preset's placement of the stone (fig13: 5 degrees about x) comes before
- * ModelRotation unless PresetPlacement is off. A value set here is used as set.
+ * ModelRotation and a kind of opal's Bragg model and planes are used.
  * (ParaView's proxy fills ImageSize and ModelRotation with the upstream
  * preset's values and turns PresetPlacement off, so its panel shows them:
  * docs/design.md §2.8.)
@@ -77,9 +78,12 @@ public:
   /// index).
   OPAL_RENDER_PARAMETERS(OPAL_VTK_SET_GET)
   ///@}
-  /// Whether the volume's preset placement (fig13: 5 degrees about x) turns the
-  /// stone before ModelRotation. Default on; off when ModelRotation already
-  /// holds the whole turn (as ParaView's proxy fills it in).
+  /// Whether the volume's preset decides its render settings: its placement
+  /// (fig13: 5 degrees about x) turns the stone before ModelRotation, and a
+  /// kind of opal's Bragg model and lattice planes (black-opal: coupled-wave,
+  /// fcc) replace BraggModel and LatticePlanes (opal::renderHints). Default
+  /// on; off where the properties already hold the preset's (as ParaView's
+  /// proxy fills them in) or to render a preset's volume otherwise.
   vtkSetMacro(PresetPlacement, bool);
   vtkGetMacro(PresetPlacement, bool);
   vtkBooleanMacro(PresetPlacement, bool);

@@ -2,6 +2,7 @@
 
 #include "OpalCliTable.h"
 #include "OpalPresets.h"
+#include "OpalRenderFrame.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -47,28 +48,26 @@ bool OpalRenderOptions::given(const char* name) const
 opal::RenderParameters OpalRenderOptions::parameters(const std::string& presetName, double refractiveIndex) const
 {
   opal::RenderParameters p = this->Parameters;
-  if (const opal::PresetSettings* preset = opal::presetByIndex(opal::presetIndexByName(presetName)))
+  // What the preset implies (opal::renderHints), where no flag says otherwise.
+  const opal::VolumeRenderHints hints = opal::renderHints(opal::presetIndexByName(presetName), refractiveIndex);
+  const bool sizeGiven = this->given("ImageSize");
+  if (!sizeGiven && this->WidthOption->count() == 0)
   {
-    const bool sizeGiven = this->given("ImageSize");
-    if (!sizeGiven && this->WidthOption->count() == 0)
-    {
-      p.ImageSize[0] = preset->ImageSize[0];
-    }
-    if (!sizeGiven && this->HeightOption->count() == 0)
-    {
-      p.ImageSize[1] = preset->ImageSize[1];
-    }
-    p.PresetRotation = { preset->RotateXDegrees, 0.0, 0.0 };
-    // The kinds of opal set the Bragg model and planes (docs/design.md §2.11).
-    if (!this->given("BraggModel"))
-    {
-      p.BraggModel = preset->BraggModel;
-    }
-    if (!this->given("LatticePlanes"))
-    {
-      p.LatticePlanes = preset->LatticePlanes;
-    }
+    p.ImageSize[0] = hints.ImageSize[0];
   }
-  p.RefractiveIndex = refractiveIndex;
+  if (!sizeGiven && this->HeightOption->count() == 0)
+  {
+    p.ImageSize[1] = hints.ImageSize[1];
+  }
+  p.PresetRotation = hints.PresetRotation;
+  if (!this->given("BraggModel"))
+  {
+    p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
+  }
+  if (!this->given("LatticePlanes"))
+  {
+    p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
+  }
+  p.RefractiveIndex = hints.RefractiveIndex;
   return p;
 }

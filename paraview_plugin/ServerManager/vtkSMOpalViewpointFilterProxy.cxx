@@ -1,6 +1,7 @@
 #include "vtkSMOpalViewpointFilterProxy.h"
 
 #include "OpalPresets.h"
+#include "OpalRenderFrame.h"
 #include "vtkSMOpalPipelineWalk.h"
 
 #include "vtkCommand.h"
@@ -68,24 +69,23 @@ void vtkSMOpalViewpointFilterProxy::AddConsumer(vtkSMProperty* property, vtkSMPr
 void vtkSMOpalViewpointFilterProxy::FillFromVolumePreset()
 {
   vtkSMProxy* volume = vtkSMOpalPipelineWalk::UpstreamOpalVolume(this);
-  const opal::PresetSettings* preset =
-    volume ? opal::presetByIndex(vtkSMPropertyHelper(volume, "Preset").GetAsInt()) : nullptr;
-  if (!preset)
+  const int preset = volume ? vtkSMPropertyHelper(volume, "Preset").GetAsInt() : opal::CustomPreset;
+  const opal::VolumeRenderHints hints = opal::renderHints(preset, 0.0); // what the preset implies
+  if (!opal::presetByIndex(preset))
   {
     return; // custom: the values shown stay (ImageSize 0 0: the volume's default)
   }
-  const double placement[3] = { preset->RotateXDegrees, 0.0, 0.0 };
-  vtkSMPropertyHelper(this, "ModelRotation").Set(placement, 3);
+  vtkSMPropertyHelper(this, "ModelRotation").Set(hints.PresetRotation.data(), 3);
   if (this->GetProperty("ImageSize") && this->GetProperty("PresetPlacement"))
   {
-    vtkSMPropertyHelper(this, "ImageSize").Set(preset->ImageSize.data(), 2);
-    vtkSMPropertyHelper(this, "PresetPlacement").Set(0); // ModelRotation now holds the placement
+    vtkSMPropertyHelper(this, "ImageSize").Set(hints.ImageSize.data(), 2);
+    vtkSMPropertyHelper(this, "PresetPlacement").Set(0); // ModelRotation and the Bragg model now hold the preset's
   }
   // The kinds of opal's Bragg model and planes (docs/design.md §2.11).
   if (this->GetProperty("BraggModel") && this->GetProperty("LatticePlanes"))
   {
-    vtkSMPropertyHelper(this, "BraggModel").Set(static_cast<int>(preset->BraggModel));
-    vtkSMPropertyHelper(this, "LatticePlanes").Set(static_cast<int>(preset->LatticePlanes));
+    vtkSMPropertyHelper(this, "BraggModel").Set(static_cast<int>(*hints.BraggModel));
+    vtkSMPropertyHelper(this, "LatticePlanes").Set(static_cast<int>(*hints.LatticePlanes));
   }
 }
 

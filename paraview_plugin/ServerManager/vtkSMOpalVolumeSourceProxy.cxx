@@ -2,6 +2,7 @@
 
 #include "OpalModelFields.h"
 #include "OpalPresets.h"
+#include "OpalRenderFrame.h"
 #include "vtkSMOpalPipelineWalk.h"
 #include "vtkSMOpalViewpointFilterProxy.h"
 
@@ -53,13 +54,13 @@ void vtkSMOpalVolumeSourceProxy::FillRepresentation(vtkSMProxy* representation)
   {
     return;
   }
-  const opal::PresetSettings* preset = opal::presetByIndex(vtkSMPropertyHelper(this, "Preset").GetAsInt());
-  if (!preset)
+  const opal::VolumeRenderHints hints = opal::renderHints(vtkSMPropertyHelper(this, "Preset").GetAsInt(), 0.0);
+  if (!hints.BraggModel || !hints.LatticePlanes)
   {
     return; // custom: the values shown stay
   }
-  vtkSMPropertyHelper(representation, "BraggModel").Set(static_cast<int>(preset->BraggModel));
-  vtkSMPropertyHelper(representation, "LatticePlanes").Set(static_cast<int>(preset->LatticePlanes));
+  vtkSMPropertyHelper(representation, "BraggModel").Set(static_cast<int>(*hints.BraggModel));
+  vtkSMPropertyHelper(representation, "LatticePlanes").Set(static_cast<int>(*hints.LatticePlanes));
   representation->UpdateVTKObjects();
 }
 

@@ -1,7 +1,48 @@
 #include "OpalRenderFrame.h"
 
+#include "OpalPresets.h"
+
 namespace opal
 {
+
+VolumeRenderHints renderHints(int presetIndex, double refractiveIndex)
+{
+  VolumeRenderHints hints;
+  hints.RefractiveIndex = refractiveIndex;
+  if (const PresetSettings* preset = presetByIndex(presetIndex))
+  {
+    hints.ImageSize = preset->ImageSize;
+    hints.PresetRotation = { preset->RotateXDegrees, 0.0, 0.0 };
+    hints.BraggModel = preset->BraggModel;
+    hints.LatticePlanes = preset->LatticePlanes;
+  }
+  return hints;
+}
+
+std::array<double, RenderHintsSize> packHints(const VolumeRenderHints& h)
+{
+  // -1: no Bragg model or planes of the volume's own.
+  return { double(h.ImageSize[0]), double(h.ImageSize[1]), h.PresetRotation[0], h.PresetRotation[1],
+    h.PresetRotation[2], h.RefractiveIndex, h.BraggModel ? double(*h.BraggModel) : -1.0,
+    h.LatticePlanes ? double(*h.LatticePlanes) : -1.0 };
+}
+
+VolumeRenderHints unpackHints(const double* v)
+{
+  VolumeRenderHints h;
+  h.ImageSize = { static_cast<int>(v[0]), static_cast<int>(v[1]) };
+  h.PresetRotation = { v[2], v[3], v[4] };
+  h.RefractiveIndex = v[5];
+  if (v[6] >= 0)
+  {
+    h.BraggModel = static_cast<BraggModelKind>(static_cast<int>(v[6]));
+  }
+  if (v[7] >= 0)
+  {
+    h.LatticePlanes = static_cast<LatticePlaneSet>(static_cast<int>(v[7]));
+  }
+  return h;
+}
 
 ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hints, bool presetPlacement)
 {
@@ -16,6 +57,8 @@ ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hint
   if (presetPlacement)
   {
     asked.PresetRotation = hints.PresetRotation;
+    asked.BraggModel = hints.BraggModel.value_or(asked.BraggModel);
+    asked.LatticePlanes = hints.LatticePlanes.value_or(asked.LatticePlanes);
   }
   return resolveFrame(asked);
 }

@@ -9,20 +9,36 @@
 #include "OpalRenderParameters.h"
 
 #include <array>
+#include <optional>
 #include <string>
 
 namespace opal
 {
 
-// What a volume records for its render (the source's field data): the
-// preset's image size, placement and refractive index. Defaults: the render
-// parameters' own.
+// What a volume implies for its render: its preset's image size, placement,
+// Bragg model and planes (the kinds of opal, docs/design.md §2.11) and the
+// model's refractive index. Defaults: the render parameters' own; the Bragg
+// model and planes unset for a custom volume (the render's as set).
 struct VolumeRenderHints
 {
   std::array<int, 2> ImageSize = RenderParameters().ImageSize;
   std::array<double, 3> PresetRotation = RenderParameters().PresetRotation;
   double RefractiveIndex = RenderParameters().RefractiveIndex;
+  std::optional<BraggModelKind> BraggModel;
+  std::optional<LatticePlaneSet> LatticePlanes;
 };
+
+// The one owner of what a volume of this preset (1-based; CustomPreset or an
+// unknown index: none) and refractive index implies for its render
+// (docs/design.md §2.8): the source's pipeline information, a saved volume's
+// field data, opal-render and ParaView's proxies all take it from here.
+VolumeRenderHints renderHints(int presetIndex, double refractiveIndex);
+
+// The hints as the numbers of one pipeline information key (the VTK source's
+// RENDER_HINTS), and back; the packed form has RenderHintsSize values.
+constexpr int RenderHintsSize = 8;
+std::array<double, RenderHintsSize> packHints(const VolumeRenderHints& hints);
+VolumeRenderHints unpackHints(const double* values);
 
 struct ResolvedFrame
 {
@@ -39,7 +55,8 @@ struct ResolvedFrame
 };
 
 // ImageSize 0 x 0 takes the volume's, RefractiveIndex 0 the volume's, and
-// with presetPlacement the preset's rotation replaces PresetRotation.
+// with presetPlacement the preset's rotation replaces PresetRotation and its
+// Bragg model and planes (where the volume has a preset) the asked ones.
 ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hints, bool presetPlacement);
 
 // A frame with nothing to fill in from a volume (the parameters complete).
