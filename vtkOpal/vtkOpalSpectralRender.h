@@ -24,7 +24,8 @@
  * ImageSize 0 x 0 takes the preset's image size (640 x 480 for custom),
  * RefractiveIndex 0 the model's, and unless PresetPlacement is off the
  * preset's placement of the stone (fig13: 5 degrees about x) comes before
- * ModelRotation and a kind of opal's Bragg model and planes are used.
+ * ModelRotation and, while BraggModel and LatticePlanes are the paper's, a
+ * kind of opal's Bragg model and planes are used.
  * (ParaView's proxy fills ImageSize and ModelRotation with the upstream
  * preset's values and turns PresetPlacement off, so its panel shows them:
  * docs/design.md §2.8.)
@@ -79,11 +80,12 @@ public:
   OPAL_RENDER_PARAMETERS(OPAL_VTK_SET_GET)
   ///@}
   /// Whether the volume's preset decides its render settings: its placement
-  /// (fig13: 5 degrees about x) turns the stone before ModelRotation, and a
-  /// kind of opal's Bragg model and lattice planes (black-opal: coupled-wave,
-  /// fcc) replace BraggModel and LatticePlanes (opal::renderHints). Default
-  /// on; off where the properties already hold the preset's (as ParaView's
-  /// proxy fills them in) or to render a preset's volume otherwise.
+  /// (fig13: 5 degrees about x) turns the stone before ModelRotation, and
+  /// while BraggModel and LatticePlanes are their defaults (paper, 111) a
+  /// kind of opal's (black-opal: coupled-wave, fcc) are used instead
+  /// (opal::renderHints). Default on; off where the properties already hold
+  /// the preset's (as ParaView's proxy fills them in), or to render a kind of
+  /// opal with the paper's model.
   vtkSetMacro(PresetPlacement, bool);
   vtkGetMacro(PresetPlacement, bool);
   vtkBooleanMacro(PresetPlacement, bool);

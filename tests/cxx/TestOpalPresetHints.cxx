@@ -3,8 +3,8 @@
 // vtkOpalSpectralRender below a black-opal vtkOpalSource (with a filter
 // between them, as ParaView puts one after every source) resolves the
 // preset's image size, placement, Bragg model and lattice planes, equal to
-// opal-render's parameters for that preset; PresetPlacement off renders the
-// properties as set; a saved volume's field data gives the same Bragg model
+// opal-render's parameters for that preset; a Bragg model other than the
+// default, or PresetPlacement off, renders the properties as set; a saved volume's field data gives the same Bragg model
 // and placement.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
@@ -51,6 +51,12 @@ int TestOpalPresetHints(int, char*[])
       followed.ImageSize == cli.ImageSize && followed.PresetRotation == cli.PresetRotation,
     "the pipeline resolves what opal-render resolves for the preset");
 
+  render->SetBraggModel(1); // coupled-wave with the (111) planes: not the default pair, used as set
+  const opal::RenderParameters chosen = render->GetResolvedFrame(render->GetInputInformation(0, 0)).Parameters;
+  OPAL_CHECK(chosen.BraggModel == opal::BraggModelKind::CoupledWave &&
+      chosen.LatticePlanes == opal::LatticePlaneSet::Stacking111,
+    "a Bragg model and planes other than the defaults are used as set");
+  render->SetBraggModel(0);
   render->PresetPlacementOff();
   const opal::RenderParameters asSet = render->GetResolvedFrame(render->GetInputInformation(0, 0)).Parameters;
   OPAL_CHECK(asSet.BraggModel == opal::BraggModelKind::Paper && asSet.LatticePlanes == opal::LatticePlaneSet::Stacking111,

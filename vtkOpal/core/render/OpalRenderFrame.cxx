@@ -57,8 +57,13 @@ ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hint
   if (presetPlacement)
   {
     asked.PresetRotation = hints.PresetRotation;
-    asked.BraggModel = hints.BraggModel.value_or(asked.BraggModel);
-    asked.LatticePlanes = hints.LatticePlanes.value_or(asked.LatticePlanes);
+    // The default pair (the paper's) stands for the volume's; any other is used as set.
+    const RenderParameters defaults;
+    if (asked.BraggModel == defaults.BraggModel && asked.LatticePlanes == defaults.LatticePlanes)
+    {
+      asked.BraggModel = hints.BraggModel.value_or(asked.BraggModel);
+      asked.LatticePlanes = hints.LatticePlanes.value_or(asked.LatticePlanes);
+    }
   }
   return resolveFrame(asked);
 }

@@ -55,8 +55,9 @@ struct ResolvedFrame
 };
 
 // ImageSize 0 x 0 takes the volume's, RefractiveIndex 0 the volume's, and
-// with presetPlacement the preset's rotation replaces PresetRotation and its
-// Bragg model and planes (where the volume has a preset) the asked ones.
+// with presetPlacement the preset's rotation replaces PresetRotation and, if
+// the Bragg model and planes asked are the defaults (the paper's), the
+// preset's replace them (a kind of opal's; any other pair is used as set).
 ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hints, bool presetPlacement);
 
 // A frame with nothing to fill in from a volume (the parameters complete).
