@@ -45,32 +45,19 @@ public:
   int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
   void SetVisibility(bool visible) override;
 
-  ///@{
-  /// The light: at the eye (Headlight 1, default) or at LightPosition (mm).
+  /// The light: at the eye (Headlight 1, default) or at the render filter's
+  /// LightPosition (mm).
   void SetHeadlight(int headlight);
-  void SetLightPosition(double x, double y, double z);
-  ///@}
 
   /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
   void SetQuality(int quality);
 
-  ///@{
-  /// The render filter's optics (vtkOpalSpectralRender), forwarded.
-  void SetRefractiveIndex(double value);
-  void SetBraggBandwidth(double value);
-  void SetDiffractionGain(double value);
-  void SetBraggOrders(int value);
-  void SetMosaicSpread(double value);
-  void SetBraggModel(int value);
-  void SetLatticePlanes(int value);
-  void SetCoherentLayers(int value);
-  void SetEnergyConservation(int value);
-  void SetLightRadius(double value);
-  void SetLightFalloffAtEntry(int value);
-  void SetExposure(double value);
-  void SetWavelengthStep(double value);
-  void SetModelRotation(double x, double y, double z);
-  ///@}
+  /// The filter that renders each frame, whose properties are the render's
+  /// settings (ParaView passes its SubProxy of Opal Spectral Render here, and
+  /// exposes that proxy's properties on the representation). The
+  /// representation makes one of its own until then. It is used with
+  /// PresetPlacement off: the stone stays where the scene has it.
+  void SetRenderFilter(vtkOpalSpectralRender* render);
 
   ///@{
   /// Still final frames rendered on a worker thread, not waited for, in every
@@ -113,7 +100,7 @@ private:
   vtkOpalSpectralRepresentation(const vtkOpalSpectralRepresentation&) = delete;
   void operator=(const vtkOpalSpectralRepresentation&) = delete;
 
-  vtkNew<vtkOpalSpectralRender> Render;
+  vtkSmartPointer<vtkOpalSpectralRender> Render;
   vtkNew<vtkOpalSpectralImageActor> Actor;
   vtkSmartPointer<vtkImageData> Volume;
   vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken
