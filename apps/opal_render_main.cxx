@@ -223,10 +223,10 @@ int main(int argc, char** argv)
   app.add_flag_callback(
        "--list-parameters",
        [] {
-         std::cout << renderParameterListJson() << std::endl;
+         std::cout << parameterListJson() << std::endl;
          throw CLI::Success();
        },
-       "Print every render parameter (name, type, range, flag, default, description) as JSON and exit")
+       "Print every model and render parameter (name, type, range, flag, default, description) as JSON and exit")
     ->group("Output");
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-render", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)

@@ -14,18 +14,6 @@
 
 namespace vtkOpalArrayCopy
 {
-template <typename T, std::size_t N>
-void copy(const std::array<T, N>& from, T* to)
-{
-  std::copy(from.begin(), from.end(), to);
-}
-
-template <typename T, std::size_t N>
-void copy(const T* from, std::array<T, N>& to)
-{
-  std::copy(from, from + N, to.begin());
-}
-
 // One value: an enumeration to or from its int, a number or a boolean as is.
 template <typename To, typename From>
 std::enable_if_t<std::is_arithmetic_v<From> || std::is_enum_v<From>> assign(To& to, const From& from)

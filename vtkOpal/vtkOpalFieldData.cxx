@@ -10,9 +10,13 @@
 #include "vtkFieldData.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
+#include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
+#include <cstdint>
 #include <initializer_list>
+#include <limits>
+#include <vector>
 
 namespace
 {
@@ -35,42 +39,60 @@ void AddModelParameters(
   vtkDataObject* data, const opal::ModelParameters& p, int preset, int domainsPlaced)
 {
   vtkFieldData* f = data->GetFieldData();
-  addArray<vtkIntArray>(f, "Dimensions", { p.Dimensions[0], p.Dimensions[1], p.Dimensions[2] });
-  addArray<vtkDoubleArray>(f, "PhysicalSize", { p.PhysicalSize[0], p.PhysicalSize[1], p.PhysicalSize[2] });
-  addArray<vtkDoubleArray>(f, "SemiAxes", { p.SemiAxes[0], p.SemiAxes[1], p.SemiAxes[2] });
-  addArray<vtkDoubleArray>(
-    f, "ScatteringDiameterRange", { p.ScatteringDiameterRange[0], p.ScatteringDiameterRange[1] });
-  addArray<vtkDoubleArray>(f, "ScatteringVolumeFraction", { p.ScatteringVolumeFraction });
-  addArray<vtkIntArray>(f, "DomainCount", { p.DomainCount });
-  addArray<vtkIntArray>(f, "DomainVertexRange", { p.DomainVertexRange[0], p.DomainVertexRange[1] });
-  addArray<vtkDoubleArray>(f, "DomainRadiusRange", { p.DomainRadiusRange[0], p.DomainRadiusRange[1] });
-  addArray<vtkDoubleArray>(f, "DomainVertexJitter", { p.DomainVertexJitter[0], p.DomainVertexJitter[1] });
-  addArray<vtkDoubleArray>(f, "DomainAngleRange", { p.DomainAngleRange[0], p.DomainAngleRange[1] });
-  addArray<vtkDoubleArray>(
-    f, "DomainRotationRange", { p.DomainRotationRange[0], p.DomainRotationRange[1] });
-  addArray<vtkDoubleArray>(
-    f, "DomainDiameterRange", { p.DomainDiameterRange[0], p.DomainDiameterRange[1] });
-  addArray<vtkIntArray>(f, "DomainLayout", { static_cast<int>(p.DomainLayout) });
-  addArray<vtkIntArray>(f, "VoronoiCellCount", { p.VoronoiCellCount });
-  addArray<vtkDoubleArray>(f, "VoronoiWeightSpread", { p.VoronoiWeightSpread });
-  addArray<vtkDoubleArray>(f, "OrderedFraction", { p.OrderedFraction });
-  addArray<vtkDoubleArray>(f, "DiameterCorrelationLength", { p.DiameterCorrelationLength });
-  addArray<vtkDoubleArray>(f, "BodyAbsorption", { p.BodyAbsorption });
-  addArray<vtkDoubleArray>(f, "BodyAbsorptionExponent", { p.BodyAbsorptionExponent });
-  addArray<vtkDoubleArray>(f, "BackingThickness", { p.BackingThickness });
-  addArray<vtkDoubleArray>(f, "BackingAbsorption", { p.BackingAbsorption });
-  addArray<vtkDoubleArray>(f, "DomainScatteringCoefficient", { p.DomainScatteringCoefficient });
-  addArray<vtkDoubleArray>(f, "SphereRefractiveIndex", { p.SphereRefractiveIndex });
-  addArray<vtkDoubleArray>(f, "MatrixRefractiveIndex", { p.MatrixRefractiveIndex });
-  addArray<vtkDoubleArray>(f, "RefractiveIndex", { p.RefractiveIndex });
-  addArray<vtkIntArray>(f, "MaxPlacementAttempts", { p.MaxPlacementAttempts });
-  addArray<vtkIntArray>(f, "Seed", { static_cast<int>(p.Seed) });
+  for (const opal::ParameterRow<opal::ModelParameters>& row : opal::modelParameterRows())
+  {
+    vtkSmartPointer<vtkDataArray> array;
+    if (row.Type == opal::ParameterType::Double)
+    {
+      array = vtkSmartPointer<vtkDoubleArray>::New();
+    }
+    else
+    {
+      array = vtkSmartPointer<vtkIntArray>::New();
+    }
+    array->SetName(row.Name);
+    for (const double value : row.Get(p))
+    {
+      // An int row as VTK holds it (the uint32 Seed wraps as the source's int property does).
+      array->InsertNextTuple1(row.Type == opal::ParameterType::Double
+          ? value
+          : static_cast<double>(static_cast<int>(static_cast<long long>(value))));
+    }
+    f->AddArray(array);
+  }
   const opal::PresetSettings* settings = opal::presetByIndex(preset);
   vtkNew<vtkStringArray> presetName;
   presetName->SetName("Preset");
   presetName->InsertNextValue(settings ? settings->Name : "custom");
   f->AddArray(presetName);
   addArray<vtkIntArray>(f, "DomainsPlaced", { domainsPlaced });
+}
+
+opal::ModelParameters ReadModelParameters(vtkFieldData* fields)
+{
+  opal::ModelParameters p;
+  for (const opal::ParameterRow<opal::ModelParameters>& row : opal::modelParameterRows())
+  {
+    vtkDataArray* array = fields ? fields->GetArray(row.Name) : nullptr;
+    if (!array || array->GetNumberOfValues() != row.Components)
+    {
+      continue;
+    }
+    std::vector<double> values(static_cast<std::size_t>(row.Components));
+    for (int i = 0; i < row.Components; ++i)
+    {
+      values[static_cast<std::size_t>(i)] = array->GetVariantValue(i).ToDouble();
+    }
+    if (row.Type != opal::ParameterType::Double && row.Max > std::numeric_limits<int>::max())
+    {
+      for (double& v : values)
+      {
+        v = static_cast<double>(static_cast<std::uint32_t>(static_cast<int>(v))); // Seed: a uint32 held as int
+      }
+    }
+    row.Set(p, values);
+  }
+  return p;
 }
 
 void AddDomainTable(vtkDataObject* data, const opal::DomainLayout& layout)

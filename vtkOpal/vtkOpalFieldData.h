@@ -3,6 +3,7 @@
 #pragma once
 
 class vtkDataObject;
+class vtkFieldData;
 
 namespace opal
 {
@@ -12,8 +13,15 @@ class DomainLayout;
 
 namespace vtkOpalFieldData
 {
+// One array per row of the model parameters' table, named as the row (int
+// rows as vtkIntArray, double rows as vtkDoubleArray), the Preset's name and
+// DomainsPlaced.
 void AddModelParameters(
   vtkDataObject* data, const opal::ModelParameters& parameters, int preset, int domainsPlaced);
+
+// The model parameters the field data records: each row's array where it has
+// the row's component count, the default where it is missing.
+opal::ModelParameters ReadModelParameters(vtkFieldData* fields);
 
 // The domain table the render reads: DomainNormal (float x 3, the (111)
 // lattice-plane normal) and DomainParticleDiameter (float, nm), one tuple

@@ -68,8 +68,6 @@ vtkInformationDoubleVectorKey* vtkOpalSource::RENDER_HINTS()
 
 namespace
 {
-using vtkOpalArrayCopy::copy;
-
 // Share of the work spent placing domains; filling the voxels takes the rest.
 constexpr double LayoutProgressShare = 0.1;
 } // namespace
@@ -100,33 +98,7 @@ bool vtkOpalSource::SetPresetByName(const char* name)
 opal::ModelParameters vtkOpalSource::GetModelParameters() const
 {
   opal::ModelParameters p;
-  copy(this->Dimensions, p.Dimensions);
-  copy(this->PhysicalSize, p.PhysicalSize);
-  copy(this->SemiAxes, p.SemiAxes);
-  copy(this->ScatteringDiameterRange, p.ScatteringDiameterRange);
-  p.ScatteringVolumeFraction = this->ScatteringVolumeFraction;
-  p.DomainCount = this->DomainCount;
-  copy(this->DomainVertexRange, p.DomainVertexRange);
-  copy(this->DomainRadiusRange, p.DomainRadiusRange);
-  copy(this->DomainVertexJitter, p.DomainVertexJitter);
-  copy(this->DomainAngleRange, p.DomainAngleRange);
-  copy(this->DomainRotationRange, p.DomainRotationRange);
-  copy(this->DomainDiameterRange, p.DomainDiameterRange);
-  p.DomainLayout = static_cast<opal::DomainLayoutKind>(this->DomainLayout);
-  p.VoronoiCellCount = this->VoronoiCellCount;
-  p.VoronoiWeightSpread = this->VoronoiWeightSpread;
-  p.OrderedFraction = this->OrderedFraction;
-  p.DiameterCorrelationLength = this->DiameterCorrelationLength;
-  p.BodyAbsorption = this->BodyAbsorption;
-  p.BodyAbsorptionExponent = this->BodyAbsorptionExponent;
-  p.BackingThickness = this->BackingThickness;
-  p.BackingAbsorption = this->BackingAbsorption;
-  p.DomainScatteringCoefficient = this->DomainScatteringCoefficient;
-  p.SphereRefractiveIndex = this->SphereRefractiveIndex;
-  p.MatrixRefractiveIndex = this->MatrixRefractiveIndex;
-  p.RefractiveIndex = this->RefractiveIndex;
-  p.MaxPlacementAttempts = this->MaxPlacementAttempts;
-  p.Seed = static_cast<std::uint32_t>(this->Seed);
+  OPAL_MODEL_PARAMETERS(OPAL_VTK_TO_STRUCT)
   return p;
 }
 
@@ -144,33 +116,7 @@ void vtkOpalSource::SetPreset(int preset)
 
 void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
 {
-  copy(p.Dimensions, this->Dimensions);
-  copy(p.PhysicalSize, this->PhysicalSize);
-  copy(p.SemiAxes, this->SemiAxes);
-  copy(p.ScatteringDiameterRange, this->ScatteringDiameterRange);
-  this->ScatteringVolumeFraction = p.ScatteringVolumeFraction;
-  this->DomainCount = p.DomainCount;
-  copy(p.DomainVertexRange, this->DomainVertexRange);
-  copy(p.DomainRadiusRange, this->DomainRadiusRange);
-  copy(p.DomainVertexJitter, this->DomainVertexJitter);
-  copy(p.DomainAngleRange, this->DomainAngleRange);
-  copy(p.DomainRotationRange, this->DomainRotationRange);
-  copy(p.DomainDiameterRange, this->DomainDiameterRange);
-  this->DomainLayout = static_cast<int>(p.DomainLayout);
-  this->VoronoiCellCount = p.VoronoiCellCount;
-  this->VoronoiWeightSpread = p.VoronoiWeightSpread;
-  this->OrderedFraction = p.OrderedFraction;
-  this->DiameterCorrelationLength = p.DiameterCorrelationLength;
-  this->BodyAbsorption = p.BodyAbsorption;
-  this->BodyAbsorptionExponent = p.BodyAbsorptionExponent;
-  this->BackingThickness = p.BackingThickness;
-  this->BackingAbsorption = p.BackingAbsorption;
-  this->DomainScatteringCoefficient = p.DomainScatteringCoefficient;
-  this->SphereRefractiveIndex = p.SphereRefractiveIndex;
-  this->MatrixRefractiveIndex = p.MatrixRefractiveIndex;
-  this->RefractiveIndex = p.RefractiveIndex;
-  this->MaxPlacementAttempts = p.MaxPlacementAttempts;
-  this->Seed = static_cast<int>(p.Seed);
+  OPAL_MODEL_PARAMETERS(OPAL_VTK_FROM_STRUCT)
   this->Modified();
 }
 
@@ -450,42 +396,6 @@ int vtkOpalSource::RequestData(
 void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Dimensions: " << this->Dimensions[0] << " " << this->Dimensions[1] << " "
-     << this->Dimensions[2] << "\n";
-  os << indent << "PhysicalSize: " << this->PhysicalSize[0] << " " << this->PhysicalSize[1] << " "
-     << this->PhysicalSize[2] << "\n";
-  os << indent << "SemiAxes: " << this->SemiAxes[0] << " " << this->SemiAxes[1] << " "
-     << this->SemiAxes[2] << "\n";
-  os << indent << "ScatteringDiameterRange: " << this->ScatteringDiameterRange[0] << " "
-     << this->ScatteringDiameterRange[1] << "\n";
-  os << indent << "ScatteringVolumeFraction: " << this->ScatteringVolumeFraction << "\n";
-  os << indent << "DomainCount: " << this->DomainCount << "\n";
-  os << indent << "DomainVertexRange: " << this->DomainVertexRange[0] << " "
-     << this->DomainVertexRange[1] << "\n";
-  os << indent << "DomainRadiusRange: " << this->DomainRadiusRange[0] << " "
-     << this->DomainRadiusRange[1] << "\n";
-  os << indent << "DomainVertexJitter: " << this->DomainVertexJitter[0] << " "
-     << this->DomainVertexJitter[1] << "\n";
-  os << indent << "DomainAngleRange: " << this->DomainAngleRange[0] << " "
-     << this->DomainAngleRange[1] << "\n";
-  os << indent << "DomainRotationRange: " << this->DomainRotationRange[0] << " "
-     << this->DomainRotationRange[1] << "\n";
-  os << indent << "DomainDiameterRange: " << this->DomainDiameterRange[0] << " "
-     << this->DomainDiameterRange[1] << "\n";
-  os << indent << "DomainLayout: " << this->DomainLayout << "\n";
-  os << indent << "VoronoiCellCount: " << this->VoronoiCellCount << "\n";
-  os << indent << "VoronoiWeightSpread: " << this->VoronoiWeightSpread << "\n";
-  os << indent << "OrderedFraction: " << this->OrderedFraction << "\n";
-  os << indent << "DiameterCorrelationLength: " << this->DiameterCorrelationLength << "\n";
-  os << indent << "BodyAbsorption: " << this->BodyAbsorption << "\n";
-  os << indent << "BodyAbsorptionExponent: " << this->BodyAbsorptionExponent << "\n";
-  os << indent << "BackingThickness: " << this->BackingThickness << "\n";
-  os << indent << "BackingAbsorption: " << this->BackingAbsorption << "\n";
-  os << indent << "DomainScatteringCoefficient: " << this->DomainScatteringCoefficient << "\n";
-  os << indent << "SphereRefractiveIndex: " << this->SphereRefractiveIndex << "\n";
-  os << indent << "MatrixRefractiveIndex: " << this->MatrixRefractiveIndex << "\n";
-  os << indent << "RefractiveIndex: " << this->RefractiveIndex << "\n";
-  os << indent << "MaxPlacementAttempts: " << this->MaxPlacementAttempts << "\n";
-  os << indent << "Seed: " << this->Seed << "\n";
-  os << indent << "Preset: " << this->Preset << "\n";
+  OPAL_MODEL_PARAMETERS(OPAL_VTK_PRINT)
+  vtkOpalArrayCopy::print(os, indent, "Preset", this->Preset);
 }

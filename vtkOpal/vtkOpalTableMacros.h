@@ -1,4 +1,4 @@
-// A parameter table's rows (OPAL_RENDER_PARAMETERS) as a VTK class's members
+// A parameter table's rows (OPAL_RENDER_PARAMETERS, OPAL_MODEL_PARAMETERS) as a VTK class's members
 // and Set/Get: expanded by the compiler and by VTK's wrappers alike, so
 // ParaView and Python see SetStepSize as if it were spelled out.
 #pragma once
@@ -11,6 +11,7 @@
 #define OPAL_VTK_SET_GET_bool_1(Name) vtkSetMacro(Name, bool) vtkGetMacro(Name, bool) vtkBooleanMacro(Name, bool)
 #define OPAL_VTK_SET_GET_int_2(Name) vtkSetVector2Macro(Name, int) vtkGetVector2Macro(Name, int)
 #define OPAL_VTK_SET_GET_double_2(Name) vtkSetVector2Macro(Name, double) vtkGetVector2Macro(Name, double)
+#define OPAL_VTK_SET_GET_int_3(Name) vtkSetVector3Macro(Name, int) vtkGetVector3Macro(Name, int)
 #define OPAL_VTK_SET_GET_double_3(Name) vtkSetVector3Macro(Name, double) vtkGetVector3Macro(Name, double)
 #define OPAL_VTK_SET_GET_int_4(Name) vtkSetVector4Macro(Name, int) vtkGetVector4Macro(Name, int)
 

@@ -1,5 +1,6 @@
-// Command-line flags for every model parameter, named after the source's
-// properties in kebab-case (--domain-count, --domain-diameter-range, ...).
+// Command-line flags for every model parameter, from the model parameters'
+// table (OPAL_MODEL_PARAMETERS: --domain-count, --domain-diameter-range, ...),
+// with --preset and --seed.
 // Shared by the command-line programs and the argument fuzzer; no VTK here.
 #pragma once
 
@@ -28,8 +29,6 @@ public:
   double refractiveIndex() const { return this->Parameters.RefractiveIndex; }
 
 private:
-  void addGrainOptions(CLI::App& app);
-  void addAbsorptionOptions(CLI::App& app);
   opal::ModelParameters Parameters;
   // The flags of the values a preset may set (opal::presetModelFields): given
   // explicitly, they win over the preset.

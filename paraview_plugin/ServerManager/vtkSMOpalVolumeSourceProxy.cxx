@@ -69,7 +69,7 @@ void vtkSMOpalVolumeSourceProxy::FillFromPreset()
   // While the proxy is being built its properties come one by one, empty.
   for (const opal::ModelField& field : opal::presetModelFields())
   {
-    if (!this->GetProperty(field.Property))
+    if (!this->GetProperty(field.Name))
     {
       return;
     }
@@ -89,9 +89,9 @@ void vtkSMOpalVolumeSourceProxy::FillFromPreset()
   for (const opal::ModelField& field : opal::presetModelFields())
   {
     const std::vector<double> values = field.Get(applied);
-    vtkSMPropertyHelper helper(this, field.Property);
+    vtkSMPropertyHelper helper(this, field.Name);
     const auto count = static_cast<unsigned int>(values.size());
-    if (vtkSMIntVectorProperty::SafeDownCast(this->GetProperty(field.Property)))
+    if (vtkSMIntVectorProperty::SafeDownCast(this->GetProperty(field.Name)))
     {
       // The helper sets an int property from ints only (enumerations, counts).
       const std::vector<int> whole(values.begin(), values.end());

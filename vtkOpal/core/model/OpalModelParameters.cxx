@@ -24,7 +24,7 @@ bool ModelParameters::applyPreset(int presetIndex)
   const ModelParameters defaults;
   for (const ModelField& field : presetModelFields())
   {
-    const std::vector<double>* values = preset->valuesOf(field.Property);
+    const std::vector<double>* values = preset->valuesOf(field.Name);
     field.Set(*this, values ? *values : field.Get(defaults));
   }
   return true;
@@ -204,17 +204,6 @@ std::string rangesError(const ModelParameters& p)
   {
     return "DomainVertexJitter must be above 0: a vertex at the centre degenerates the polygon.";
   }
-  if (p.DomainVertexRange[0] < 3)
-  {
-    return "DomainVertexRange needs at least 3 vertices, got " + std::to_string(p.DomainVertexRange[0]) + ".";
-  }
-  if (p.DomainVertexRange[1] > MaxDomainVertices)
-  {
-    // Each vertex is redrawn until the polygon's angles pass: beyond this the
-    // draws run for ever rather than fail.
-    return "DomainVertexRange allows at most " + std::to_string(MaxDomainVertices) + " vertices, got " +
-      std::to_string(p.DomainVertexRange[1]) + ".";
-  }
   return {};
 }
 
@@ -226,19 +215,9 @@ std::string scalarsError(const ModelParameters& p)
     message << "ScatteringVolumeFraction must lie in (0, " << MaxVolumeFraction << "], got "
             << p.ScatteringVolumeFraction << ".";
   }
-  else if (p.DomainCount < 0 || p.DomainCount > MaxDomainCount)
-  {
-    // The paper places 250; each domain is rasterised and tested against the
-    // others, so counts in the billions would run for hours.
-    message << "DomainCount must lie in [0, " << MaxDomainCount << "], got " << p.DomainCount << ".";
-  }
   else if (const std::string index = refractiveIndexError(p.RefractiveIndex); !index.empty())
   {
     message << index;
-  }
-  else if (p.MaxPlacementAttempts < 1 || p.MaxPlacementAttempts > 100000)
-  {
-    message << "MaxPlacementAttempts must lie in [1, 100000], got " << p.MaxPlacementAttempts << ".";
   }
   return message.str();
 }
@@ -247,23 +226,7 @@ std::string scalarsError(const ModelParameters& p)
 std::string grainsError(const ModelParameters& p)
 {
   std::ostringstream message = messageStream();
-  if (p.DomainLayout != DomainLayoutKind::Polygons && p.DomainLayout != DomainLayoutKind::Voronoi)
-  {
-    message << "DomainLayout must be 0 (polygons) or 1 (voronoi), got " << static_cast<int>(p.DomainLayout) << ".";
-  }
-  else if (p.VoronoiCellCount < 1 || p.VoronoiCellCount > MaxVoronoiCellCount)
-  {
-    message << "VoronoiCellCount must lie in [1, " << MaxVoronoiCellCount << "], got " << p.VoronoiCellCount << ".";
-  }
-  else if (!(p.VoronoiWeightSpread >= 0 && p.VoronoiWeightSpread <= 1e4))
-  {
-    message << "VoronoiWeightSpread must lie in [0, 10000] mm, got " << p.VoronoiWeightSpread << ".";
-  }
-  else if (!(p.OrderedFraction >= 0 && p.OrderedFraction <= 1))
-  {
-    message << "OrderedFraction must lie in [0, 1], got " << p.OrderedFraction << ".";
-  }
-  else if (!(p.DiameterCorrelationLength == 0 ||
+  if (!(p.DiameterCorrelationLength == 0 ||
              (p.DiameterCorrelationLength >= 1e-6 && p.DiameterCorrelationLength <= 1e4)))
   {
     message << "DiameterCorrelationLength must be 0 (independent voxels) or lie in [1e-06, 10000] mm, got "
@@ -276,22 +239,7 @@ std::string grainsError(const ModelParameters& p)
 std::string opticsError(const ModelParameters& p)
 {
   std::ostringstream message = messageStream();
-  for (const auto& [name, value] : { std::pair<const char*, double>{ "BodyAbsorption", p.BodyAbsorption },
-         { "BackingAbsorption", p.BackingAbsorption },
-         { "DomainScatteringCoefficient", p.DomainScatteringCoefficient } })
-  {
-    if (!(value >= 0 && value <= MaxCoefficientPerMm))
-    {
-      message << name << " must lie in [0, " << MaxCoefficientPerMm << "] 1/mm, got " << value << ".";
-      return message.str();
-    }
-  }
-  if (!(std::fabs(p.BodyAbsorptionExponent) <= MaxAbsorptionExponent))
-  {
-    message << "BodyAbsorptionExponent must lie in [" << -MaxAbsorptionExponent << ", " << MaxAbsorptionExponent
-            << "], got " << p.BodyAbsorptionExponent << ".";
-  }
-  else if (!(p.BackingThickness >= 0 && p.BackingThickness <= p.PhysicalSize[1]))
+  if (!(p.BackingThickness >= 0 && p.BackingThickness <= p.PhysicalSize[1]))
   {
     message << "BackingThickness must lie in [0, " << p.PhysicalSize[1] << "] mm (the box's height, PhysicalSize), got "
             << p.BackingThickness << ".";
@@ -313,10 +261,29 @@ bool ModelParameters::absorbs() const
   return this->BodyAbsorption > 0 || (this->BackingThickness > 0 && this->BackingAbsorption > 0);
 }
 
+namespace
+{
+// Every row's range (OPAL_MODEL_PARAMETERS).
+std::string tableError(const ModelParameters& p)
+{
+  return tableRangeError(modelParameterRows(), p);
+}
+} // namespace
+
+const std::vector<ParameterRow<ModelParameters>>& modelParameterRows()
+{
+  using P = ModelParameters;
+#define OPAL_MODEL_ROW(Name, Type, Count, Min, Max, Choices, Flag, FromVolume, Description)                  \
+  parameterRow<P, &P::Name, Type, Count>(#Name, Min, Max, Choices, Flag, FromVolume, Description),
+  static const std::vector<ParameterRow<P>> rows = { OPAL_MODEL_PARAMETERS(OPAL_MODEL_ROW) };
+#undef OPAL_MODEL_ROW
+  return rows;
+}
+
 std::string validate(const ModelParameters& p)
 {
   return firstError(
-    p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError, grainsError, opticsError });
+    p, { finiteError, magnitudeError, shapeError, rangesError, scalarsError, grainsError, opticsError, tableError });
 }
 
 std::string smallShapeWarning(const ModelParameters& p)

@@ -3,9 +3,13 @@
 // it does not. Plain data, no VTK types.
 #pragma once
 
+#include "OpalModelParameterTable.h"
+#include "OpalParameterRow.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace opal
 {
@@ -78,7 +82,12 @@ constexpr double MaxCoefficientPerMm = 1e4;
 // The largest |BodyAbsorptionExponent|: (550/380)^12 is 84 times the 550 nm value.
 constexpr double MaxAbsorptionExponent = 12.0;
 
-// Empty if the parameters are valid, else one sentence naming the parameter.
+// One row per parameter of OPAL_MODEL_PARAMETERS, in its order.
+const std::vector<ParameterRow<ModelParameters>>& modelParameterRows();
+
+// Empty if the parameters are valid, else one sentence naming the parameter:
+// finiteness, magnitudes and the rules between parameters first, then every
+// row's range.
 std::string validate(const ModelParameters& parameters);
 
 // Empty unless the shape spans fewer than two voxels along some axis (the
