@@ -58,30 +58,10 @@ int vtkOpalSpectralRepresentation::GetNumberOfAbandonedFinalFrames()
 
 vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
 {
-  this->SetRenderFilter(vtkSmartPointer<vtkOpalSpectralRender>::New());
-}
-
-void vtkOpalSpectralRepresentation::SetRenderFilter(vtkOpalSpectralRender* render)
-{
-  if (!render || render == this->Render)
-  {
-    return;
-  }
-  if (this->Render)
-  {
-    this->Actor->CancelFinalFrame();
-  }
-  this->Render = render;
-  this->Actor->SetRender(render);
+  this->Actor->SetRender(this->Render);
   // The stone stays where the scene has it (its Domains, slices): no preset
-  // placement (fig13's 5 degrees), only OpalModelRotation; the Bragg model as
-  // the representation's properties say (ParaView fills in the preset's).
-  render->SetPresetPlacement(false);
-  if (this->Volume)
-  {
-    render->SetInputData(this->Volume);
-  }
-  this->Modified();
+  // placement (fig13's 5 degrees), only OpalModelRotation.
+  this->Render->SetPresetPlacement(false);
 }
 
 vtkOpalSpectralRepresentation::~vtkOpalSpectralRepresentation() = default;
@@ -204,9 +184,84 @@ void vtkOpalSpectralRepresentation::SetHeadlight(int headlight)
   this->Actor->SetHeadlight(headlight != 0);
 }
 
+void vtkOpalSpectralRepresentation::SetLightPosition(double x, double y, double z)
+{
+  this->Render->SetLightPosition(x, y, z);
+}
+
 void vtkOpalSpectralRepresentation::SetQuality(int quality)
 {
   this->Actor->SetStillQuality(quality);
+}
+
+void vtkOpalSpectralRepresentation::SetRefractiveIndex(double value)
+{
+  this->Render->SetRefractiveIndex(value);
+}
+
+void vtkOpalSpectralRepresentation::SetBraggBandwidth(double value)
+{
+  this->Render->SetBraggBandwidth(value);
+}
+
+void vtkOpalSpectralRepresentation::SetDiffractionGain(double value)
+{
+  this->Render->SetDiffractionGain(value);
+}
+
+void vtkOpalSpectralRepresentation::SetBraggOrders(int value)
+{
+  this->Render->SetBraggOrders(value);
+}
+
+void vtkOpalSpectralRepresentation::SetMosaicSpread(double value)
+{
+  this->Render->SetMosaicSpread(value);
+}
+
+void vtkOpalSpectralRepresentation::SetBraggModel(int value)
+{
+  this->Render->SetBraggModel(value);
+}
+
+void vtkOpalSpectralRepresentation::SetLatticePlanes(int value)
+{
+  this->Render->SetLatticePlanes(value);
+}
+
+void vtkOpalSpectralRepresentation::SetCoherentLayers(int value)
+{
+  this->Render->SetCoherentLayers(value);
+}
+
+void vtkOpalSpectralRepresentation::SetEnergyConservation(int value)
+{
+  this->Render->SetEnergyConservation(value != 0);
+}
+
+void vtkOpalSpectralRepresentation::SetLightRadius(double value)
+{
+  this->Render->SetLightRadius(value);
+}
+
+void vtkOpalSpectralRepresentation::SetLightFalloffAtEntry(int value)
+{
+  this->Render->SetLightFalloffAtEntry(value != 0);
+}
+
+void vtkOpalSpectralRepresentation::SetExposure(double value)
+{
+  this->Render->SetExposure(value);
+}
+
+void vtkOpalSpectralRepresentation::SetWavelengthStep(double value)
+{
+  this->Render->SetWavelengthStep(value);
+}
+
+void vtkOpalSpectralRepresentation::SetModelRotation(double x, double y, double z)
+{
+  this->Render->SetModelRotation(x, y, z);
 }
 
 vtkOpalSpectralRender* vtkOpalSpectralRepresentation::GetRender()
@@ -219,12 +274,28 @@ vtkOpalSpectralImageActor* vtkOpalSpectralRepresentation::GetActor()
   return this->Actor;
 }
 
-// Prints the actor's settings by their setters' names, and the render filter.
+// Prints each setting by its setter's name, as the filter and the actor hold it.
 void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
+  vtkOpalSpectralRender* r = this->Render;
+  const double* light = r->GetLightPosition();
+  const double* rotation = r->GetModelRotation();
   os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
   os << indent << "Quality: " << this->Actor->GetStillQuality() << "\n";
-  os << indent << "RenderFilter:\n";
-  this->Render->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "LightPosition: " << light[0] << " " << light[1] << " " << light[2] << "\n";
+  os << indent << "ModelRotation: " << rotation[0] << " " << rotation[1] << " " << rotation[2] << "\n";
+  os << indent << "RefractiveIndex: " << r->GetRefractiveIndex() << "\n";
+  os << indent << "BraggBandwidth: " << r->GetBraggBandwidth() << "\n";
+  os << indent << "DiffractionGain: " << r->GetDiffractionGain() << "\n";
+  os << indent << "BraggOrders: " << r->GetBraggOrders() << "\n";
+  os << indent << "MosaicSpread: " << r->GetMosaicSpread() << "\n";
+  os << indent << "BraggModel: " << r->GetBraggModel() << "\n";
+  os << indent << "LatticePlanes: " << r->GetLatticePlanes() << "\n";
+  os << indent << "CoherentLayers: " << r->GetCoherentLayers() << "\n";
+  os << indent << "EnergyConservation: " << r->GetEnergyConservation() << "\n";
+  os << indent << "LightRadius: " << r->GetLightRadius() << "\n";
+  os << indent << "LightFalloffAtEntry: " << r->GetLightFalloffAtEntry() << "\n";
+  os << indent << "Exposure: " << r->GetExposure() << "\n";
+  os << indent << "WavelengthStep: " << r->GetWavelengthStep() << "\n";
 }

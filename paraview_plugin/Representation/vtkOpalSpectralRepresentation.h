@@ -45,19 +45,32 @@ public:
   int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
   void SetVisibility(bool visible) override;
 
-  /// The light: at the eye (Headlight 1, default) or at the render filter's
-  /// LightPosition (mm).
+  ///@{
+  /// The light: at the eye (Headlight 1, default) or at LightPosition (mm).
   void SetHeadlight(int headlight);
+  void SetLightPosition(double x, double y, double z);
+  ///@}
 
   /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
   void SetQuality(int quality);
 
-  /// The filter that renders each frame, whose properties are the render's
-  /// settings (ParaView passes its SubProxy of Opal Spectral Render here, and
-  /// exposes that proxy's properties on the representation). The
-  /// representation makes one of its own until then. It is used with
-  /// PresetPlacement off: the stone stays where the scene has it.
-  void SetRenderFilter(vtkOpalSpectralRender* render);
+  ///@{
+  /// The render filter's optics (vtkOpalSpectralRender), forwarded.
+  void SetRefractiveIndex(double value);
+  void SetBraggBandwidth(double value);
+  void SetDiffractionGain(double value);
+  void SetBraggOrders(int value);
+  void SetMosaicSpread(double value);
+  void SetBraggModel(int value);
+  void SetLatticePlanes(int value);
+  void SetCoherentLayers(int value);
+  void SetEnergyConservation(int value);
+  void SetLightRadius(double value);
+  void SetLightFalloffAtEntry(int value);
+  void SetExposure(double value);
+  void SetWavelengthStep(double value);
+  void SetModelRotation(double x, double y, double z);
+  ///@}
 
   ///@{
   /// Still final frames rendered on a worker thread, not waited for, in every
@@ -100,7 +113,7 @@ private:
   vtkOpalSpectralRepresentation(const vtkOpalSpectralRepresentation&) = delete;
   void operator=(const vtkOpalSpectralRepresentation&) = delete;
 
-  vtkSmartPointer<vtkOpalSpectralRender> Render;
+  vtkNew<vtkOpalSpectralRender> Render;
   vtkNew<vtkOpalSpectralImageActor> Actor;
   vtkSmartPointer<vtkImageData> Volume;
   vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken
