@@ -60,6 +60,14 @@ void addOutputOptions(CLI::App& app, Outputs& outputs)
   app.add_option("--save-image", outputs.ImageData, "Also write the image with all its arrays as .vti")
     ->check(fileExtension({ ".vti" }))
     ->group("Output");
+  app.add_flag_callback(
+       "--list-parameters",
+       [] {
+         std::cout << parameterListJson() << std::endl;
+         throw CLI::Success();
+       },
+       "Print every model and render parameter (name, type, range, flag, default, description) as JSON and exit")
+    ->group("Output");
 }
 
 // Builds the volume with only the arrays the render reads
@@ -220,14 +228,6 @@ int main(int argc, char** argv)
   render.addTo(app);
   Outputs outputs;
   addOutputOptions(app, outputs);
-  app.add_flag_callback(
-       "--list-parameters",
-       [] {
-         std::cout << parameterListJson() << std::endl;
-         throw CLI::Success();
-       },
-       "Print every model and render parameter (name, type, range, flag, default, description) as JSON and exit")
-    ->group("Output");
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-render", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {

@@ -131,6 +131,12 @@ ParameterRow<Parameters> parameterRow(
     [](Parameters& p, const std::vector<double>& values) { assign(p.*Member, values); } };
 }
 
+// A table's X-macro row as a ParameterRow of the struct named OpalTableStruct
+// where it expands: { OPAL_RENDER_PARAMETERS(OPAL_TABLE_ROW) } lists a table's rows.
+#define OPAL_TABLE_ROW(Name, Type, Count, Min, Max, Choices, Flag, FromVolume, Description)                  \
+  ::opal::parameterRow<OpalTableStruct, &OpalTableStruct::Name, Type, Count>(                             \
+    #Name, Min, Max, Choices, Flag, FromVolume, Description),
+
 // An enumeration's names: "paper coupled-wave" -> { "paper", "coupled-wave" }.
 std::vector<std::string> choicesOf(const char* choices);
 

@@ -272,11 +272,8 @@ std::string tableError(const ModelParameters& p)
 
 const std::vector<ParameterRow<ModelParameters>>& modelParameterRows()
 {
-  using P = ModelParameters;
-#define OPAL_MODEL_ROW(Name, Type, Count, Min, Max, Choices, Flag, FromVolume, Description)                  \
-  parameterRow<P, &P::Name, Type, Count>(#Name, Min, Max, Choices, Flag, FromVolume, Description),
-  static const std::vector<ParameterRow<P>> rows = { OPAL_MODEL_PARAMETERS(OPAL_MODEL_ROW) };
-#undef OPAL_MODEL_ROW
+  using OpalTableStruct = ModelParameters;
+  static const std::vector<ParameterRow<OpalTableStruct>> rows = { OPAL_MODEL_PARAMETERS(OPAL_TABLE_ROW) };
   return rows;
 }
 

@@ -12,11 +12,8 @@ namespace opal
 
 const std::vector<ParameterRow<RenderParameters>>& renderParameterRows()
 {
-  using P = RenderParameters;
-#define OPAL_RENDER_ROW(Name, Type, Count, Min, Max, Choices, Flag, FromVolume, Description)                 \
-  parameterRow<P, &P::Name, Type, Count>(#Name, Min, Max, Choices, Flag, FromVolume, Description),
-  static const std::vector<ParameterRow<P>> rows = { OPAL_RENDER_PARAMETERS(OPAL_RENDER_ROW) };
-#undef OPAL_RENDER_ROW
+  using OpalTableStruct = RenderParameters;
+  static const std::vector<ParameterRow<OpalTableStruct>> rows = { OPAL_RENDER_PARAMETERS(OPAL_TABLE_ROW) };
   return rows;
 }
 
