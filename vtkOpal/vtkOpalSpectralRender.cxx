@@ -15,49 +15,13 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <mutex>
 #include <optional>
-#include <set>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
 
-namespace
-{
-// Every render filter alive, so their Vulkan sessions can be ended at exit
-// before the Vulkan layers and driver tear down their own state: ParaView
-// deletes its filters only in its libraries' static destruction, after the
-// validation layer's, and the buffers' destruction then crashed in it.
-// Never destroyed (deliberately): filters outlive static destruction.
-std::mutex& filtersLock()
-{
-  static auto* lock = new std::mutex;
-  return *lock;
-}
-
-std::set<vtkOpalSpectralRender*>& liveFilters()
-{
-  static auto* filters = new std::set<vtkOpalSpectralRender*>;
-  return *filters;
-}
-} // namespace
-
-void vtkOpalSpectralRender::EndAllSessions()
-{
-  std::lock_guard<std::mutex> guard(filtersLock());
-  for (vtkOpalSpectralRender* filter : liveFilters())
-  {
-    filter->EndSession();
-  }
-}
-
 vtkOpalSpectralRender::vtkOpalSpectralRender()
 {
-  {
-    std::lock_guard<std::mutex> guard(filtersLock());
-    liveFilters().insert(this);
-  }
   // The table's defaults; 0 where a row takes the volume's value.
   opal::RenderParameters defaults;
   for (const auto& row : opal::renderParameterRows())
@@ -74,8 +38,6 @@ vtkOpalSpectralRender::vtkOpalSpectralRender()
 
 vtkOpalSpectralRender::~vtkOpalSpectralRender()
 {
-  std::lock_guard<std::mutex> guard(filtersLock());
-  liveFilters().erase(this);
   this->EndSession();
 }
 
@@ -188,10 +150,7 @@ opal::RenderSession& vtkOpalSpectralRender::Session()
     opal::VulkanOptions options;
     options.DeviceIndex = this->DeviceIndex;
     options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
-    this->RenderSession = std::make_unique<opal::RenderSession>(options);
-    // Registered once the Vulkan libraries are loaded, so it runs before their exit handlers.
-    static const bool endAtExit = std::atexit(&vtkOpalSpectralRender::EndAllSessions) == 0;
-    (void)endAtExit;
+    this->RenderSession = std::make_unique<opal::RenderSession>(options); // ended at exit by OpalGpu
     this->SessionDeviceIndex = this->DeviceIndex;
     this->SessionMemoryLimit = this->DeviceMemoryLimit;
   }

@@ -149,8 +149,6 @@ protected:
 
 private:
   vtkOpalSpectralRender(const vtkOpalSpectralRender&) = delete;
-  // Ends every live filter's Vulkan session (run at exit; see the .cxx).
-  static void EndAllSessions();
   void operator=(const vtkOpalSpectralRender&) = delete;
 
   // The session for the current device settings, created on first use.

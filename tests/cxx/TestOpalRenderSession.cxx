@@ -9,6 +9,7 @@
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
+#include "OpalVulkanError.h"
 
 #include <chrono>
 #include <optional>
@@ -177,5 +178,21 @@ int TestOpalRenderSession(int, char*[])
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+
+  // What the process's exit does to every live session: a running frame
+  // stops, the device objects go, and a later use says so.
+  session.startFrame(opal::resolveFrame(moved));
+  session.release();
+  bool refused = false;
+  try
+  {
+    session.render(moved);
+  }
+  catch (const opal::VulkanError& e)
+  {
+    refused = std::string(e.what()).find("released") != std::string::npos;
+  }
+  OPAL_CHECK(refused && session.backgroundState() == opal::BackgroundState::None,
+    "a released session stops its frame and refuses a render, saying why");
   return opaltest::finish("TestOpalRenderSession");
 }

@@ -8,6 +8,7 @@
 #include "OpalOptics.h"
 #include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
+#include "OpalSessionRegistry.h"
 #include "OpalSkinCells.h"
 #include "OpalVulkanError.h"
 
@@ -159,16 +160,45 @@ RenderSession::RenderSession(const VulkanOptions& options)
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
   this->Buffers->HighlightQueue =
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::DispatchQueue), "highlight queue header");
+  sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
 RenderSession::~RenderSession()
 {
+  sessionregistry::remove(this);
   this->cancelFrame(); // the worker renders with the members below
+}
+
+VulkanContext& RenderSession::context()
+{
+  if (!this->Context)
+  {
+    throw VulkanError("the render session was released at the process's exit", VK_ERROR_DEVICE_LOST);
+  }
+  return *this->Context;
+}
+
+void RenderSession::release()
+{
+  this->cancelFrame();
+  // In the reverse of the members' order, as the destructor would.
+  this->Buffers.reset();
+  this->Volume.reset();
+  this->ShadowTablePasses.clear();
+  this->MarchPasses.clear();
+  this->ColourPass.reset();
+  this->HighlightPasses.clear();
+  this->LightPasses.clear();
+  this->Bindings.reset();
+  this->Context.reset();
+  this->LightField.reset();
+  this->WavelengthSampling.reset();
 }
 
 void RenderSession::setVolume(const RenderVolume& volume)
 {
   this->cancelFrame();
+  this->context(); // throws once released
   const std::string error = validate(volume);
   if (!error.empty())
   {
@@ -232,12 +262,14 @@ RenderFrame RenderSession::render(const RenderParameters& parameters, const Rend
 RenderFrame RenderSession::render(const ResolvedFrame& resolved, const RenderProgress& callback)
 {
   this->cancelFrame();
+  this->context(); // throws once released
   return this->renderFrame(resolved, callback);
 }
 
 void RenderSession::startFrame(const ResolvedFrame& frame)
 {
   this->cancelFrame();
+  this->context(); // throws once released
   if (!frame.Error.empty())
   {
     throw std::invalid_argument(frame.Error); // as render() would, before any work

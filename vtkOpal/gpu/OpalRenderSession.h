@@ -107,7 +107,13 @@ public:
   int completedBackgroundFrames() const { return this->CompletedFrames; }
   int abandonedBackgroundFrames() const { return this->AbandonedFrames; }
 
-  VulkanContext& context() { return *this->Context; }
+  // The Vulkan context; throws VulkanError once the session is released.
+  VulkanContext& context();
+
+  // Ends the session's device objects now (a running background frame
+  // first); every later use throws VulkanError. The process's exit runs it
+  // for every live session (OpalSessionRegistry.h).
+  void release();
 
 private:
   struct FrameSetup;
