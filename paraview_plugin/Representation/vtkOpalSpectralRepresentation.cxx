@@ -1,5 +1,7 @@
 #include "vtkOpalSpectralRepresentation.h"
 
+#include "OpalRenderParameters.h"
+
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -10,6 +12,8 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <string>
 
 vtkStandardNewMacro(vtkOpalSpectralRepresentation);
 
@@ -60,8 +64,58 @@ vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
 {
   this->Actor->SetRender(this->Render);
   // The stone stays where the scene has it (its Domains, slices): no preset
-  // placement (fig13's 5 degrees), only OpalModelRotation.
+  // placement (fig13's 5 degrees), only OpalModelRotation; the Bragg model as
+  // the representation's properties say (ParaView fills in the preset's).
   this->Render->SetPresetPlacement(false);
+}
+
+void vtkOpalSpectralRepresentation::SetRenderSettings(vtkOpalSpectralRender* settings)
+{
+  this->Settings = settings;
+  this->SettingsTime = 0;
+  this->Modified();
+}
+
+namespace
+{
+// The frame's own rows, which the view sets on the render at every frame.
+bool isFramesOwn(const std::string& name)
+{
+  for (const char* own : { "ImageSize", "ImageRegion", "EyePosition", "FocalPoint", "ViewUp", "ViewAngle", "Quality",
+         "WriteSpectrum" })
+  {
+    if (name == own)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
+void vtkOpalSpectralRepresentation::ApplyRenderSettings()
+{
+  if (!this->Settings || this->Settings->GetMTime() <= this->SettingsTime)
+  {
+    return;
+  }
+  this->SettingsTime = this->Settings->GetMTime();
+  const opal::RenderParameters settings = this->Settings->GetRenderParameters();
+  opal::RenderParameters p = this->Render->GetRenderParameters();
+  bool changed = false;
+  for (const opal::ParameterRow<opal::RenderParameters>& row : opal::renderParameterRows())
+  {
+    if (!isFramesOwn(row.Name) && row.Get(settings) != row.Get(p))
+    {
+      row.Set(p, row.Get(settings));
+      changed = true;
+    }
+  }
+  // Unchanged settings keep the render's MTime: its final frame stays valid.
+  if (changed)
+  {
+    this->Render->SetRenderParameters(p);
+  }
 }
 
 vtkOpalSpectralRepresentation::~vtkOpalSpectralRepresentation() = default;
@@ -99,6 +153,7 @@ int vtkOpalSpectralRepresentation::RequestData(
   // the uploaded volume and the light field across property changes.
   if (this->Volume && input && input->GetMTime() == this->VolumeTime)
   {
+    this->ApplyRenderSettings();
     return this->Superclass::RequestData(request, inputVector, outputVector);
   }
   this->VolumeTime = input ? input->GetMTime() : 0;
@@ -118,6 +173,7 @@ int vtkOpalSpectralRepresentation::RequestData(
   }
   this->Render->SetInputData(this->Volume);
   this->Actor->SetStoneBounds(this->Bounds);
+  this->ApplyRenderSettings();
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
 
@@ -137,6 +193,7 @@ int vtkOpalSpectralRepresentation::ProcessViewRequest(
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
+    this->ApplyRenderSettings(); // a setting changed since the update
     // A screenshot (a tiled one too) waits for its final frame.
     auto* view = vtkPVView::SafeDownCast(this->GetView());
     this->Actor->SetDeferFinalFrames(finalFramesInBackground && view && !ScreenshotFlag::Of(view));
@@ -184,84 +241,9 @@ void vtkOpalSpectralRepresentation::SetHeadlight(int headlight)
   this->Actor->SetHeadlight(headlight != 0);
 }
 
-void vtkOpalSpectralRepresentation::SetLightPosition(double x, double y, double z)
-{
-  this->Render->SetLightPosition(x, y, z);
-}
-
 void vtkOpalSpectralRepresentation::SetQuality(int quality)
 {
   this->Actor->SetStillQuality(quality);
-}
-
-void vtkOpalSpectralRepresentation::SetRefractiveIndex(double value)
-{
-  this->Render->SetRefractiveIndex(value);
-}
-
-void vtkOpalSpectralRepresentation::SetBraggBandwidth(double value)
-{
-  this->Render->SetBraggBandwidth(value);
-}
-
-void vtkOpalSpectralRepresentation::SetDiffractionGain(double value)
-{
-  this->Render->SetDiffractionGain(value);
-}
-
-void vtkOpalSpectralRepresentation::SetBraggOrders(int value)
-{
-  this->Render->SetBraggOrders(value);
-}
-
-void vtkOpalSpectralRepresentation::SetMosaicSpread(double value)
-{
-  this->Render->SetMosaicSpread(value);
-}
-
-void vtkOpalSpectralRepresentation::SetBraggModel(int value)
-{
-  this->Render->SetBraggModel(value);
-}
-
-void vtkOpalSpectralRepresentation::SetLatticePlanes(int value)
-{
-  this->Render->SetLatticePlanes(value);
-}
-
-void vtkOpalSpectralRepresentation::SetCoherentLayers(int value)
-{
-  this->Render->SetCoherentLayers(value);
-}
-
-void vtkOpalSpectralRepresentation::SetEnergyConservation(int value)
-{
-  this->Render->SetEnergyConservation(value != 0);
-}
-
-void vtkOpalSpectralRepresentation::SetLightRadius(double value)
-{
-  this->Render->SetLightRadius(value);
-}
-
-void vtkOpalSpectralRepresentation::SetLightFalloffAtEntry(int value)
-{
-  this->Render->SetLightFalloffAtEntry(value != 0);
-}
-
-void vtkOpalSpectralRepresentation::SetExposure(double value)
-{
-  this->Render->SetExposure(value);
-}
-
-void vtkOpalSpectralRepresentation::SetWavelengthStep(double value)
-{
-  this->Render->SetWavelengthStep(value);
-}
-
-void vtkOpalSpectralRepresentation::SetModelRotation(double x, double y, double z)
-{
-  this->Render->SetModelRotation(x, y, z);
 }
 
 vtkOpalSpectralRender* vtkOpalSpectralRepresentation::GetRender()
@@ -274,28 +256,12 @@ vtkOpalSpectralImageActor* vtkOpalSpectralRepresentation::GetActor()
   return this->Actor;
 }
 
-// Prints each setting by its setter's name, as the filter and the actor hold it.
+// Prints the actor's settings by their setters' names, and the render filter.
 void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  vtkOpalSpectralRender* r = this->Render;
-  const double* light = r->GetLightPosition();
-  const double* rotation = r->GetModelRotation();
   os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
   os << indent << "Quality: " << this->Actor->GetStillQuality() << "\n";
-  os << indent << "LightPosition: " << light[0] << " " << light[1] << " " << light[2] << "\n";
-  os << indent << "ModelRotation: " << rotation[0] << " " << rotation[1] << " " << rotation[2] << "\n";
-  os << indent << "RefractiveIndex: " << r->GetRefractiveIndex() << "\n";
-  os << indent << "BraggBandwidth: " << r->GetBraggBandwidth() << "\n";
-  os << indent << "DiffractionGain: " << r->GetDiffractionGain() << "\n";
-  os << indent << "BraggOrders: " << r->GetBraggOrders() << "\n";
-  os << indent << "MosaicSpread: " << r->GetMosaicSpread() << "\n";
-  os << indent << "BraggModel: " << r->GetBraggModel() << "\n";
-  os << indent << "LatticePlanes: " << r->GetLatticePlanes() << "\n";
-  os << indent << "CoherentLayers: " << r->GetCoherentLayers() << "\n";
-  os << indent << "EnergyConservation: " << r->GetEnergyConservation() << "\n";
-  os << indent << "LightRadius: " << r->GetLightRadius() << "\n";
-  os << indent << "LightFalloffAtEntry: " << r->GetLightFalloffAtEntry() << "\n";
-  os << indent << "Exposure: " << r->GetExposure() << "\n";
-  os << indent << "WavelengthStep: " << r->GetWavelengthStep() << "\n";
+  os << indent << "Render:\n";
+  this->Render->PrintSelf(os, indent.GetNextIndent());
 }

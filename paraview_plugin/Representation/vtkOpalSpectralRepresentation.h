@@ -45,32 +45,20 @@ public:
   int ProcessViewRequest(vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
   void SetVisibility(bool visible) override;
 
-  ///@{
-  /// The light: at the eye (Headlight 1, default) or at LightPosition (mm).
+  /// The light: at the eye (Headlight 1, default) or at the render filter's
+  /// LightPosition (mm).
   void SetHeadlight(int headlight);
-  void SetLightPosition(double x, double y, double z);
-  ///@}
 
   /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
   void SetQuality(int quality);
 
-  ///@{
-  /// The render filter's optics (vtkOpalSpectralRender), forwarded.
-  void SetRefractiveIndex(double value);
-  void SetBraggBandwidth(double value);
-  void SetDiffractionGain(double value);
-  void SetBraggOrders(int value);
-  void SetMosaicSpread(double value);
-  void SetBraggModel(int value);
-  void SetLatticePlanes(int value);
-  void SetCoherentLayers(int value);
-  void SetEnergyConservation(int value);
-  void SetLightRadius(double value);
-  void SetLightFalloffAtEntry(int value);
-  void SetExposure(double value);
-  void SetWavelengthStep(double value);
-  void SetModelRotation(double x, double y, double z);
-  ///@}
+  /// Where the render's settings come from: an Opal Spectral Render whose
+  /// properties (ParaView passes its SubProxy here and exposes that proxy's
+  /// properties on the representation) are copied into the filter that
+  /// renders each frame before it renders, except the frame's own (camera,
+  /// image size, quality), which the view sets. The render keeps
+  /// PresetPlacement off: the stone stays where the scene has it.
+  void SetRenderSettings(vtkOpalSpectralRender* settings);
 
   ///@{
   /// Still final frames rendered on a worker thread, not waited for, in every
@@ -113,7 +101,12 @@ private:
   vtkOpalSpectralRepresentation(const vtkOpalSpectralRepresentation&) = delete;
   void operator=(const vtkOpalSpectralRepresentation&) = delete;
 
+  // Copies the settings' rows into Render if they changed since the last copy.
+  void ApplyRenderSettings();
+
   vtkNew<vtkOpalSpectralRender> Render;
+  vtkSmartPointer<vtkOpalSpectralRender> Settings;
+  vtkMTimeType SettingsTime = 0; // the settings' MTime at the last copy
   vtkNew<vtkOpalSpectralImageActor> Actor;
   vtkSmartPointer<vtkImageData> Volume;
   vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken

@@ -9,6 +9,8 @@ what the view shows.
 - The still frame equals Opal Spectral Render's image for the same camera
   (eye, focal point, view up, view angle, the light at the eye), pixel for
   pixel within 1 level: the representation is that render, drawn 1:1.
+- A render setting set on the representation (MosaicSpread, exposed from its
+  Opal Spectral Render SubProxy) reaches its frames as the filter's does.
 - An interactive render (ParaView's, as during a drag) draws a preview,
   not the still frame; the still render after it is final again.
 - Depth: a plane between the eye and the stone hides it; the same plane
@@ -110,6 +112,19 @@ rgb = vtk_to_numpy(sm.Fetch(render).GetPointData().GetArray("RGB")).astype(int).
 difference = numpy.abs(second - rgb)
 check(difference.max() <= 1, f"the still frame is the render's image pixel for pixel (largest difference "
       f"{difference.max()}, {numpy.mean(difference.max(axis=2) > 1) * 100:.2f}% of pixels off)")
+
+# The representation's render settings are Opal Spectral Render's own
+# properties (its SubProxy): a change reaches the frames, and equals the
+# filter's image with the same setting.
+stone.MosaicSpread = render.MosaicSpread = 5.0
+Render(view)
+gated = screenshot("representation-10deg-mosaic.png")
+render.UpdatePipeline()
+rgb = vtk_to_numpy(sm.Fetch(render).GetPointData().GetArray("RGB")).astype(int).reshape(height, width, 3)
+check(numpy.mean(numpy.any(numpy.abs(gated - second) > 8, axis=2)) > 0.01 and numpy.abs(gated - rgb).max() <= 1,
+      "a MosaicSpread set on the representation reaches its frames, as the render's own property")
+stone.MosaicSpread = 0.0
+Render(view)
 
 # An interactive render (as during a drag) draws a preview: the stone at half
 # the resolution, not the still frame; the still render after it is final again.
