@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <string>
 #include <utility>
+#include <thread>
 #include <vector>
 
 namespace
@@ -104,6 +105,37 @@ void benchFrames(const char* what, opal::RenderSession& session, opal::RenderPar
     frames.front().first, median(cpu));
 }
 
+// The frame ticket (RenderSession::startFrame, docs/design.md §5: what
+// opal-render and the live view's final frames use) against render() on the
+// caller's thread, camera-only frames alternating, 7 each: the worker's cost.
+void benchFrameTicket(opal::RenderSession& session, opal::RenderParameters p)
+{
+  std::vector<double> foreground, background;
+  for (int run = 0; run < 14; ++run)
+  {
+    p.EyePosition = { run % 4 < 2 ? -3.0 : 3.0, 59.9, 0.0 };
+    const auto start = std::chrono::steady_clock::now();
+    if (run % 2 == 0)
+    {
+      session.render(p);
+    }
+    else
+    {
+      session.startFrame(opal::resolveFrame(p));
+      while (session.backgroundState() == opal::BackgroundState::Running)
+      {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+      session.takeFrame();
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    (run % 2 == 0 ? foreground : background).push_back(seconds);
+  }
+  std::printf("  camera-only frame through the frame ticket %.3f s against render() %.3f s (x%.2f, medians of 7, "
+              "alternating)\n",
+    median(background), median(foreground), median(background) / median(foreground));
+}
+
 // The best of four full frames (each with its light pass) of the volume with
 // the given Bragg model and planes (docs/design.md §7.2).
 double bestFrame(opal::RenderSession& session, opal::RenderParameters p)
@@ -163,6 +195,7 @@ int main(int argc, char** argv)
   // Only the camera moves: no upload, no light pass.
   const auto moveEye = [](opal::RenderParameters& q, int run) { q.EyePosition = { run % 2 ? -3.0 : 3.0, 59.9, 0.0 }; };
   benchFrames("camera-only re-render", session, p, 7, false, moveEye);
+  benchFrameTicket(session, p);
   p.Quality = opal::RenderQuality::Preview;
   session.render(p); // the preview's pipeline
   benchFrames("preview, camera only", session, p, 9, false, moveEye);
