@@ -1,4 +1,5 @@
-// libFuzzer target: random, bounded parameter sets for the volume model.
+// libFuzzer target: random, bounded parameter sets for the volume model, one
+// value per component of every row of its table (OPAL_MODEL_PARAMETERS).
 // Every set either fails validation with a message naming a parameter, or
 // builds (domain layout and every voxel's fields) without a crash, a hang or
 // a non-finite value. Sizes are bounded (at most 24^3 voxels, 40 domains, 50
@@ -8,11 +9,15 @@
 #include "OpalModelParameters.h"
 #include "OpalVolumeFiller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace
@@ -52,6 +57,42 @@ private:
   std::size_t Offset = 0;
 };
 
+// How far a size or count may go here, so each input runs in milliseconds.
+double speedCap(const std::string& name)
+{
+  static const std::map<std::string, double> caps = { { "Dimensions", 24 }, { "DomainCount", 40 },
+    { "DomainVertexRange", 12 }, { "VoronoiCellCount", 60 }, { "MaxPlacementAttempts", 50 }, { "Seed", 65535 } };
+  const auto cap = caps.find(name);
+  return cap == caps.end() ? std::numeric_limits<double>::max() : cap->second;
+}
+
+// Every row of the model parameters' table (OPAL_MODEL_PARAMETERS), each
+// component from its range widened by a tenth on both sides (counts by one),
+// sizes and counts capped for speed.
+opal::ModelParameters decode(ByteReader& in)
+{
+  opal::ModelParameters p;
+  for (const opal::ParameterRow<opal::ModelParameters>& row : opal::modelParameterRows())
+  {
+    const double hi = std::min(row.Max, speedCap(row.Name));
+    std::vector<double> values(static_cast<std::size_t>(row.Components));
+    for (double& v : values)
+    {
+      if (row.Type == opal::ParameterType::Double)
+      {
+        const double margin = (hi - row.Min) / 10;
+        v = in.real(row.Min - margin, hi + margin);
+      }
+      else
+      {
+        v = in.integer(static_cast<int>(row.Min) - 1, static_cast<int>(hi) + 1);
+      }
+    }
+    row.Set(p, values);
+  }
+  return p;
+}
+
 void require(bool condition, const char* what)
 {
   if (!condition)
@@ -65,39 +106,7 @@ void require(bool condition, const char* what)
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {
   ByteReader in(data, size);
-  opal::ModelParameters p;
-  for (int a = 0; a < 3; ++a)
-  {
-    p.Dimensions[static_cast<std::size_t>(a)] = in.integer(-1, 24);
-    p.PhysicalSize[static_cast<std::size_t>(a)] = in.real(-2, 30);
-    p.SemiAxes[static_cast<std::size_t>(a)] = in.real(-1, 16);
-  }
-  p.ScatteringDiameterRange = { in.real(-10, 60), in.real(-10, 60) };
-  p.ScatteringVolumeFraction = in.real(-0.2, 1.0);
-  p.DomainCount = in.integer(-2, 40);
-  p.DomainVertexRange = { in.integer(0, 12), in.integer(0, 12) };
-  p.DomainRadiusRange = { in.real(-1, 6), in.real(-1, 6) };
-  p.DomainVertexJitter = { in.real(-0.5, 1.5), in.real(-0.5, 1.5) };
-  p.DomainAngleRange = { in.real(-10, 200), in.real(-10, 200) };
-  p.DomainRotationRange = { in.real(-10, 120), in.real(-10, 120) };
-  p.DomainDiameterRange = { in.real(-10, 500), in.real(-10, 500) };
-  p.RefractiveIndex = in.real(0.5, 3);
-  p.MaxPlacementAttempts = in.integer(-1, 50);
-  p.Seed = static_cast<std::uint32_t>(in.byte()) << 8 | in.byte();
-  // Read last, each valid at a zero byte, so the older corpus keeps its meaning.
-  p.DomainLayout = static_cast<opal::DomainLayoutKind>(in.integer(0, 2));
-  p.VoronoiCellCount = in.integer(1, 60);
-  p.VoronoiWeightSpread = in.real(0, 5);
-  p.OrderedFraction = in.real(0, 1.2);
-  p.DiameterCorrelationLength = in.real(0, 3);
-  p.BodyAbsorption = in.real(0, 5);
-  p.BodyAbsorptionExponent = in.real(0, 14);
-  p.BackingThickness = in.real(0, 32);
-  p.BackingAbsorption = in.real(0, 20);
-  p.DomainScatteringCoefficient = in.real(0, 5);
-  p.SphereRefractiveIndex = in.real(1.45, 5.0); // from the default (a zero byte) past the bound 4
-  p.MatrixRefractiveIndex = in.real(1.33, 0.0);  // from the default below the bound 1
-
+  const opal::ModelParameters p = decode(in);
   if (!opal::validate(p).empty())
   {
     return 0; // refused with a message: fine
