@@ -140,7 +140,7 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   const opal::BuiltVolume volume = buildRenderVolume(model);
   const std::unique_ptr<opal::RenderSession> session = starting.get();
   session->setVolume(volume.renderVolume());
-  const opal::RenderFrame frame = renderInBackground(*session, parameters);
+  opal::RenderFrame frame = renderInBackground(*session, parameters); // its image is moved out below
   deviceName = session->context().deviceName();
   // With OPAL_VULKAN_VALIDATION set, what the validation layer said is shown, and fails the run.
   const std::vector<std::string> messages = session->context().validationMessages();
