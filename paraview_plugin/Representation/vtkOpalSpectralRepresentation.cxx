@@ -73,6 +73,7 @@ void vtkOpalSpectralRepresentation::SetRenderSettings(vtkOpalSpectralRender* set
 {
   this->Settings = settings;
   this->SettingsTime = 0;
+  this->AppliedSettings.reset();
   this->Modified();
 }
 
@@ -103,14 +104,18 @@ void vtkOpalSpectralRepresentation::ApplyRenderSettings()
   const opal::RenderParameters settings = this->Settings->GetRenderParameters();
   opal::RenderParameters p = this->Render->GetRenderParameters();
   bool changed = false;
+  // Only the rows that changed since the last copy, as a property push would:
+  // the headlight's LightPosition stays the view's until OpalLightPosition changes.
   for (const opal::ParameterRow<opal::RenderParameters>& row : opal::renderParameterRows())
   {
-    if (!isFramesOwn(row.Name) && row.Get(settings) != row.Get(p))
+    const bool moved = !this->AppliedSettings || row.Get(settings) != row.Get(*this->AppliedSettings);
+    if (moved && !isFramesOwn(row.Name) && row.Get(settings) != row.Get(p))
     {
       row.Set(p, row.Get(settings));
       changed = true;
     }
   }
+  this->AppliedSettings = std::make_unique<opal::RenderParameters>(settings);
   // Unchanged settings keep the render's MTime: its final frame stays valid.
   if (changed)
   {

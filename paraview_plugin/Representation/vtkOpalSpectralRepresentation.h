@@ -31,6 +31,13 @@
 #include "vtkPVDataRepresentation.h"
 #include "vtkSmartPointer.h"
 
+#include <memory>
+
+namespace opal
+{
+struct RenderParameters;
+}
+
 class vtkImageData;
 class vtkOpalSpectralImageActor;
 class vtkOpalSpectralRender;
@@ -107,6 +114,7 @@ private:
   vtkNew<vtkOpalSpectralRender> Render;
   vtkSmartPointer<vtkOpalSpectralRender> Settings;
   vtkMTimeType SettingsTime = 0; // the settings' MTime at the last copy
+  std::unique_ptr<opal::RenderParameters> AppliedSettings; // the settings as last copied
   vtkNew<vtkOpalSpectralImageActor> Actor;
   vtkSmartPointer<vtkImageData> Volume;
   vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken
