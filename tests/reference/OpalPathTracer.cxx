@@ -244,6 +244,376 @@ std::vector<double> scatteringPerWavelength(const Scene& scene, const std::vecto
   return mu;
 }
 
+// --- Every order of scattering ---------------------------------------------
+
+// The unpolarised Fresnel reflectance 0.5 (rs^2 + rp^2) of light meeting the
+// interface from the side of index n1 at cosIncidence to the normal (either
+// sign); 1 beyond the critical angle (total internal reflection).
+double fresnelReflectance(double cosIncidence, double n1, double n2)
+{
+  if (n1 == n2)
+  {
+    return 0; // no interface; also spares grazing incidence its 0/0
+  }
+  const double cosI = std::min(std::fabs(cosIncidence), 1.0);
+  const double sinT = n1 / n2 * std::sqrt(1 - cosI * cosI);
+  if (sinT >= 1)
+  {
+    return 1;
+  }
+  const double cosT = std::sqrt(1 - sinT * sinT);
+  const double rs = (n1 * cosI - n2 * cosT) / (n1 * cosI + n2 * cosT);
+  const double rp = (n2 * cosI - n1 * cosT) / (n2 * cosI + n1 * cosT);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// Snell's law from index 1 into index mu for a ray d arriving from outside
+// through a surface of outward normal n (d . n < 0): no total reflection this way.
+dvec3 refractInward(const dvec3& d, const dvec3& n, double mu)
+{
+  const double cosI = -glm::dot(d, n);
+  const double eta = 1 / mu;
+  const double cosT = std::sqrt(1 - eta * eta * (1 - cosI * cosI));
+  return glm::normalize(eta * d + (eta * cosI - cosT) * n);
+}
+
+// Where a ray leaves the body and the outward normal there.
+struct Crossing
+{
+  double Distance;
+  dvec3 Normal;
+};
+
+// What the transport needs of a convex body, so that the half-ellipsoid and
+// the validation slab share one transport kernel: where a ray from a point
+// inside (or on the boundary, after a reflection) leaves.
+class Body
+{
+public:
+  virtual ~Body() = default;
+  virtual Crossing exitFrom(const dvec3& inside, const dvec3& direction) const = 0;
+};
+
+class HalfEllipsoidBody final : public Body
+{
+public:
+  explicit HalfEllipsoidBody(const dvec3& axes)
+    : Axes(axes)
+  {
+  }
+
+  Crossing exitFrom(const dvec3& x, const dvec3& d) const override
+  {
+    const double dome = this->domeExit(x, d);
+    // The base y = 0 bounds only a ray heading down; a point a rounding error
+    // below it leaves at once.
+    const double base = d.y < 0 ? std::max(-x.y / d.y, 0.0) : Infinity;
+    if (base < dome)
+    {
+      return { base, dvec3(0, -1, 0) };
+    }
+    return { dome, this->domeNormal(x + dome * d) };
+  }
+
+  dvec3 domeNormal(const dvec3& p) const { return glm::normalize(p / (this->Axes * this->Axes)); }
+
+private:
+  // The far root of |(x + t d) / axes|^2 = 1. The point is inside, so c <= 0
+  // but for rounding; clamping c keeps a point left just outside the dome by a
+  // reflection from losing its chord (the roots then straddle 0, and the far
+  // one is positive for a ray heading in, 0 for one heading out).
+  double domeExit(const dvec3& x, const dvec3& d) const
+  {
+    const dvec3 xs = x / this->Axes, ds = d / this->Axes;
+    const double a = glm::dot(ds, ds);
+    const double halfB = glm::dot(xs, ds);
+    const double c = std::min(glm::dot(xs, xs) - 1, 0.0);
+    const double discriminant = halfB * halfB - a * c;
+    if (!(discriminant > 0))
+    {
+      return 0; // tangent at a point of the boundary
+    }
+    const double q = -(halfB + std::copysign(std::sqrt(discriminant), halfB));
+    return std::max(q / a, c / q);
+  }
+
+  dvec3 Axes;
+};
+
+// The slab 0 <= y <= Thickness, unbounded in x and z.
+class SlabBody final : public Body
+{
+public:
+  explicit SlabBody(double thickness)
+    : Thickness(thickness)
+  {
+  }
+
+  Crossing exitFrom(const dvec3& x, const dvec3& d) const override
+  {
+    if (d.y > 0)
+    {
+      return { std::max((this->Thickness - x.y) / d.y, 0.0), dvec3(0, 1, 0) };
+    }
+    if (d.y < 0)
+    {
+      return { std::max(-x.y / d.y, 0.0), dvec3(0, -1, 0) };
+    }
+    return { Infinity, dvec3(0, 1, 0) }; // along the faces: it scatters first
+  }
+
+private:
+  double Thickness;
+};
+
+struct Transport
+{
+  double Extinction;      // mu_t (1/mm), > 0
+  double Albedo;          // mu_s / mu_t
+  double RefractiveIndex; // inside; 1 outside
+};
+
+struct Photon
+{
+  dvec3 Position, Direction;
+  double Weight;
+};
+
+enum class Fate
+{
+  Scattered, // at a vertex, already given its new direction
+  Escaped,   // out through the boundary
+  Ended      // by Russian roulette
+};
+
+struct Event
+{
+  Fate What;
+  dvec3 ExitNormal;      // Escaped: the outward normal where it left
+  double AbsorbedWeight; // at a vertex: the weight the medium absorbed there
+};
+
+// Below this weight a path plays Russian roulette.
+constexpr double RouletteWeight = 0.1;
+
+dvec3 isotropicDirection(std::mt19937_64& random)
+{
+  const double z = 1 - 2 * uniform01(random);
+  const double phi = 2 * Pi * uniform01(random);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return dvec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+// A scattering vertex: the weight takes the albedo; a light path below
+// RouletteWeight survives with probability weight / RouletteWeight and then
+// carries RouletteWeight, which keeps every expectation and ends the long
+// tails of faint paths. The survivor scatters isotropically.
+Event scatter(const Transport& transport, Photon& photon, std::mt19937_64& random)
+{
+  const double absorbed = photon.Weight * (1 - transport.Albedo);
+  photon.Weight *= transport.Albedo;
+  if (photon.Weight < RouletteWeight)
+  {
+    if (uniform01(random) * RouletteWeight >= photon.Weight)
+    {
+      return { Fate::Ended, dvec3(0), absorbed };
+    }
+    photon.Weight = RouletteWeight;
+  }
+  photon.Direction = isotropicDirection(random);
+  return { Fate::Scattered, dvec3(0), absorbed };
+}
+
+// The transport kernel: follows the photon to its next scattering vertex or
+// out of the body. Free flights are drawn from mu_t; one that reaches the
+// boundary first is reflected back in with the Fresnel probability from
+// inside (certainly, beyond the critical angle), and a new flight is drawn
+// from there (the exponential has no memory).
+Event nextEvent(const Body& body, const Transport& transport, Photon& photon, std::mt19937_64& random)
+{
+  for (;;)
+  {
+    const Crossing exit = body.exitFrom(photon.Position, photon.Direction);
+    const double flight = -std::log1p(-uniform01(random)) / transport.Extinction;
+    if (flight < exit.Distance)
+    {
+      photon.Position += flight * photon.Direction;
+      return scatter(transport, photon, random);
+    }
+    photon.Position += exit.Distance * photon.Direction;
+    const double cosine = glm::dot(photon.Direction, exit.Normal);
+    if (uniform01(random) >= fresnelReflectance(cosine, transport.RefractiveIndex, 1))
+    {
+      return { Fate::Escaped, exit.Normal, 0 };
+    }
+    photon.Direction -= 2 * cosine * exit.Normal;
+  }
+}
+
+// The light's irradiance at x inside the medium: along the straight segment
+// to it (the light is not refracted: the paper's light model), through the
+// surface where that segment leaves (1 - F from outside) and attenuated by
+// mu_t over its part inside; a light inside the medium has no surface between.
+double irradianceThroughSurface(
+  const Medium& medium, const HalfEllipsoidBody& body, const Transport& transport, const dvec3& x)
+{
+  const dvec3 toLight = medium.Light - x;
+  const double distance2 = glm::dot(toLight, toLight);
+  const double distance = std::sqrt(distance2);
+  const dvec3 direction = toLight / distance;
+  const Crossing exit = body.exitFrom(x, direction);
+  const bool lightOutside = exit.Distance < distance;
+  const double transmission =
+    lightOutside ? 1 - fresnelReflectance(glm::dot(direction, exit.Normal), 1, transport.RefractiveIndex) : 1;
+  return medium.LightStrength / distance2 * transmission *
+    std::exp(-transport.Extinction * std::min(exit.Distance, distance));
+}
+
+// Where a view ray enters the medium, refracted, and the 1 - F it carries in.
+struct EyeEntry
+{
+  bool Hit = false;
+  dvec3 Point, Direction;
+  double Transmission = 0;
+};
+
+EyeEntry enterMedium(const HalfEllipsoidBody& body, const dvec3& axes, const dvec3& eye, const dvec3& d, double mu)
+{
+  const Interval dome = ellipsoidInterval(eye, d, axes), upper = upperHalfInterval(eye, d);
+  const Interval span = intersect(intersect(dome, upper), Interval{ 0, Infinity });
+  if (span.empty())
+  {
+    return {};
+  }
+  const dvec3 point = eye + span.Near * d;
+  // The later of the two entries is the medium's: the base where the ray
+  // crosses the plane after entering the ellipsoid.
+  const dvec3 normal = upper.Near > dome.Near ? dvec3(0, -1, 0) : body.domeNormal(point);
+  return { true, point, refractInward(d, normal, mu), 1 - fresnelReflectance(glm::dot(d, normal), 1, mu) };
+}
+
+// One path from the eye: its radiance, the light estimated at every
+// scattering vertex up to maxOrder (0: all). Roulette comes before the
+// estimate at a vertex; as it keeps the expected weight, the order is free.
+double tracePath(const Medium& medium, const HalfEllipsoidBody& body, const Transport& transport,
+  const EyeEntry& entry, int maxOrder, std::mt19937_64& random)
+{
+  Photon photon{ entry.Point, entry.Direction, entry.Transmission };
+  double radiance = 0;
+  for (int order = 1; maxOrder == 0 || order <= maxOrder; ++order)
+  {
+    if (nextEvent(body, transport, photon, random).What != Fate::Scattered)
+    {
+      break;
+    }
+    radiance += photon.Weight / (4 * Pi) * irradianceThroughSurface(medium, body, transport, photon.Position);
+  }
+  return radiance;
+}
+
+// The mean of independent paths and its standard error.
+Estimate estimatePixel(const Medium& medium, const HalfEllipsoidBody& body, const Transport& transport,
+  const EyeEntry& entry, int maxOrder, std::vector<double>& radiances, std::mt19937_64& random)
+{
+  double sum = 0;
+  for (double& radiance : radiances)
+  {
+    radiance = tracePath(medium, body, transport, entry, maxOrder, random);
+    sum += radiance;
+  }
+  const std::size_t n = radiances.size();
+  return { sum / static_cast<double>(n), std::sqrt(sampleVariance(radiances, 0, n) / static_cast<double>(n)) };
+}
+
+// mu_t and the albedo per wavelength; a wavelength that does not scatter has
+// albedo 0 (and no radiance), even without absorption.
+std::vector<Transport> transportPerWavelength(const Scene& scene, const std::vector<double>& wavelengths)
+{
+  if (!(scene.RefractiveIndex >= 1 && std::isfinite(scene.RefractiveIndex)) ||
+    !(scene.Absorption550 >= 0 && std::isfinite(scene.Absorption550)) || !std::isfinite(scene.AbsorptionExponent))
+  {
+    throw std::invalid_argument("opaltracer: bad refractive index or absorption");
+  }
+  const std::vector<double> scattering = scatteringPerWavelength(scene, wavelengths);
+  std::vector<Transport> transports;
+  for (std::size_t w = 0; w < wavelengths.size(); ++w)
+  {
+    const double absorption = scene.Absorption550 * std::pow(550 / wavelengths[w], scene.AbsorptionExponent);
+    const double extinction = scattering[w] + absorption;
+    transports.push_back({ extinction, scattering[w] > 0 ? scattering[w] / extinction : 0, scene.RefractiveIndex });
+  }
+  return transports;
+}
+
+void requireEyeOutside(const dvec3& eye, const dvec3& axes)
+{
+  const dvec3 scaled = eye / axes;
+  if (eye.y >= 0 && glm::dot(scaled, scaled) <= 1)
+  {
+    throw std::invalid_argument("opaltracer: the eye is inside the medium");
+  }
+}
+
+// The seed of a pixel's own random stream (splitmix64's finaliser), so that
+// the image does not depend on the order the pixels are traced in.
+std::uint64_t mix(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+struct SlabTally
+{
+  double Reflected = 0, Transmitted = 0, Absorbed = 0;
+};
+
+// One photon of the collimated beam, from its entry at normal incidence
+// (reflected there with the Fresnel probability) until it leaves or ends.
+SlabTally followSlabPhoton(
+  const SlabBody& slab, const Transport& transport, double entryReflectance, std::mt19937_64& random)
+{
+  SlabTally tally;
+  if (uniform01(random) < entryReflectance)
+  {
+    tally.Reflected = 1;
+    return tally;
+  }
+  Photon photon{ dvec3(0), dvec3(0, 1, 0), 1 };
+  for (;;)
+  {
+    const Event event = nextEvent(slab, transport, photon, random);
+    tally.Absorbed += event.AbsorbedWeight;
+    if (event.What == Fate::Escaped)
+    {
+      (event.ExitNormal.y < 0 ? tally.Reflected : tally.Transmitted) = photon.Weight;
+    }
+    if (event.What != Fate::Scattered)
+    {
+      return tally;
+    }
+  }
+}
+
+// The sums a mean and its standard error need.
+struct Moments
+{
+  double Sum = 0, Squares = 0;
+
+  void add(double value)
+  {
+    this->Sum += value;
+    this->Squares += value * value;
+  }
+  double mean(double n) const { return this->Sum / n; }
+  double standardError(double n) const
+  {
+    const double variance = (this->Squares - this->Sum * this->Sum / n) / (n - 1);
+    return std::sqrt(std::max(variance, 0.0) / n);
+  }
+};
+
 } // namespace
 
 Image trace(const Scene& scene, const View& view, const std::vector<double>& wavelengths,
@@ -252,6 +622,10 @@ Image trace(const Scene& scene, const View& view, const std::vector<double>& wav
   if (samplesPerPixel < 2)
   {
     throw std::invalid_argument("opaltracer: the standard error needs 2 samples or more");
+  }
+  if (scene.RefractiveIndex != 1 || scene.Absorption550 != 0)
+  {
+    throw std::invalid_argument("opaltracer: trace() models neither refraction nor absorption");
   }
   const Camera camera = makeCamera(view);
   const Medium medium = makeMedium(scene);
@@ -282,6 +656,78 @@ Image trace(const Scene& scene, const View& view, const std::vector<double>& wav
     }
   }
   return image;
+}
+
+Image traceAllOrders(const Scene& scene, const View& view, const std::vector<double>& wavelengths,
+  int samplesPerPixel, std::uint64_t seed, int maxOrder)
+{
+  if (samplesPerPixel < 2 || maxOrder < 0)
+  {
+    throw std::invalid_argument("opaltracer: need 2 samples or more and a maxOrder >= 0");
+  }
+  const Camera camera = makeCamera(view);
+  const Medium medium = makeMedium(scene);
+  const std::vector<Transport> transports = transportPerWavelength(scene, wavelengths);
+  requireEyeOutside(camera.Eye, medium.Axes);
+  const HalfEllipsoidBody body(medium.Axes);
+  const std::size_t pixels = static_cast<std::size_t>(view.Width) * static_cast<std::size_t>(view.Height);
+  Image image;
+  image.Wavelengths = wavelengths;
+  image.Radiance.assign(pixels * transports.size(), 0);
+  image.StandardError.assign(pixels * transports.size(), 0);
+  image.Hit.assign(pixels, 0);
+  std::vector<double> radiances(static_cast<std::size_t>(samplesPerPixel));
+  for (int py = 0; py < view.Height; ++py)
+  {
+    for (int px = 0; px < view.Width; ++px)
+    {
+      const EyeEntry entry =
+        enterMedium(body, medium.Axes, camera.Eye, rayDirection(camera, px, py), scene.RefractiveIndex);
+      const auto pixel = static_cast<std::size_t>(py * view.Width + px);
+      image.Hit[pixel] = entry.Hit ? 1 : 0;
+      std::mt19937_64 random(mix(seed ^ mix(pixel)));
+      for (std::size_t w = 0; w < transports.size() && entry.Hit; ++w)
+      {
+        if (transports[w].Albedo > 0)
+        {
+          const Estimate e = estimatePixel(medium, body, transports[w], entry, maxOrder, radiances, random);
+          image.Radiance[pixel * transports.size() + w] = e.Mean;
+          image.StandardError[pixel * transports.size() + w] = e.StandardError;
+        }
+      }
+    }
+  }
+  return image;
+}
+
+SlabResult traceSlab(double tau, double albedo, double refractiveIndex, std::int64_t photons, std::uint64_t seed)
+{
+  if (!(tau > 0 && std::isfinite(tau)) || !(albedo >= 0 && albedo <= 1) ||
+    !(refractiveIndex >= 1 && std::isfinite(refractiveIndex)) || photons < 2)
+  {
+    throw std::invalid_argument("opaltracer: bad slab thickness, albedo, refractive index or photon count");
+  }
+  const SlabBody slab(tau);
+  const Transport transport{ 1, albedo, refractiveIndex };
+  const double entryReflectance = fresnelReflectance(1, 1, refractiveIndex);
+  std::mt19937_64 random(seed);
+  Moments reflected, transmitted, absorbed, total;
+  for (std::int64_t i = 0; i < photons; ++i)
+  {
+    const SlabTally tally = followSlabPhoton(slab, transport, entryReflectance, random);
+    reflected.add(tally.Reflected);
+    transmitted.add(tally.Transmitted);
+    absorbed.add(tally.Absorbed);
+    total.add(tally.Reflected + tally.Transmitted + tally.Absorbed);
+  }
+  const auto n = static_cast<double>(photons);
+  SlabResult result;
+  result.Reflectance = reflected.mean(n);
+  result.Transmittance = transmitted.mean(n);
+  result.Absorbed = absorbed.mean(n);
+  result.StandardError = std::max({ reflected.standardError(n), transmitted.standardError(n),
+    absorbed.standardError(n), total.standardError(n) });
+  return result;
 }
 
 } // namespace opaltracer
