@@ -207,9 +207,14 @@ void printSummary(const std::string& preset, const opal::RenderImage& image, con
   const opal::RenderTimings& t = image.Timings;
   std::printf("Opal render (preset %s): %d x %d pixels, %zu wavelengths on %s\n", preset.c_str(), image.Region[2],
     image.Region[3], image.Wavelengths.size(), deviceName.c_str());
-  std::printf("  render: setup %.3f s, upload %.3f s, light pass %.3f s, march %.3f s, colour %.3f s, "
-              "readback %.3f s\n",
-    t.Setup, t.Upload, t.LightPass, t.March, t.Colour, t.Readback);
+  std::printf("  render: setup %.3f s, upload %.3f s, light pass %.3f s, scattered light %.3f s, march %.3f s, "
+              "colour %.3f s, readback %.3f s\n",
+    t.Setup, t.Upload, t.LightPass, t.ScatteredLight, t.March, t.Colour, t.Readback);
+  std::printf("  scattering orders: %s\n", image.ScatteringOrders.c_str());
+  if (!image.Warning.empty())
+  {
+    std::fprintf(stderr, "opal-render: warning: %s\n", image.Warning.c_str());
+  }
   std::printf("  exposure %.4g, total %.3f s\n", image.Exposure, seconds);
   for (const std::string& path : written)
   {

@@ -7,6 +7,7 @@
 // each with its median CPU time; then the whole opal-render process (median
 // of 5) with Mesa's shader cache warm and disabled. Usage: opal-bench-render [WIDTH HEIGHT]
 #include "OpalRenderSession.h"
+#include "OpalPresets.h"
 #include "OpalVolumeBuild.h"
 
 #include <algorithm>
@@ -171,6 +172,60 @@ void benchBraggModels(opal::RenderSession& session, opal::RenderParameters p)
               "+ absorption %.3f s (x%.2f)\n",
     paper, coupled, coupled / paper, fcc, fcc / paper, fccAbsorbing, fccAbsorbing / paper);
 }
+// The sum of Y over the image: the light the stone sends to the eye.
+double luminance(const opal::RenderImage& image)
+{
+  double sum = 0;
+  for (std::size_t i = 1; i < image.XYZ.size(); i += 3)
+  {
+    sum += image.XYZ[i];
+  }
+  return sum;
+}
+
+// ScatteringOrders all against single (docs/design.md §3.10) on one preset's
+// volume, alternating, medians of 5: frames with a new light (light pass and,
+// for all, the every-order solve), camera-only frames, the solve's time, and
+// the share of the light from orders beyond the first.
+void benchScatteringOrders(opal::RenderSession& session, opal::RenderParameters p, int preset, const char* name)
+{
+  opal::ModelParameters model;
+  model.applyPreset(preset);
+  const auto volume = opal::buildVolume(model);
+  session.setVolume(volume->renderVolume());
+  const opal::VolumeRenderHints hints = opal::renderHints(preset, model.RefractiveIndex);
+  p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
+  p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
+  p.Exposure = 1.0;
+  std::vector<double> lit[2], camera[2], solve;
+  double light[2] = { 0, 0 };
+  opal::RenderFrame frame;
+  for (int run = 0; run < 12; ++run)
+  {
+    const int all = run % 2;
+    p.ScatteringOrders = all ? opal::ScatteringOrdersKind::All : opal::ScatteringOrdersKind::Single;
+    p.LightPosition[0] = 1e-3 * (run / 2 + 1);
+    p.EyePosition[0] = 0.0;
+    const double litSeconds = secondsOf(session, p, frame);
+    const double solveSeconds = frame.Image.Timings.ScatteredLight;
+    light[all] = luminance(frame.Image);
+    p.EyePosition[0] = 3.0;
+    const double cameraSeconds = secondsOf(session, p, frame);
+    if (run >= 2) // the first pair builds the pipelines
+    {
+      lit[all].push_back(litSeconds);
+      camera[all].push_back(cameraSeconds);
+      if (all)
+        solve.push_back(solveSeconds);
+    }
+  }
+  std::printf("  %s, ScatteringOrders all against single (alternating, medians of 5): frame with a new light "
+              "%.3f s against %.3f s (x%.2f; the solve %.3f s), camera-only %.3f s against %.3f s (x%.2f); orders "
+              "beyond the first carry %.1f%% of the stone's luminance\n",
+    name, median(lit[1]), median(lit[0]), median(lit[1]) / median(lit[0]), median(solve), median(camera[1]),
+    median(camera[0]),
+    median(camera[1]) / median(camera[0]), 100.0 * (1.0 - light[0] / light[1]));
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -202,6 +257,8 @@ int main(int argc, char** argv)
   p.Quality = opal::RenderQuality::Final;
   p.EyePosition = { 0.0, 60.0, 0.0 };
   benchBraggModels(session, p);
+  benchScatteringOrders(session, p, opal::presetIndexByName("fig12"), "fig12");
+  benchScatteringOrders(session, p, opal::presetIndexByName("white-opal"), "white-opal");
   std::printf("  goals (lavapipe, 2 cores): frame <= 0.45 s, camera-only <= 0.35 s, preview <= 0.1 s, "
               "process <= 1.0 s\n");
   benchProcess();

@@ -63,7 +63,11 @@ OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
 // written each frame by the Bragg shadow table pass and read by the march,
 // both specialised on energy conservation; else a placeholder.
 OPAL_CONSTANT int ShadowTableBinding = 19;      // a row of SHADOW_TABLE_ROW_VEC4S vec4s per domain
-OPAL_CONSTANT int BindingCount = 20;
+// The light scattered at least once (every order, docs/design.md §3.10): per
+// voxel a vec4, its mean radiance over s at the four nodes spanning the
+// table's s; a placeholder without ScatteringOrders all.
+OPAL_CONSTANT int ScatteredLightBinding = 20;
+OPAL_CONSTANT int BindingCount = 21;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -273,7 +277,8 @@ OPAL_CONSTANT int MarchEnergyConservationConstant = 5; // bool: 1 - R behind a c
 OPAL_CONSTANT int MarchFirstWavelengthConstant = 6;    // float: the first bin's centre, nm
 OPAL_CONSTANT int MarchWavelengthStepConstant = 7;     // float: the bins' step, nm
 OPAL_CONSTANT int MarchNearestLightConstant = 8;       // bool: the preview's per-voxel light read
-OPAL_CONSTANT int MarchConstantCount = 9;
+OPAL_CONSTANT int MarchScatteredLightConstant = 9;  // bool: add the light scattered more than once (§3.10)
+OPAL_CONSTANT int MarchConstantCount = 10;
 
 // The march reads a LightFieldPair (and the absorption's) as one vec4,
 // (voxel.x, voxel.y, nextVoxel.x, nextVoxel.y): one load where lavapipe

@@ -34,6 +34,9 @@ layout(constant_id = MarchWavelengthStepConstant) const float WAVELENGTH_STEP = 
 // The preview reads the light field of the voxel a point lies in (one load)
 // instead of trilinearly (four): a view ray averages it over ~70 voxels.
 layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false;
+// ScatteringOrders all: the light scattered more than once, a field solved per
+// light on the host, adds to the body's scattering (docs/design.md §3.10).
+layout(constant_id = MarchScatteredLightConstant) const bool SCATTERED_LIGHT = false;
 
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
@@ -52,6 +55,7 @@ layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightA
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
+layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
 const int SHADOW_ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
@@ -79,6 +83,12 @@ float viewTransmittance[WAVELENGTHS];
 // EXACT_SCATTERING; flushed through that domain's 1 - R for the light.
 float shadowNodes[SPECTRAL_NODES];
 float shadowRadiance[WAVELENGTHS];
+// The light scattered more than once, gathered like scatterNodes on the
+// field's four nodes (only with SCATTERED_LIGHT): the sum of
+// mu_s ds (J/s) exp(-tau s) over the sub-steps; the radiance is s^2 times it.
+vec4 scatteredNodes;
+// (550/lambda)^p at those nodes (only with ABSORPTION).
+vec4 scatteredAbsorptionScales;
 
 // The view transmittance of bin l: 1 without ENERGY_CONSERVATION.
 float transmittedToEye(int l)
@@ -352,6 +362,13 @@ bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
   return true;
 }
 
+// The cubic through (0, g.x), (1, g.y), (2, g.z), (3, g.w) at u.
+float lagrangeCubic(vec4 g, float u)
+{
+  return g.x * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g.y * u * (u - 2.0) * (u - 3.0) / 2.0 +
+    g.z * u * (u - 1.0) * (u - 3.0) / -2.0 + g.w * u * (u - 1.0) * (u - 2.0) / 6.0;
+}
+
 // The scattering in bin l from log G on the nodes (nodesToLogs): cubic
 // Lagrange interpolation of log G through the four nearest nodes (G is a sum
 // of decaying exponentials in s, nearly linear in log), times s. In the
@@ -377,18 +394,34 @@ float scatterAt(float logNodes[SPECTRAL_NODES], int l)
     g2 = here ? logNodes[j + 2] : g2;
     g3 = here ? logNodes[j + 3] : g3;
   }
-  float logG = g0 * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g1 * u * (u - 2.0) * (u - 3.0) / 2.0 +
-    g2 * u * (u - 1.0) * (u - 3.0) / -2.0 + g3 * u * (u - 1.0) * (u - 2.0) / 6.0;
-  return s * exp(logG);
+  return s * exp(lagrangeCubic(vec4(g0, g1, g2, g3), u));
+}
+
+// The light scattered more than once in bin l from the log of its four
+// nodes' sums (scatteredNodes), which span the table's s: s^2 times the
+// interpolated sum (the field holds J/s, docs/design.md §3.10).
+float scatteredAt(vec4 logNodes, int l)
+{
+  float s = binRayleighScale(l);
+  float u = 3.0 * (s - nodeFirst()) / (binRayleighScale(0) - nodeFirst());
+  return s * s * exp(lagrangeCubic(logNodes, u));
+}
+
+// The field's four nodes: s evenly from the longest wavelength's to the shortest's.
+vec4 scatteredScales()
+{
+  float step = (binRayleighScale(0) - nodeFirst()) / 3.0;
+  return nodeFirst() + step * vec4(0.0, 1.0, 2.0, 3.0);
 }
 
 // Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]
 // in a voxel of coefficients (mus, absorption), isotropic phase 1/(4 pi), in
 // sub-steps of at most marchStep with the view transmittance at each
-// midpoint; `shadowed`: in the round's Bragg shadow (shadowNodes, shadowRadiance).
+// midpoint; `shadowed`: in the round's Bragg shadow (shadowNodes, shadowRadiance);
+// `scattered`: the voxel's light scattered more than once (SCATTERED_LIGHT).
 // Returns the view depths (as LightSample's tau) after the segment.
-vec3 scatterAlongSegment(
-  vec3 origin, vec3 inward, float t, float segment, float mus, vec2 absorption, vec3 tauView, bool shadowed)
+vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float mus, vec2 absorption,
+  vec3 tauView, bool shadowed, vec4 scattered)
 {
   int pieces = max(1, int(ceil(segment / P.marchStep)));
   float ds = segment / float(pieces);
@@ -434,9 +467,29 @@ vec3 scatterAlongSegment(
         radiance[l] += value;
       }
     }
+    if (SCATTERED_LIGHT)
+    {
+      // The scattered light reaches the sample from all around: only the view path dims it.
+      vec3 tauMid = tauView + 0.5 * vec3(mus, absorption) * ds;
+      vec4 kept = exp(-tauMid.x * scatteredScales());
+      if (ABSORPTION) kept *= exp(-tauMid.y * scatteredAbsorptionScales - tauMid.z);
+      scatteredNodes += mus * ds * scattered * kept;
+    }
     tauView += vec3(mus, absorption) * ds;
   }
   return tauView;
+}
+
+// The light scattered more than once gathered since the last flush, into the
+// bins through the view transmittance of the crossings in front; restarts.
+void flushScatteredLight()
+{
+  if (SCATTERED_LIGHT && all(greaterThan(scatteredNodes, vec4(0.0))))
+  {
+    vec4 logNodes = log(scatteredNodes);
+    for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += transmittedToEye(l) * scatteredAt(logNodes, l);
+  }
+  scatteredNodes = vec4(0.0);
 }
 
 // Domain crossings recorded during the walk and diffracted after it: the
@@ -513,8 +566,8 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       if (COUPLED_WAVE && domain >= 0 && count > 0) crossingLength[count - 1] += segment;
       if (mus > 0.0)
       {
-        state.tauView = scatterAlongSegment(
-          origin, inward, state.t, segment, mus, absorption, state.tauView, shadow.domain >= 0);
+        state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView,
+          shadow.domain >= 0, SCATTERED_LIGHT ? scatteredLight[v] : vec4(0.0));
       }
       else if (ABSORPTION)
       {
@@ -552,6 +605,7 @@ void flushScattering(inout WalkState state)
     scatterNodes[k] = 0.0;
     shadowNodes[k] = 0.0;
   }
+  flushScatteredLight();
   state.shadow = NO_SHADOW;
 }
 
@@ -587,6 +641,7 @@ void writePixel(int pixelIndex, float transmitted, float tHit)
   {
     for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
   }
+  flushScatteredLight();
   vec3 xyz = vec3(0.0);
   for (int l = 0; l < WAVELENGTHS; ++l)
   {
@@ -647,6 +702,11 @@ void main()
     {
       absorptionNodes[k] = pow(nodeFirst() + float(k) * nodeStep(), 0.25 * P.absorptionExponent);
     }
+  }
+  scatteredNodes = vec4(0.0);
+  if (SCATTERED_LIGHT && ABSORPTION)
+  {
+    scatteredAbsorptionScales = pow(scatteredScales(), vec4(0.25 * P.absorptionExponent));
   }
   dominantLambda = 0.0;
   dominantY = 0.0;

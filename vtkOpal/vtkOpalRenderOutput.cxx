@@ -53,6 +53,10 @@ void addFieldData(const opal::RenderImage& image, const std::string& deviceName,
   illuminantScale->SetName("IlluminantScale");
   illuminantScale->InsertNextValue(image.IlluminantScale);
   fields->AddArray(illuminantScale);
+  vtkNew<vtkStringArray> orders;
+  orders->SetName("ScatteringOrders");
+  orders->InsertNextValue(image.ScatteringOrders);
+  fields->AddArray(orders);
   vtkNew<vtkStringArray> device;
   device->SetName("VulkanDevice");
   device->InsertNextValue(deviceName);
@@ -60,10 +64,10 @@ void addFieldData(const opal::RenderImage& image, const std::string& deviceName,
   vtkNew<vtkDoubleArray> timings;
   timings->SetName("RenderTimings");
   const opal::RenderTimings& t = image.Timings;
-  const double values[6] = { t.Setup, t.Upload, t.LightPass, t.March, t.Colour, t.Readback };
-  const char* names[6] = { "Setup", "Upload", "LightPass", "March", "Colour", "Readback" };
-  timings->SetNumberOfComponents(6);
-  for (int c = 0; c < 6; ++c)
+  const double values[7] = { t.Setup, t.Upload, t.LightPass, t.ScatteredLight, t.March, t.Colour, t.Readback };
+  const char* names[7] = { "Setup", "Upload", "LightPass", "ScatteredLight", "March", "Colour", "Readback" };
+  timings->SetNumberOfComponents(7);
+  for (int c = 0; c < 7; ++c)
   {
     timings->SetComponentName(c, names[c]);
   }

@@ -246,6 +246,10 @@ bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData
     output->Initialize();
     return false;
   }
+  if (!frame.Image.Warning.empty())
+  {
+    vtkWarningMacro(<< frame.Image.Warning);
+  }
   vtkOpalRenderOutput::Fill(frame.Image, this->Session().context().deviceName(), output);
   return true;
 }

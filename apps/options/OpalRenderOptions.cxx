@@ -69,5 +69,9 @@ opal::RenderParameters OpalRenderOptions::parameters(const std::string& presetNa
     p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
   }
   p.RefractiveIndex = hints.RefractiveIndex;
+  if (!this->given("ScatteringOrders") || p.ScatteringOrders == opal::ScatteringOrdersKind::Volume)
+  {
+    p.ScatteringOrders = hints.ScatteringOrders;
+  }
   return p;
 }

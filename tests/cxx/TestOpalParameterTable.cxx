@@ -73,22 +73,31 @@ opal::ModelParameters parsed(OpalModelOptions& options, const opal::ModelParamet
   return options.parameters();
 }
 
+// The parameters opal-render or opal-volume takes from these words.
 template <typename Options, typename Parameters>
-void checkFlag(const opal::ParameterRow<Parameters>& row, const std::vector<double>& values,
-  const std::vector<opal::ParameterRow<Parameters>>& rows)
+Parameters parsedWords(std::vector<std::string> words)
 {
   CLI::App app;
   Options options;
   options.addTo(app);
   app.allow_extras(); // the other program's flags (--preset for the render's rows)
-  std::vector<std::string> words = flagArguments(row, values);
   words.insert(words.end(), { "--preset", "custom" });
   app.parse(std::vector<std::string>(words.rbegin(), words.rend())); // CLI11 pops from the back
-  const Parameters result = parsed(options, static_cast<const Parameters*>(nullptr));
+  return parsed(options, static_cast<const Parameters*>(nullptr));
+}
+
+// A row's flag sets it and leaves every other row as no flag leaves it (the
+// custom volume's: ScatteringOrders all, the struct's single).
+template <typename Options, typename Parameters>
+void checkFlag(const opal::ParameterRow<Parameters>& row, const std::vector<double>& values,
+  const std::vector<opal::ParameterRow<Parameters>>& rows)
+{
+  const Parameters result = parsedWords<Options, Parameters>(flagArguments(row, values));
+  const Parameters unflagged = parsedWords<Options, Parameters>({});
   OPAL_CHECK(row.Get(result) == values, std::string(row.Flag) + " sets " + row.Name);
   for (const opal::ParameterRow<Parameters>& other : rows)
   {
-    OPAL_CHECK(&other == &row || other.Get(result) == other.Get(Parameters()),
+    OPAL_CHECK(&other == &row || other.Get(result) == other.Get(unflagged),
       std::string(row.Flag) + " leaves " + other.Name + " as it was");
   }
 }

@@ -58,6 +58,7 @@ int TestOpalPreviewFrame(int, char*[])
     "the filter resolves a preview of half the width and height");
   opal::RenderParameters asked = pipeline.Render->GetRenderParameters();
   asked.RefractiveIndex = pipeline.Source->GetModelParameters().RefractiveIndex; // the filter's 0: the volume's
+  asked.ScatteringOrders = resolved.Parameters.ScatteringOrders;                 // the filter's volume: the preset's
   asked.Quality = opal::RenderQuality::Preview;
   const opal::RenderFrame preview = renderer->Session.render(asked);
   OPAL_CHECK(preview.Status == opal::FrameStatus::Completed && preview.Ran.Preview,

@@ -27,7 +27,7 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
   {
     this->prepareShadowField();
   }
-  const bool completed = this->Volume->Geometry.lightAboveGrid(setup.Camera.Light)
+  const bool completed = this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light)
     ? this->sweepLightLayers(braggShadow, progress)
     : this->marchLightPerVoxel(braggShadow, progress);
   if (completed)
@@ -108,6 +108,35 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
   return *pass;
 }
 
+// The light scattered more than once (docs/design.md §3.10), solved on the
+// host for the frame's light and uploaded; nothing is held while it runs, so
+// an aborted solve leaves no stale field.
+bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
+{
+  this->ScatteredLight.reset();
+  ScatteredLightRequest request;
+  request.Light = setup.Camera.Light;
+  request.LightStrength = setup.Block.apexDistanceSquared;
+  request.RefractiveIndex = setup.Parameters.RefractiveIndex;
+  request.NodeScales = scatteredLightScales(setup.Bins.front().Lambda, setup.Bins.back().Lambda);
+  request.Photons = setup.Parameters.ScatteringPhotons;
+  const std::optional<opal::ScatteredLight> field = solveScatteredLight(
+    this->Volume->Medium, request, [&progress](double done) { return progress.report(0.2 * done); });
+  if (!field)
+  {
+    return false;
+  }
+  DeviceVolume& v = *this->Volume;
+  v.ScatteredLight.reset();
+  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context,
+    field->MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", BufferPlacement::DeviceLocal);
+  v.ScatteredLight->upload(field->MeanRadiancePerScale.data(), field->MeanRadiancePerScale.size() * sizeof(gpu::vec4));
+  this->bindBuffers();
+  this->ScatteredLightWarning = field->Warning;
+  this->ScatteredLight = scatteredLightKey(setup);
+  return true;
+}
+
 // The Bragg shadow field, made the first time a light pass records it.
 void RenderSession::prepareShadowField()
 {
@@ -184,8 +213,9 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   const int energy = conservesEnergy(p) ? 1 : 0;
   const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
   const int nearestLight = setup.Preview ? 1 : 0;
-  std::unique_ptr<ComputePipeline>& march =
-    this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight }];
+  const int scattered = p.ScatteringOrders == ScatteringOrdersKind::All ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{
+    wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight, scattered }];
   if (!march)
   {
     const embedded::Spirv code = embedded::viewMarchShader();
@@ -195,7 +225,7 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
           { gpu::MarchExactScatteringConstant, exact ? 1 : 0 }, { gpu::MarchAbsorptionConstant, absorbs },
           { gpu::MarchCoupledWaveConstant, coupled }, { gpu::MarchEnergyConservationConstant, energy },
           { gpu::MarchFirstWavelengthConstant, first }, { gpu::MarchWavelengthStepConstant, step },
-          { gpu::MarchNearestLightConstant, nearestLight } }));
+          { gpu::MarchNearestLightConstant, nearestLight }, { gpu::MarchScatteredLightConstant, scattered } }));
   }
   return *march;
 }

@@ -105,14 +105,12 @@ std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
 
 // AbsorptionCoefficient as the shaders read it (AbsorptionCellBinding): per
 // voxel (coloured, grey) mu_a at 550 nm, a voxel of exponent 0 grey, the
-// skin filled like the cells (docs/design.md §3.9). Without absorption a
-// placeholder, bound but never read (the passes without ABSORPTION).
-std::unique_ptr<VulkanBuffer> absorptionCells(
-  VulkanContext& context, const RenderVolume& volume, const std::vector<SkinCell>& skin, bool absorbs)
+// skin filled like the cells (docs/design.md §3.9); empty without absorption.
+std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::vector<SkinCell>& skin)
 {
-  if (!absorbs)
+  if (!volume.absorbs())
   {
-    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder");
+    return {};
   }
   std::vector<gpu::vec2> cells(volume.voxelCount());
   forEachVoxel(volume, [&](std::size_t i) {
@@ -120,6 +118,17 @@ std::unique_ptr<VulkanBuffer> absorptionCells(
     cells[i] = volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
   });
   fillSkin(cells, skin);
+  return cells;
+}
+
+// The absorption cells on the device; without absorption a placeholder,
+// bound but never read (the passes without ABSORPTION).
+std::unique_ptr<VulkanBuffer> absorptionBuffer(VulkanContext& context, const std::vector<gpu::vec2>& cells)
+{
+  if (cells.empty())
+  {
+    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder");
+  }
   return deviceLocalBuffer(context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data());
 }
 } // namespace
@@ -128,6 +137,12 @@ bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
 {
   return this->Light == other.Light && this->RefractiveIndex == other.RefractiveIndex &&
     this->FalloffAtEntry == other.FalloffAtEntry && this->BraggShadow == other.BraggShadow;
+}
+
+bool RenderSession::ScatteredLightKey::operator==(const ScatteredLightKey& other) const
+{
+  return this->Light == other.Light && this->RefractiveIndex == other.RefractiveIndex &&
+    this->Photons == other.Photons && this->WavelengthSpan == other.WavelengthSpan;
 }
 
 RenderSession::RenderSession(const VulkanOptions& options)
@@ -192,6 +207,7 @@ void RenderSession::release()
   this->Bindings.reset();
   this->Context.reset();
   this->LightField.reset();
+  this->ScatteredLight.reset();
   this->WavelengthSampling.reset();
 }
 
@@ -207,6 +223,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const auto start = Clock::now();
   this->Volume.reset();
   this->LightField.reset();
+  this->ScatteredLight.reset();
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, refused up front if too large.
@@ -228,7 +245,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
     context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
-  uploaded->AbsorptionCells = absorptionCells(context, volume, skin, absorbs);
+  uploaded->Medium.Absorption = absorptionCells(volume, skin);
+  uploaded->AbsorptionCells = absorptionBuffer(context, uploaded->Medium.Absorption);
   uploaded->LightAbsorption = deviceLocalBuffer(context,
     absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field");
   uploaded->SurfaceDistance = deviceLocalBuffer(
@@ -242,7 +260,12 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
-  uploaded->Geometry = VolumeGeometry(volume);
+  uploaded->Medium.Geometry = VolumeGeometry(volume);
+  uploaded->Medium.Scattering.resize(voxels);
+  std::transform(cells.begin(), cells.end(), uploaded->Medium.Scattering.begin(),
+    [](const gpu::VoxelCell& cell) { return cell.scattering; });
+  uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
+  uploaded->ScatteredLight = deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder");
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
   uploaded->Shape.DomainId = nullptr;
@@ -343,6 +366,14 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   }
   this->runShadowTable(setup);
   timings.LightPass = secondsSince(lightStart);
+  const auto scatteredStart = Clock::now();
+  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
+  frame.Ran.ScatteredLight = everyOrder && !(this->ScatteredLight && *this->ScatteredLight == scatteredLightKey(setup));
+  if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
+  {
+    return frame;
+  }
+  timings.ScatteredLight = secondsSince(scatteredStart);
 
   const auto marchStart = Clock::now();
   double exposure = setup.Parameters.Exposure;
@@ -368,6 +399,8 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   const RenderTimings kept = timings;
   frame.Image = this->readBack(setup);
   frame.Image.Exposure = exposure;
+  frame.Image.ScatteringOrders = everyOrder ? "all" : "single";
+  frame.Image.Warning = everyOrder ? this->ScatteredLightWarning : std::string();
   frame.Image.Timings = kept;
   frame.Image.Timings.Readback = secondsSince(readStart);
   frame.Ran.Readback = true;
@@ -395,7 +428,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   setup.Parameters = p;
   setup.Preview = frame.Preview;
   setup.Camera = cameraInModelFrame(p);
-  const VolumeGeometry& geometry = this->Volume->Geometry;
+  const VolumeGeometry& geometry = this->Volume->Medium.Geometry;
   if (geometry.nearestSurfaceDistance(setup.Camera.Light) <= 0)
   {
     throw std::invalid_argument("LightPosition is inside the opal; place the light outside it.");
@@ -536,6 +569,13 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
   b.Parameters->upload(&setup.Block, sizeof(setup.Block));
 }
 
+RenderSession::ScatteredLightKey RenderSession::scatteredLightKey(const FrameSetup& setup)
+{
+  const glm::dvec3& light = setup.Camera.Light;
+  return { { light.x, light.y, light.z }, setup.Parameters.RefractiveIndex, setup.Parameters.ScatteringPhotons,
+    { setup.Bins.front().Lambda, setup.Bins.back().Lambda } };
+}
+
 RenderSession::LightFieldKey RenderSession::lightFieldKey(const FrameSetup& setup)
 {
   const glm::dvec3& light = setup.Camera.Light;
@@ -590,6 +630,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::LightAbsorptionBinding] = v.LightAbsorption.get();
   buffers[gpu::LightShadowBinding] = v.LightShadow.get();
   buffers[gpu::ShadowTableBinding] = b.ShadowTable.get();
+  buffers[gpu::ScatteredLightBinding] = v.ScatteredLight.get();
   this->Bindings->bind(buffers);
 }
 

@@ -36,6 +36,7 @@ struct FrameStages
 {
   bool Upload = false;    // the volume went to the device (by setVolume since the last frame)
   bool LightPass = false; // the light field was recomputed
+  bool ScatteredLight = false; // the light scattered more than once was solved (ScatteringOrders all)
   bool Exposure = false;  // the automatic exposure's thumbnail was marched
   bool March = false;
   bool Colour = false;
@@ -127,11 +128,22 @@ private:
     bool BraggShadow; // with the Bragg shadows (energy conservation, docs/design.md §7.2)
     bool operator==(const LightFieldKey& other) const;
   };
+  // What the scattered light field holds: it follows the light, the
+  // boundary, the photon count and the span of the wavelength table.
+  struct ScatteredLightKey
+  {
+    std::array<double, 3> Light;
+    double RefractiveIndex;
+    int Photons;
+    std::array<double, 2> WavelengthSpan;
+    bool operator==(const ScatteredLightKey& other) const;
+  };
   class Progress;
 
   // A frame on the caller's thread (render, and the worker's startFrame).
   RenderFrame renderFrame(const ResolvedFrame& frame, const RenderProgress& progress);
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
+  static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   void prepareFrameBuffers(const FrameSetup& setup);
@@ -140,6 +152,7 @@ private:
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
+  bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
@@ -163,13 +176,16 @@ private:
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength), absorption,
   // coupled-wave and energy conservation (0 or 1), the bins' first centre
-  // and step (their float bits) and the preview's light read (0 or 1).
-  std::map<std::array<std::int32_t, 8>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // and step (their float bits), the preview's light read and the scattered
+  // light (0 or 1).
+  std::map<std::array<std::int32_t, 9>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
+  std::optional<ScatteredLightKey> ScatteredLight;             // what the scattered light buffer holds
+  std::string ScatteredLightWarning;                           // the solve's shortfall, if any
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker

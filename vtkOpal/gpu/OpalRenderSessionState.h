@@ -7,6 +7,7 @@
 #include "OpalComputePipeline.h"
 #include "OpalRenderCamera.h"
 #include "OpalRenderSession.h"
+#include "OpalScatteredLight.h"
 #include "OpalSpectralSampling.h"
 #include "OpalVulkanBuffer.h"
 #include "opal_render_contract.h"
@@ -67,7 +68,9 @@ inline float srgbToLinear(double encoded)
 struct RenderSession::DeviceVolume
 {
   RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
-  VolumeGeometry Geometry;
+  // The host's copy of the medium (skin filled) and its geometry: the
+  // every-order solve runs on it (docs/design.md §3.10).
+  ScatteringMedium Medium;
   std::unique_ptr<VulkanBuffer> Cells, SurfaceDistance, DomainTable;
   std::unique_ptr<VulkanBuffer> LightField;
   std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
@@ -80,6 +83,9 @@ struct RenderSession::DeviceVolume
   // §7.2): made by the first light pass that needs it, a placeholder before.
   std::unique_ptr<VulkanBuffer> LightShadow;
   bool HasShadowField = false;
+  // The light scattered more than once (ScatteredLightBinding): a vec4 per
+  // voxel once a frame with every order solved it, a placeholder before.
+  std::unique_ptr<VulkanBuffer> ScatteredLight;
 };
 
 // The per-frame buffers, kept while they are large enough.

@@ -35,12 +35,18 @@ const std::vector<double>* PresetSettings::valuesOf(const char* property) const
 const std::vector<PresetSettings>& presets()
 {
   static const std::vector<PresetSettings> table = {
-    { "fig10", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 175.0, 175.0 } } } },
-    { "fig11", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 190.0, 210.0 } } } },
-    { "fig12", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 250.0, 350.0 } } } },
-    { "fig13", { 640, 480 }, 5.0, { { "DomainDiameterRange", { 250.0, 350.0 } } } },
-    { "fig15", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 200.0, 235.0 } } } },
-    { "fig17", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 220.0, 300.0 } } } },
+    { "fig10", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 175.0, 175.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
+    { "fig11", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 190.0, 210.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
+    { "fig12", { 640, 480 }, 0.0, { { "DomainDiameterRange", { 250.0, 350.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
+    { "fig13", { 640, 480 }, 5.0, { { "DomainDiameterRange", { 250.0, 350.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
+    { "fig15", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 200.0, 235.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
+    { "fig17", { 300, 300 }, 0.0, { { "DomainDiameterRange", { 220.0, 300.0 } } },
+      BraggModelKind::Paper, LatticePlaneSet::Stacking111, ScatteringOrdersKind::Single },
     // Harlequin: a few large crystal grains in broad, angular patches (cells
     // ~2 mm across), ordered above the percolation threshold so patches join;
     // diameters for green to red play of colour.

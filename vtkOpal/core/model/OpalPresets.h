@@ -29,6 +29,8 @@ struct PresetSettings
   // The render's Bragg model and planes (the kinds of opal: docs/design.md §2.11).
   BraggModelKind BraggModel = BraggModelKind::Paper;
   LatticePlaneSet LatticePlanes = LatticePlaneSet::Stacking111;
+  // The paper's figures keep its single scattering; every other preset renders every order.
+  ScatteringOrdersKind ScatteringOrders = ScatteringOrdersKind::All;
 
   // The values it sets for a property, or nullptr.
   const std::vector<double>* valuesOf(const char* property) const;

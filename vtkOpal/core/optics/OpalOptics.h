@@ -57,4 +57,35 @@ inline double braggSnellWavelength(double diameterNm, double refractiveIndex, do
     std::sqrt(refractiveIndex * refractiveIndex - c * c) / static_cast<double>(order);
 }
 
+// Unpolarised Fresnel reflectance from index 1 into index mu for the cosine of
+// the incidence angle (paper §6.1); the host twin of opal_optics.glsl's.
+inline double fresnelReflectance(double cosIncidence, double mu)
+{
+  const double c = std::fmin(std::fmax(cosIncidence, 0.0), 1.0);
+  const double sinT2 = (1.0 - c * c) / (mu * mu);
+  if (sinT2 >= 1.0)
+  {
+    return 1.0;
+  }
+  const double cosT = std::sqrt(1.0 - sinT2);
+  const double rs = (c - mu * cosT) / (c + mu * cosT);
+  const double rp = (mu * c - cosT) / (mu * c + cosT);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+// The same reflectance met from inside the medium of index mu, for the cosine
+// of the inside angle: 1 beyond the critical angle (total internal
+// reflection), else the outside reflectance at the refracted angle (the two
+// sides reflect alike, Stokes' relations).
+inline double internalFresnelReflectance(double cosInside, double mu)
+{
+  const double c = std::fmin(std::fmax(cosInside, 0.0), 1.0);
+  const double sinOutside2 = mu * mu * (1.0 - c * c);
+  if (sinOutside2 >= 1.0)
+  {
+    return 1.0;
+  }
+  return fresnelReflectance(std::sqrt(1.0 - sinOutside2), mu);
+}
+
 } // namespace opal

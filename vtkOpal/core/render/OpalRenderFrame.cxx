@@ -15,6 +15,7 @@ VolumeRenderHints renderHints(int presetIndex, double refractiveIndex)
     hints.PresetRotation = { preset->RotateXDegrees, 0.0, 0.0 };
     hints.BraggModel = preset->BraggModel;
     hints.LatticePlanes = preset->LatticePlanes;
+    hints.ScatteringOrders = preset->ScatteringOrders;
   }
   return hints;
 }
@@ -24,7 +25,7 @@ std::array<double, RenderHintsSize> packHints(const VolumeRenderHints& h)
   // -1: no Bragg model or planes of the volume's own.
   return { double(h.ImageSize[0]), double(h.ImageSize[1]), h.PresetRotation[0], h.PresetRotation[1],
     h.PresetRotation[2], h.RefractiveIndex, h.BraggModel ? double(*h.BraggModel) : -1.0,
-    h.LatticePlanes ? double(*h.LatticePlanes) : -1.0 };
+    h.LatticePlanes ? double(*h.LatticePlanes) : -1.0, double(h.ScatteringOrders) };
 }
 
 VolumeRenderHints unpackHints(const double* v)
@@ -41,6 +42,7 @@ VolumeRenderHints unpackHints(const double* v)
   {
     h.LatticePlanes = static_cast<LatticePlaneSet>(static_cast<int>(v[7]));
   }
+  h.ScatteringOrders = static_cast<ScatteringOrdersKind>(static_cast<int>(v[8]));
   return h;
 }
 
@@ -53,6 +55,10 @@ ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hint
   if (asked.RefractiveIndex == 0)
   {
     asked.RefractiveIndex = hints.RefractiveIndex;
+  }
+  if (asked.ScatteringOrders == ScatteringOrdersKind::Volume)
+  {
+    asked.ScatteringOrders = hints.ScatteringOrders;
   }
   if (presetPlacement)
   {
@@ -72,6 +78,10 @@ ResolvedFrame resolveFrame(const RenderParameters& asked)
 {
   ResolvedFrame frame;
   frame.Parameters = withQuality(asked);
+  if (frame.Parameters.ScatteringOrders == ScatteringOrdersKind::Volume)
+  {
+    frame.Parameters.ScatteringOrders = VolumeRenderHints().ScatteringOrders;
+  }
   frame.Preview = asked.Quality == RenderQuality::Preview;
   frame.Error = validate(asked);
   return frame;

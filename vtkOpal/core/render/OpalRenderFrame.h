@@ -26,6 +26,7 @@ struct VolumeRenderHints
   double RefractiveIndex = RenderParameters().RefractiveIndex;
   std::optional<BraggModelKind> BraggModel;
   std::optional<LatticePlaneSet> LatticePlanes;
+  ScatteringOrdersKind ScatteringOrders = ScatteringOrdersKind::All;
 };
 
 // The one owner of what a volume of this preset (1-based; CustomPreset or an
@@ -36,7 +37,7 @@ VolumeRenderHints renderHints(int presetIndex, double refractiveIndex);
 
 // The hints as the numbers of one pipeline information key (the VTK source's
 // RENDER_HINTS), and back; the packed form has RenderHintsSize values.
-constexpr int RenderHintsSize = 8;
+constexpr int RenderHintsSize = 9;
 std::array<double, RenderHintsSize> packHints(const VolumeRenderHints& hints);
 VolumeRenderHints unpackHints(const double* values);
 
@@ -54,13 +55,15 @@ struct ResolvedFrame
   std::string Error;
 };
 
-// ImageSize 0 x 0 takes the volume's, RefractiveIndex 0 the volume's, and
+// ImageSize 0 x 0 takes the volume's, RefractiveIndex 0 and ScatteringOrders
+// Volume the volume's, and
 // with presetPlacement the preset's rotation replaces PresetRotation and, if
 // the Bragg model and planes asked are the defaults (the paper's), the
 // preset's replace them (a kind of opal's; any other pair is used as set).
 ResolvedFrame resolveFrame(RenderParameters asked, const VolumeRenderHints& hints, bool presetPlacement);
 
-// A frame with nothing to fill in from a volume (the parameters complete).
+// A frame with nothing to fill in from a volume (the parameters complete;
+// ScatteringOrders Volume: a custom volume's, all).
 ResolvedFrame resolveFrame(const RenderParameters& asked);
 
 } // namespace opal

@@ -16,6 +16,7 @@ struct RenderTimings
   double Setup = 0;    // frame set-up, buffers, pipelines
   double Upload = 0;   // the volume into device buffers
   double LightPass = 0;
+  double ScatteredLight = 0; // the every-order solve (docs/design.md §3.10)
   double March = 0;    // the exposure thumbnail and the image
   double Colour = 0;
   double Readback = 0;
@@ -37,6 +38,9 @@ struct RenderImage
   // or "none" (unit spectral irradiance, IlluminantScale 1).
   std::string Illuminant = "D65";
   double IlluminantScale = 1;
+  std::string ScatteringOrders = "single"; // "single" or "all", as rendered
+  // Empty, or what the frame could not do fully (the every-order solve's budget).
+  std::string Warning;
   RenderTimings Timings;
 };
 

@@ -51,6 +51,10 @@
     "The most lattice layers that reflect coherently")                                                     \
   X(EnergyConservation, bool, 1, 0, 1, "", "--energy-conservation", 0,                                     \
     "Light behind a domain keeps 1 - R of it on the view path (always with coupled-wave)")                 \
+  X(ScatteringOrders, int, 1, 0, 2, "volume single all", "--scattering-orders", 1,                         \
+    "single (the paper's) or all (every bounce in the body; default: single for the paper's figures, else all)") \
+  X(ScatteringPhotons, int, 1, 1000, 100000000, "", "--scattering-photons", 0,                             \
+    "Photons per spectral node of the every-order solve (fewer: faster, noisier)")                         \
   X(Exposure, double, 1, 0, OPAL_UNBOUNDED, "", "--exposure", 0,                                           \
     "Exposure multiplier (0: automatic, the body's median luminance to 0.18)")                             \
   X(Background, double, 3, 0, 1, "", "--background", 0, "Background colour, sRGB in [0, 1]")               \

@@ -55,6 +55,17 @@ enum class LatticePlaneSet : int
   Fcc = 1,
 };
 
+// The orders of scattering in the body (docs/design.md §3.10): the paper's
+// single scattering, or every order (the light scattered more than once, a
+// field per light). Volume: the volume's (the paper's figures single, every
+// other preset and a custom volume all); resolveFrame decides it.
+enum class ScatteringOrdersKind : int
+{
+  Volume = 0,
+  Single = 1,
+  All = 2,
+};
+
 // MosaicSpread's value in the coupled-wave model when MosaicSpread is 0
 // (degrees): a lobe must have a width (docs/design.md §7.2).
 constexpr double CoupledWaveDefaultSpread = 3.0;
@@ -93,6 +104,10 @@ struct RenderParameters
   LatticePlaneSet LatticePlanes = LatticePlaneSet::Stacking111;
   int CoherentLayers = 200;                            // the most lattice layers reflecting coherently
   bool EnergyConservation = false;                     // 1 - R behind a crossing (always with coupled-wave)
+  // The paper's here; VTK, ParaView and the CLI default to the volume's
+  // (Volume: a custom volume's is all, docs/design.md §3.10).
+  ScatteringOrdersKind ScatteringOrders = ScatteringOrdersKind::Single;
+  int ScatteringPhotons = 1 << 14;                     // per spectral node of the every-order solve
   bool WriteSpectrum = false;                          // fill the Spectrum output
   RenderQuality Quality = RenderQuality::Final;
   LightSpectrum Illuminant = LightSpectrum::D65;

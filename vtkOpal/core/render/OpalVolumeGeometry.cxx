@@ -36,6 +36,42 @@ double VolumeGeometry::nearestSurfaceDistance(const glm::dvec3& p) const
   return this->distanceAt(c[0], c[1], c[2]);
 }
 
+double VolumeGeometry::surfaceDistance(const glm::dvec3& p) const
+{
+  const glm::dvec3 g = glm::clamp((p - this->Origin) / this->Spacing, glm::dvec3(0.0), glm::dvec3(this->Dimensions - 1));
+  const glm::ivec3 c0 = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), glm::max(this->Dimensions - 2, glm::ivec3(0)));
+  const glm::ivec3 c1 = glm::min(c0 + 1, this->Dimensions - 1);
+  const glm::dvec3 f = glm::clamp(g - glm::dvec3(c0), 0.0, 1.0);
+  const auto along = [&](int j, int k) {
+    return glm::mix(this->distanceAt(c0.x, j, k), this->distanceAt(c1.x, j, k), f.x);
+  };
+  return glm::mix(glm::mix(along(c0.y, c0.z), along(c1.y, c0.z), f.y),
+    glm::mix(along(c0.y, c1.z), along(c1.y, c1.z), f.y), f.z);
+}
+
+glm::dvec3 VolumeGeometry::surfaceNormal(const glm::dvec3& p) const
+{
+  glm::dvec3 gradient;
+  for (int a = 0; a < 3; ++a)
+  {
+    glm::dvec3 step(0.0);
+    step[a] = 0.5 * this->Spacing[a];
+    gradient[a] = this->surfaceDistance(p + step) - this->surfaceDistance(p - step);
+  }
+  const double length = glm::length(gradient);
+  return length > 0 ? gradient / length : glm::dvec3(0, 1, 0);
+}
+
+glm::dvec3 VolumeGeometry::boxLow() const
+{
+  return this->Origin - 0.5 * this->Spacing;
+}
+
+glm::dvec3 VolumeGeometry::boxHigh() const
+{
+  return this->boxLow() + glm::dvec3(this->Dimensions) * this->Spacing;
+}
+
 glm::dvec3 VolumeGeometry::apex() const
 {
   const int i = this->Dimensions.x / 2, k = this->Dimensions.z / 2, ny = this->Dimensions.y;
@@ -58,8 +94,8 @@ glm::dvec3 VolumeGeometry::apex() const
 
 bool VolumeGeometry::lightAboveGrid(const glm::dvec3& light) const
 {
-  const glm::dvec3 low = this->Origin - 0.5 * this->Spacing;
-  const glm::dvec3 high = low + glm::dvec3(this->Dimensions) * this->Spacing;
+  const glm::dvec3 low = this->boxLow();
+  const glm::dvec3 high = this->boxHigh();
   if (light.y < high.y + this->Spacing.y)
   {
     return false;

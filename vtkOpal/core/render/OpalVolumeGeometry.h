@@ -20,6 +20,18 @@ public:
   // Nearest-voxel SurfaceDistance at a model-frame point; +inf outside the grid.
   double nearestSurfaceDistance(const glm::dvec3& p) const;
 
+  // SurfaceDistance interpolated trilinearly over the voxel centres (clamped
+  // to the grid), the surface being its zero as the march reads it.
+  double surfaceDistance(const glm::dvec3& p) const;
+
+  // The outward unit normal there: the normalised central-difference
+  // gradient of surfaceDistance, as the march takes it.
+  glm::dvec3 surfaceNormal(const glm::dvec3& p) const;
+
+  // The grid's box: from the first voxel's low corner to the last's high one.
+  glm::dvec3 boxLow() const;
+  glm::dvec3 boxHigh() const;
+
   // The opal's apex: the top of the surface over the grid's centre column
   // (SurfaceDistance crossing zero), or the top of the grid.
   glm::dvec3 apex() const;
@@ -33,6 +45,9 @@ public:
   bool lightAboveGrid(const glm::dvec3& light) const;
 
   double smallestSpacing() const;
+  const glm::ivec3& dimensions() const { return this->Dimensions; }
+  const glm::dvec3& origin() const { return this->Origin; }
+  const glm::dvec3& spacing() const { return this->Spacing; }
 
 private:
   double distanceAt(int i, int j, int k) const;

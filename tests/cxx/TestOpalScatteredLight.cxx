@@ -1,0 +1,116 @@
+// The every-order solve on its own (OpalScatteredLight, docs/design.md
+// §3.10), on the host: energy conservation (without absorption what enters
+// the stone leaves it, photon by photon; with absorption what enters leaves
+// or is absorbed, within the Monte Carlo error of the roulette), the
+// refractive boundary keeping light inside (total internal reflection: a
+// stone of index 1.45 holds more scattered light than an index-matched one),
+// determinism for a seed, and an optical depth beyond the budget: a warning
+// naming the shortfall and a finite field, never NaN.
+#include "OpalEllipsoidScene.h"
+#include "OpalScatteredLight.h"
+#include "OpalTestHarness.h"
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+namespace
+{
+opal::ScatteringMedium mediumOf(const opal::RenderVolume& volume)
+{
+  opal::ScatteringMedium medium;
+  medium.Geometry = opal::VolumeGeometry(volume);
+  medium.Scattering.assign(volume.ScatteringCoefficient, volume.ScatteringCoefficient + volume.voxelCount());
+  return medium;
+}
+
+opal::ScatteredLightRequest requestFor(const opal::ScatteringMedium& medium, double refractiveIndex, int photons)
+{
+  opal::ScatteredLightRequest request;
+  request.Light = { 0.0, 60.0, 0.0 };
+  const glm::dvec3 toApex = request.Light - medium.Geometry.apex();
+  request.LightStrength = glm::dot(toApex, toApex);
+  request.RefractiveIndex = refractiveIndex;
+  request.NodeScales = opal::scatteredLightScales(380.0, 780.0);
+  request.Photons = photons;
+  return request;
+}
+
+// The field's mean over the voxels that scatter, per node.
+double fieldMean(const opal::ScatteredLight& field, int node)
+{
+  double sum = 0;
+  for (const auto& values : field.MeanRadiancePerScale)
+  {
+    sum += values[static_cast<std::size_t>(node)];
+  }
+  return sum / static_cast<double>(field.MeanRadiancePerScale.size());
+}
+
+bool allFinite(const opal::ScatteredLight& field)
+{
+  for (const auto& values : field.MeanRadiancePerScale)
+    for (const float v : values)
+      if (!std::isfinite(v) || v < 0)
+        return false;
+  return true;
+}
+} // namespace
+
+int TestOpalScatteredLight(int, char*[])
+{
+  opaltest::EllipsoidScene scene;
+  const opal::RenderVolume volume = scene.build();
+  opal::ScatteringMedium medium = mediumOf(volume);
+
+  // Clear of absorption: every photon that entered leaves (no roulette, no budget reached).
+  const auto clear = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
+  OPAL_CHECK(clear && clear->Warning.empty() && clear->GivenUp == 0, "the paper's body is within the budget");
+  OPAL_CHECK(std::fabs(clear->Escaped / clear->Entered - 1) < 1e-9, "without absorption what enters leaves");
+  OPAL_CHECK(allFinite(*clear), "the field is finite and not negative");
+  const auto again = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
+  OPAL_CHECK(again->MeanRadiancePerScale == clear->MeanRadiancePerScale, "the same seed gives the same field");
+
+  // Total internal reflection keeps the scattered light inside longer.
+  const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);
+  for (int m = 0; m < opal::ScatteredLightNodes; ++m)
+  {
+    std::cout << "node " << m << ": field mean " << fieldMean(*clear, m) << " at index 1.45, "
+              << fieldMean(*matched, m) << " index-matched" << std::endl;
+    OPAL_CHECK(fieldMean(*clear, m) > 1.2 * fieldMean(*matched, m), "a refracting boundary holds scattered light in");
+  }
+
+  // Absorbing: grey 0.1/mm everywhere and 2/mm in the lowest millimetre (a backing).
+  const opal::VolumeGeometry& g = medium.Geometry;
+  medium.Absorption.resize(medium.Scattering.size());
+  for (std::size_t i = 0; i < medium.Absorption.size(); ++i)
+  {
+    const std::size_t row = i / static_cast<std::size_t>(g.dimensions().x);
+    const int j = static_cast<int>(row % static_cast<std::size_t>(g.dimensions().y));
+    medium.Absorption[i] = glm::vec2(0.0f, g.origin().y + j * g.spacing().y < 1.0 ? 2.0f : 0.1f);
+  }
+  const auto absorbing = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
+  const double balance = (absorbing->Escaped + absorbing->Absorbed) / absorbing->Entered - 1;
+  std::cout << "absorbing: escaped " << absorbing->Escaped / absorbing->Entered << ", absorbed "
+            << absorbing->Absorbed / absorbing->Entered << ", balance " << balance << std::endl;
+  OPAL_CHECK(std::fabs(balance) < 0.01, "with absorption what enters leaves or is absorbed (roulette: within 1%)");
+  OPAL_CHECK(absorbing->Absorbed > 0.1 * absorbing->Entered, "the absorption and the backing take their share");
+  OPAL_CHECK(fieldMean(*absorbing, 0) < fieldMean(*clear, 0), "absorption dims the scattered light");
+
+  // An optical depth beyond the budget: said, and the field it has is finite.
+  medium.Absorption.clear();
+  for (float& mu : medium.Scattering)
+    mu = 2000.0f;
+  opal::ScatteredLightRequest deep = requestFor(medium, 1.45, 256);
+  deep.CollisionBudget = 1000;
+  const auto opaque = opal::solveScatteredLight(medium, deep, nullptr);
+  std::cout << "opaque: " << opaque->Warning << std::endl;
+  OPAL_CHECK(!opaque->Warning.empty() && opaque->Warning.find("budget") != std::string::npos,
+    "a solve beyond its budget says so");
+  OPAL_CHECK(allFinite(*opaque), "and gives a finite field");
+
+  // Cancelled: no field.
+  OPAL_CHECK(!opal::solveScatteredLight(medium, requestFor(medium, 1.0, 64), [](double) { return false; }),
+    "a cancelled solve gives nothing");
+  return opaltest::finish("TestOpalScatteredLight");
+}

@@ -1,0 +1,532 @@
+#include "OpalScatteredLight.h"
+
+#include "OpalOptics.h"
+#include "OpalParallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace opal
+{
+
+namespace
+{
+// Flights and reflections one photon may make per collision of its budget
+// (virtual collisions included).
+constexpr int EventsPerCollision = 100;
+// Rounds of the solve: progress and cancellation are checked between them.
+constexpr int Rounds = 8;
+// Photons of a round's node run in this many tasks, interleaved over nodes so
+// that every thread gets every node's share (the blue nodes cost the most).
+constexpr int TasksPerNode = 4;
+// The tally grid's longest side in cells: the scattered field varies over a
+// mean free path (0.7-4 mm in the paper's body), cells of about 1/32 of the
+// stone hold it, and each cell gathers thousands of flight points.
+constexpr int TallyCellsAlongLongestSide = 32;
+// A share of the entered power given up above this is reported.
+constexpr double ReportedShortfall = 1e-3;
+
+// splitmix64: a photon's random numbers derive from its global index alone.
+struct PhotonRandom
+{
+  std::uint64_t State;
+
+  double uniform()
+  {
+    std::uint64_t z = (this->State += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+glm::dvec3 isotropicDirection(PhotonRandom& random)
+{
+  const double cosTheta = 2.0 * random.uniform() - 1.0;
+  const double phi = 2.0 * Pi * random.uniform();
+  const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+  return { sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta };
+}
+
+// The coarse grid the flights score on: node n sits on voxel centre n * Stride.
+struct TallyGrid
+{
+  glm::ivec3 Nodes{ 1 };
+  int Stride = 1;
+  glm::dvec3 Origin{ 0.0 }, Spacing{ 1.0 }; // of the voxel grid
+
+  explicit TallyGrid(const VolumeGeometry& geometry)
+    : Origin(geometry.origin())
+    , Spacing(geometry.spacing())
+  {
+    const glm::ivec3 dims = geometry.dimensions();
+    const int longest = std::max({ dims.x, dims.y, dims.z });
+    this->Stride = std::max(1, (longest + TallyCellsAlongLongestSide - 1) / TallyCellsAlongLongestSide);
+    this->Nodes = (dims - 1 + this->Stride - 1) / this->Stride + 1;
+  }
+
+  std::size_t size() const { return static_cast<std::size_t>(this->Nodes.x) * this->Nodes.y * this->Nodes.z; }
+
+  // Calls visit(node index, trilinear weight) for the eight nodes around p.
+  template <typename Visit>
+  void forEachNode(const glm::dvec3& p, Visit&& visit) const
+  {
+    const glm::dvec3 g = glm::clamp((p - this->Origin) / (this->Spacing * double(this->Stride)), glm::dvec3(0.0),
+      glm::dvec3(this->Nodes - 1));
+    const glm::ivec3 c0 = glm::min(glm::ivec3(glm::floor(g)), glm::max(this->Nodes - 2, glm::ivec3(0)));
+    const glm::dvec3 f = glm::clamp(g - glm::dvec3(c0), 0.0, 1.0);
+    for (int corner = 0; corner < 8; ++corner)
+    {
+      const glm::ivec3 o((corner & 1), (corner >> 1) & 1, (corner >> 2) & 1);
+      const glm::ivec3 n = glm::min(c0 + o, this->Nodes - 1);
+      visit(static_cast<std::size_t>(n.x + this->Nodes.x * (n.y + this->Nodes.y * n.z)),
+        (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z));
+    }
+  }
+
+  // Adds `value` to the eight nodes around p with trilinear (cloud-in-cell) weights.
+  void deposit(std::vector<double>& tally, const glm::dvec3& p, double value) const
+  {
+    this->forEachNode(p, [&](std::size_t n, double w) { tally[n] += w * value; });
+  }
+
+  // Adds a flight's track, `weight` times its length, spread along it at
+  // points at most half a cell apart (a randomly shifted midpoint rule:
+  // unbiased, and smooth however thin the medium).
+  void depositTrack(std::vector<double>& tally, const glm::dvec3& from, const glm::dvec3& to, double weight,
+    double shift) const
+  {
+    const double length = glm::length(to - from);
+    const double cell = std::min({ this->Spacing.x, this->Spacing.y, this->Spacing.z }) * this->Stride;
+    const int points = std::max(1, static_cast<int>(std::ceil(2.0 * length / cell)));
+    for (int k = 0; k < points; ++k)
+    {
+      this->deposit(tally, glm::mix(from, to, (k + shift) / points), weight * length / points);
+    }
+  }
+};
+
+// What one task's photons scored and where their power went.
+struct TaskScore
+{
+  std::vector<double> Tally;
+  double Entered = 0, Escaped = 0, Absorbed = 0, GivenUp = 0;
+};
+
+// The photons of one spectral node: the medium's extinction at its s.
+class NodeTransport
+{
+public:
+  NodeTransport(const ScatteringMedium& medium, const ScatteredLightRequest& request, const TallyGrid& tally,
+    double scale)
+    : Medium(medium), Request(request), Tally(tally), Scale(scale)
+    , ColouredScale(std::pow(scale, 0.25 * medium.AbsorptionExponent))
+    , Step(0.25 * medium.Geometry.smallestSpacing())
+  {
+    for (std::size_t i = 0; i < medium.Scattering.size(); ++i)
+    {
+      this->Majorant = std::max(this->Majorant, this->extinction(i).first);
+    }
+  }
+
+  void trace(std::int64_t photon, std::int64_t photons, TaskScore& score) const;
+
+private:
+  // (mu_t, mu_s) of voxel i at this node's wavelength.
+  std::pair<double, double> extinction(std::size_t i) const
+  {
+    const double scattering = this->Scale * this->Medium.Scattering[i];
+    if (this->Medium.Absorption.empty())
+    {
+      return { scattering, scattering };
+    }
+    const glm::vec2& a = this->Medium.Absorption[i];
+    return { scattering + this->ColouredScale * a[0] + a[1], scattering };
+  }
+
+  std::size_t voxelOf(const glm::dvec3& p) const
+  {
+    const VolumeGeometry& g = this->Medium.Geometry;
+    const glm::ivec3 c = glm::clamp(glm::ivec3(glm::floor((p - g.origin()) / g.spacing() + 0.5)), glm::ivec3(0),
+      g.dimensions() - 1);
+    return static_cast<std::size_t>(c.x) + static_cast<std::size_t>(g.dimensions().x) *
+      (static_cast<std::size_t>(c.y) + static_cast<std::size_t>(g.dimensions().y) * static_cast<std::size_t>(c.z));
+  }
+
+  // How far p lies inside the medium: inside the smooth surface and the grid's
+  // box, where the render's medium ends too; negative outside.
+  double depth(const glm::dvec3& p) const
+  {
+    const VolumeGeometry& g = this->Medium.Geometry;
+    const glm::dvec3 toBox = glm::min(p - g.boxLow(), g.boxHigh() - p);
+    return std::min({ -g.surfaceDistance(p), toBox.x, toBox.y, toBox.z });
+  }
+
+  // The outward normal at a surface point: a face's where the box is nearer than the surface.
+  glm::dvec3 normalAt(const glm::dvec3& p) const;
+
+  bool enter(PhotonRandom& random, glm::dvec3& p, glm::dvec3& direction, double& weight) const;
+  template <typename Visit>
+  void walkChord(const glm::dvec3& p, const glm::dvec3& direction, Visit&& visit) const;
+  void scatterFirst(PhotonRandom& random, glm::dvec3& p, const glm::dvec3& direction, double& weight,
+    TaskScore& score) const;
+  bool flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance) const;
+  glm::dvec3 surfaceBetween(glm::dvec3 inside, glm::dvec3 outside) const;
+
+  const ScatteringMedium& Medium;
+  const ScatteredLightRequest& Request;
+  const TallyGrid& Tally;
+  double Scale, ColouredScale, Step;
+  double Majorant = 0;
+};
+
+glm::dvec3 NodeTransport::normalAt(const glm::dvec3& p) const
+{
+  const VolumeGeometry& g = this->Medium.Geometry;
+  const glm::dvec3 below = p - g.boxLow(), above = g.boxHigh() - p;
+  double nearest = -g.surfaceDistance(p);
+  glm::dvec3 normal = g.surfaceNormal(p);
+  for (int a = 0; a < 3; ++a)
+  {
+    glm::dvec3 face(0.0);
+    if (below[a] < nearest)
+    {
+      nearest = below[a];
+      face[a] = -1.0;
+      normal = face;
+    }
+    if (above[a] < nearest)
+    {
+      nearest = above[a];
+      face[a] = 1.0;
+      normal = face;
+    }
+  }
+  return normal;
+}
+
+// The crossing of the surface between an inside and an outside point (bisection).
+glm::dvec3 NodeTransport::surfaceBetween(glm::dvec3 inside, glm::dvec3 outside) const
+{
+  for (int i = 0; i < 24; ++i)
+  {
+    const glm::dvec3 middle = 0.5 * (inside + outside);
+    (this->depth(middle) < 0 ? outside : inside) = middle;
+  }
+  return inside;
+}
+
+// Moves p by `distance` along the direction unless the surface comes first:
+// then p stops just inside it and the result is false. Steps as far as
+// SurfaceDistance guarantees to stay inside (sphere tracing), and at least
+// a quarter voxel.
+bool NodeTransport::flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance) const
+{
+  while (distance > 0)
+  {
+    const double step = std::min(distance, std::max(0.9 * this->depth(p), this->Step));
+    const glm::dvec3 q = p + step * direction;
+    if (this->depth(q) < 0)
+    {
+      p = this->surfaceBetween(p, q);
+      return false;
+    }
+    p = q;
+    distance -= step;
+  }
+  return true;
+}
+
+// A photon from the light towards the grid's bounding sphere (uniform in
+// that cone), carried straight to where it meets the surface and through it
+// with 1 - F (the direct light field's entry, docs/design.md §3.3). False if
+// it misses the stone. `weight` arrives as the photon's share of the cone.
+bool NodeTransport::enter(PhotonRandom& random, glm::dvec3& p, glm::dvec3& direction, double& weight) const
+{
+  const VolumeGeometry& g = this->Medium.Geometry;
+  const glm::dvec3 low = g.boxLow(), high = g.boxHigh();
+  const glm::dvec3 centre = 0.5 * (low + high);
+  const glm::dvec3 axis = glm::normalize(centre - this->Request.Light);
+  const double radius = 0.5 * glm::length(high - low), distance = glm::length(centre - this->Request.Light);
+  const double cosCone = distance > radius ? std::sqrt(1.0 - radius * radius / (distance * distance)) : -1.0;
+  const double cosTheta = 1.0 - random.uniform() * (1.0 - cosCone), phi = 2.0 * Pi * random.uniform();
+  const glm::dvec3 side = glm::normalize(glm::cross(axis, std::fabs(axis.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+  const glm::dvec3 up = glm::cross(axis, side);
+  const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+  direction = cosTheta * axis + sinTheta * (std::cos(phi) * side + std::sin(phi) * up);
+  weight *= 2.0 * Pi * (1.0 - cosCone);
+  // The ray's stretch inside the box (slabs), then the first zero of SurfaceDistance on it.
+  double t0 = 0, t1 = 1e30;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double inverse = 1.0 / direction[a];
+    const double near = (low[a] - this->Request.Light[a]) * inverse, far = (high[a] - this->Request.Light[a]) * inverse;
+    t0 = std::max(t0, std::min(near, far));
+    t1 = std::min(t1, std::max(near, far));
+  }
+  for (double t = t0; t < t1;)
+  {
+    const glm::dvec3 q = this->Request.Light + t * direction;
+    const double d = g.surfaceDistance(q);
+    if (d <= 0)
+    {
+      p = this->surfaceBetween(q, this->Request.Light + std::max(t0, t - 2 * this->Step) * direction);
+      const double cosIncidence = -glm::dot(direction, this->normalAt(p));
+      weight *= 1.0 - fresnelReflectance(cosIncidence, this->Request.RefractiveIndex);
+      return true;
+    }
+    t += std::max(0.9 * d, this->Step);
+  }
+  return false;
+}
+
+// Visits the straight chord from p to where it leaves the medium in steps of
+// half the smallest spacing, as visit(start, length, extinction) with each
+// step's extinction at its midpoint's voxel, while visit returns true.
+template <typename Visit>
+void NodeTransport::walkChord(const glm::dvec3& p, const glm::dvec3& direction, Visit&& visit) const
+{
+  const double step = 2.0 * this->Step;
+  for (glm::dvec3 q = p;;)
+  {
+    glm::dvec3 next = q + step * direction;
+    const bool leaves = this->depth(next) < 0;
+    if (leaves)
+    {
+      next = this->surfaceBetween(q, next);
+    }
+    const double length = glm::length(next - q);
+    if (!visit(q, length, this->extinction(this->voxelOf(0.5 * (q + next))).first) || leaves)
+    {
+      return;
+    }
+    q = next;
+  }
+}
+
+// The entered photon's first collision, forced (every photon scatters, the
+// share of it that would pass unscattered leaves): the point drawn from the
+// truncated exponential of the optical depth along its straight chord. A
+// thin stone's scattered light so comes from every photon, not the few that
+// scatter by chance.
+void NodeTransport::scatterFirst(
+  PhotonRandom& random, glm::dvec3& p, const glm::dvec3& direction, double& weight, TaskScore& score) const
+{
+  double chordDepth = 0;
+  this->walkChord(p, direction, [&](const glm::dvec3&, double length, double mu) {
+    chordDepth += mu * length;
+    return true;
+  });
+  const double collides = -std::expm1(-chordDepth);
+  score.Escaped += weight * (1.0 - collides);
+  weight *= collides;
+  const double target = -std::log1p(-random.uniform() * collides);
+  double reached = 0;
+  this->walkChord(p, direction, [&](const glm::dvec3& start, double length, double mu) {
+    if (mu * length < target - reached || mu <= 0)
+    {
+      reached += mu * length;
+      p = start + length * direction;
+      return true;
+    }
+    p = start + (target - reached) / mu * direction;
+    return false;
+  });
+  const auto [extinction, scattering] = this->extinction(this->voxelOf(p));
+  const double kept = extinction > 0 ? scattering / extinction : 0.0;
+  score.Absorbed += weight * (1.0 - kept);
+  weight *= kept;
+}
+
+// Photon `photon` of `photons`: enters, flies (delta tracking against the
+// majorant), scatters, is reflected inside or leaves; every flight after the
+// first collision, to a real or virtual collision or the surface, scores its
+// track length times its weight.
+void NodeTransport::trace(std::int64_t photon, std::int64_t photons, TaskScore& score) const
+{
+  PhotonRandom random{ this->Request.Seed * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(photon) };
+  glm::dvec3 p, direction;
+  double weight = this->Request.LightStrength / static_cast<double>(photons);
+  if (this->Majorant <= 0 || !this->enter(random, p, direction, weight))
+  {
+    return;
+  }
+  score.Entered += weight;
+  this->scatterFirst(random, p, direction, weight, score);
+  const double rouletteBelow = 0.01 * weight;
+  direction = isotropicDirection(random);
+  for (int collisions = 1, events = 0; weight > 0; ++events)
+  {
+    if (collisions > this->Request.CollisionBudget || events > EventsPerCollision * this->Request.CollisionBudget)
+    {
+      score.GivenUp += weight;
+      return;
+    }
+    const double flight = -std::log(1.0 - random.uniform()) / this->Majorant;
+    const glm::dvec3 from = p;
+    const bool collided = this->flyTo(p, direction, flight);
+    this->Tally.depositTrack(score.Tally, from, p, weight, random.uniform());
+    if (!collided)
+    {
+      const glm::dvec3 normal = this->normalAt(p);
+      const double cosInside = glm::dot(direction, normal);
+      if (cosInside <= 0)
+      {
+        // Leaving by the crossing but inward by the gradient (a grazing ray
+        // in a corner of the sampled surface): stepped back inside, it flies on.
+        p -= this->Step * normal;
+        continue;
+      }
+      if (random.uniform() < internalFresnelReflectance(cosInside, this->Request.RefractiveIndex))
+      {
+        direction -= 2.0 * cosInside * normal;
+        continue;
+      }
+      score.Escaped += weight;
+      return;
+    }
+    const auto [extinction, scattering] = this->extinction(this->voxelOf(p));
+    if (random.uniform() * this->Majorant >= extinction)
+    {
+      continue; // a virtual collision
+    }
+    const double kept = scattering / extinction;
+    score.Absorbed += weight * (1.0 - kept);
+    weight *= kept;
+    ++collisions;
+    direction = isotropicDirection(random);
+    // Russian roulette: a dim photon lives on doubled or ends (unbiased; the
+    // absorbing media alone dim photons).
+    if (weight < rouletteBelow && (weight *= 2.0, random.uniform() < 0.5))
+    {
+      return;
+    }
+  }
+}
+
+// The fluence per node: each node's tally over the inside volume that the
+// same trilinear weights give it (a kernel estimate, unbiased at the surface
+// where a node's cells lie partly outside).
+std::vector<double> insideVolumes(const ScatteringMedium& medium, const TallyGrid& tally)
+{
+  const VolumeGeometry& g = medium.Geometry;
+  const glm::ivec3 dims = g.dimensions();
+  const double cell = g.spacing().x * g.spacing().y * g.spacing().z;
+  std::vector<double> volumes(tally.size(), 0.0);
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i)
+      {
+        const glm::dvec3 p = g.origin() + glm::dvec3(i, j, k) * g.spacing();
+        if (g.surfaceDistance(p) <= 0)
+        {
+          tally.deposit(volumes, p, cell);
+        }
+      }
+  return volumes;
+}
+
+// The field at voxel centres with scattering: the kernel estimate of the
+// eight tally nodes around each, over 4 pi s.
+void fieldFromTallies(const ScatteringMedium& medium, const TallyGrid& tally,
+  const std::array<std::vector<double>, ScatteredLightNodes>& tallies,
+  const std::array<double, ScatteredLightNodes>& scales, ScatteredLight& field)
+{
+  const std::vector<double> volumes = insideVolumes(medium, tally);
+  const VolumeGeometry& g = medium.Geometry;
+  const glm::ivec3 dims = g.dimensions();
+  field.MeanRadiancePerScale.assign(medium.Scattering.size(), {});
+  parallelFor(0, dims.z, [&](int kBegin, int kEnd) {
+    for (int k = kBegin; k < kEnd; ++k)
+      for (int j = 0; j < dims.y; ++j)
+        for (int i = 0; i < dims.x; ++i)
+        {
+          const std::size_t v = static_cast<std::size_t>(i) +
+            static_cast<std::size_t>(dims.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y) * k);
+          if (!(medium.Scattering[v] > 0))
+          {
+            continue;
+          }
+          double volume = 0;
+          std::array<double, ScatteredLightNodes> sums{};
+          tally.forEachNode(g.origin() + glm::dvec3(i, j, k) * g.spacing(), [&](std::size_t n, double w) {
+            volume += w * volumes[n];
+            for (int m = 0; m < ScatteredLightNodes; ++m) sums[m] += w * tallies[m][n];
+          });
+          for (int m = 0; m < ScatteredLightNodes && volume > 0; ++m)
+          {
+            field.MeanRadiancePerScale[v][m] = static_cast<float>(sums[m] / volume / (4.0 * Pi * scales[m]));
+          }
+        }
+  });
+}
+} // namespace
+
+std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, double longestNm)
+{
+  const double first = std::pow(ReferenceWavelengthNm / longestNm, 4.0);
+  const double last = std::pow(ReferenceWavelengthNm / shortestNm, 4.0);
+  std::array<double, ScatteredLightNodes> scales{};
+  for (int m = 0; m < ScatteredLightNodes; ++m)
+  {
+    scales[m] = first + (last - first) * m / (ScatteredLightNodes - 1);
+  }
+  return scales;
+}
+
+std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,
+  const ScatteredLightRequest& request, const std::function<bool(double)>& keepGoing)
+{
+  const TallyGrid tally(medium.Geometry);
+  std::vector<NodeTransport> nodes;
+  for (int m = 0; m < ScatteredLightNodes; ++m)
+  {
+    nodes.emplace_back(medium, request, tally, request.NodeScales[m]);
+  }
+  constexpr int Tasks = ScatteredLightNodes * TasksPerNode;
+  std::vector<TaskScore> scores(Tasks);
+  for (TaskScore& score : scores) score.Tally.assign(tally.size(), 0.0);
+  const std::int64_t photons = std::max<std::int64_t>(1, request.Photons);
+  for (int round = 0; round < Rounds; ++round)
+  {
+    // Task t runs node t % nodes: each thread's contiguous tasks hold every node.
+    parallelFor(0, Tasks, [&](int begin, int end) {
+      for (int t = begin; t < end; ++t)
+      {
+        const int m = t % ScatteredLightNodes, part = round * TasksPerNode + t / ScatteredLightNodes;
+        const std::int64_t first = photons * part / (Rounds * TasksPerNode);
+        const std::int64_t last = photons * (part + 1) / (Rounds * TasksPerNode);
+        for (std::int64_t i = first; i < last; ++i) nodes[m].trace(photons * m + i, photons, scores[t]);
+      }
+    });
+    if (keepGoing && !keepGoing(double(round + 1) / Rounds))
+    {
+      return std::nullopt;
+    }
+  }
+  ScatteredLight field;
+  std::array<std::vector<double>, ScatteredLightNodes> tallies;
+  for (auto& t : tallies) t.assign(tally.size(), 0.0);
+  for (int t = 0; t < Tasks; ++t)
+  {
+    const TaskScore& score = scores[t];
+    std::transform(score.Tally.begin(), score.Tally.end(), tallies[t % ScatteredLightNodes].begin(),
+      tallies[t % ScatteredLightNodes].begin(), std::plus<>());
+    field.Entered += score.Entered;
+    field.Escaped += score.Escaped;
+    field.Absorbed += score.Absorbed;
+    field.GivenUp += score.GivenUp;
+  }
+  fieldFromTallies(medium, tally, tallies, request.NodeScales, field);
+  if (field.GivenUp > ReportedShortfall * field.Entered)
+  {
+    field.Warning = "The every-order scattering solve gave up " +
+      std::to_string(100.0 * field.GivenUp / field.Entered) + "% of the light entering the stone after " +
+      std::to_string(request.CollisionBudget) + " collisions per photon: the volume's optical depth is beyond its budget, "
+      "and the scattered light is short by that share.";
+  }
+  return field;
+}
+
+} // namespace opal

@@ -1,0 +1,81 @@
+// Every order of scattering beyond the first (docs/design.md §3.10): the
+// light inside the stone that has scattered at least once, as a field per
+// light. With the isotropic phase the light a point scatters does not depend
+// on the view, so the field is solved once per light, volume and optics, and
+// the view march reads it beside the direct light field.
+//
+// The solve is Monte Carlo photon tracing into a grid: photons leave the
+// point light, enter the stone along the straight line (the paper's light
+// path, carrying 1 - F of the entry), fly freely through the voxels'
+// extinction (delta tracking), scatter isotropically, are reflected inside
+// by Fresnel's law (totally beyond the critical angle) or leave; the direct,
+// never-scattered beam leaves where it meets the surface, as the direct
+// light field has it. Every flight point of a photon that has scattered
+// scores its track-length (collision) estimate of the fluence on a coarse
+// tally grid, and the field at a voxel is the kernel estimate of the tally
+// grid's eight nodes around it.
+#pragma once
+
+#include "OpalVolumeGeometry.h"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace opal
+{
+
+// The field's spectral nodes: ScatteredLightNodes values of s = (550/lambda)^4,
+// evenly spaced from the wavelength table's longest wavelength to its shortest.
+constexpr int ScatteredLightNodes = 4;
+
+// The medium as the render's march sees it (skin cells filled): per voxel the
+// scattering at 550 nm and, if anything absorbs, the (coloured, grey)
+// absorption at 550 nm; the coloured part scales as (550/lambda)^p.
+struct ScatteringMedium
+{
+  VolumeGeometry Geometry;
+  std::vector<float> Scattering;
+  std::vector<glm::vec2> Absorption; // empty: nothing absorbs
+  float AbsorptionExponent = 0.0f;
+};
+
+struct ScatteredLightRequest
+{
+  glm::dvec3 Light{ 0.0 };   // in the model's frame, mm
+  double LightStrength = 1;  // intensity: |light - apex|^2 makes the apex's irradiance 1
+  double RefractiveIndex = 1.45;
+  std::array<double, ScatteredLightNodes> NodeScales{}; // s of each node
+  std::int64_t Photons = 1 << 14;                       // per node
+  std::uint64_t Seed = 1;
+  // Real collisions one photon may make before the solve gives it up: far
+  // beyond any stone the model builds (fig12's bluest node: ~10^2 on average).
+  int CollisionBudget = 100000;
+};
+
+// Per voxel and node: the mean radiance of the scattered light, fluence /
+// (4 pi), divided by the node's s (nearly constant in s where the stone is
+// thin, so the march's interpolation over the nodes is smooth; §3.10). Zero
+// in voxels without scattering.
+struct ScatteredLight
+{
+  std::vector<std::array<float, ScatteredLightNodes>> MeanRadiancePerScale;
+  // Of the power that entered the stone (sum over nodes): what left, what was
+  // absorbed, and what the collision budget gave up (the solve's shortfall).
+  double Entered = 0, Escaped = 0, Absorbed = 0, GivenUp = 0;
+  // Empty, or a sentence saying the solve ran out of its budget and by how much.
+  std::string Warning;
+};
+
+// The nodes' s for a wavelength table spanning [shortest, longest] nm.
+std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, double longestNm);
+
+// Solves the field; nullopt if `keepGoing` (called with the fraction done)
+// returned false. Deterministic for a seed, whatever the thread count.
+std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,
+  const ScatteredLightRequest& request, const std::function<bool(double)>& keepGoing);
+
+} // namespace opal
