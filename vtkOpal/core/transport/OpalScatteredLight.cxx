@@ -107,6 +107,22 @@ struct TallyGrid
   }
 };
 
+// A ball about a point inside the medium that the surface does not enter
+// (0.9 of SurfaceDistance there, as the march's sphere tracing takes it): a
+// flight that ends inside it needs no look at the surface. Most flights
+// are short against the stone, so most skip the field's reads.
+struct SafeBall
+{
+  glm::dvec3 Centre{ 0.0 };
+  double Radius = 0;
+
+  bool contains(const glm::dvec3& q) const
+  {
+    const glm::dvec3 d = q - this->Centre;
+    return glm::dot(d, d) < this->Radius * this->Radius;
+  }
+};
+
 // What one task's photons scored and where their power went.
 struct TaskScore
 {
@@ -171,7 +187,7 @@ private:
   void walkChord(const glm::dvec3& p, const glm::dvec3& direction, Visit&& visit) const;
   void scatterFirst(PhotonRandom& random, glm::dvec3& p, const glm::dvec3& direction, double& weight,
     TaskScore& score) const;
-  bool flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance) const;
+  bool flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance, SafeBall& ball) const;
   glm::dvec3 surfaceBetween(glm::dvec3 inside, glm::dvec3 outside) const;
 
   const ScatteringMedium& Medium;
@@ -218,11 +234,17 @@ glm::dvec3 NodeTransport::surfaceBetween(glm::dvec3 inside, glm::dvec3 outside) 
 }
 
 // Moves p by `distance` along the direction unless the surface comes first:
-// then p stops just inside it and the result is false. Steps as far as
-// SurfaceDistance guarantees to stay inside (sphere tracing), and at least
-// a quarter voxel.
-bool NodeTransport::flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance) const
+// then p stops just inside it and the result is false. Within `ball` at
+// once; else in steps as far as SurfaceDistance guarantees to stay inside
+// (sphere tracing), at least a quarter voxel, and the ball moves to the end.
+bool NodeTransport::flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance, SafeBall& ball) const
 {
+  const glm::dvec3 end = p + distance * direction;
+  if (ball.contains(p) && ball.contains(end)) // the ball is convex: the whole flight lies in it
+  {
+    p = end;
+    return true;
+  }
   while (distance > 0)
   {
     const double step = std::min(distance, std::max(0.9 * this->depth(p), this->Step));
@@ -235,6 +257,7 @@ bool NodeTransport::flyTo(glm::dvec3& p, const glm::dvec3& direction, double dis
     p = q;
     distance -= step;
   }
+  ball = SafeBall{ p, 0.9 * this->depth(p) };
   return true;
 }
 
@@ -288,10 +311,11 @@ template <typename Visit>
 void NodeTransport::walkChord(const glm::dvec3& p, const glm::dvec3& direction, Visit&& visit) const
 {
   const double step = 2.0 * this->Step;
+  SafeBall ball{ p, 0.9 * this->depth(p) };
   for (glm::dvec3 q = p;;)
   {
     glm::dvec3 next = q + step * direction;
-    const bool leaves = this->depth(next) < 0;
+    const bool leaves = !ball.contains(next) && (ball = SafeBall{ next, 0.9 * this->depth(next) }).Radius < 0;
     if (leaves)
     {
       next = this->surfaceBetween(q, next);
@@ -356,6 +380,7 @@ void NodeTransport::trace(std::int64_t photon, std::int64_t photons, TaskScore& 
   this->scatterFirst(random, p, direction, weight, score);
   const double rouletteBelow = 0.01 * weight;
   direction = isotropicDirection(random);
+  SafeBall ball{ p, 0.9 * this->depth(p) };
   for (int collisions = 1, events = 0; weight > 0; ++events)
   {
     if (collisions > this->Request.CollisionBudget || events > EventsPerCollision * this->Request.CollisionBudget)
@@ -365,7 +390,7 @@ void NodeTransport::trace(std::int64_t photon, std::int64_t photons, TaskScore& 
     }
     const double flight = -std::log(1.0 - random.uniform()) / this->Majorant;
     const glm::dvec3 from = p;
-    const bool collided = this->flyTo(p, direction, flight);
+    const bool collided = this->flyTo(p, direction, flight, ball);
     this->Tally.depositTrack(score.Tally, from, p, weight, random.uniform());
     if (!collided)
     {
@@ -419,7 +444,7 @@ std::vector<double> insideVolumes(const ScatteringMedium& medium, const TallyGri
       for (int i = 0; i < dims.x; ++i)
       {
         const glm::dvec3 p = g.origin() + glm::dvec3(i, j, k) * g.spacing();
-        if (g.surfaceDistance(p) <= 0)
+        if (g.nearestSurfaceDistance(p) <= 0) // a voxel centre: its own value
         {
           tally.deposit(volumes, p, cell);
         }
