@@ -398,20 +398,23 @@ float scatterAt(float logNodes[SPECTRAL_NODES], int l)
 }
 
 // The light scattered more than once in bin l from the log of its four
-// nodes' sums (scatteredNodes), which span the table's s: s^2 times the
-// interpolated sum (the field holds J/s, docs/design.md §3.10).
+// nodes' sums (scatteredNodes), cubic in sqrt(s) (docs/design.md §3.10): s^2
+// times the interpolated sum (the field holds J/s).
 float scatteredAt(vec4 logNodes, int l)
 {
   float s = binRayleighScale(l);
-  float u = 3.0 * (s - nodeFirst()) / (binRayleighScale(0) - nodeFirst());
+  float first = sqrt(nodeFirst());
+  float u = 3.0 * (sqrt(s) - first) / (sqrt(binRayleighScale(0)) - first);
   return s * s * exp(lagrangeCubic(logNodes, u));
 }
 
-// The field's four nodes: s evenly from the longest wavelength's to the shortest's.
+// The field's four nodes: sqrt(s) evenly from the longest wavelength's to the
+// shortest's (OpalScatteredLight's scatteredLightScales).
 vec4 scatteredScales()
 {
-  float step = (binRayleighScale(0) - nodeFirst()) / 3.0;
-  return nodeFirst() + step * vec4(0.0, 1.0, 2.0, 3.0);
+  float first = sqrt(nodeFirst());
+  vec4 roots = first + (sqrt(binRayleighScale(0)) - first) / 3.0 * vec4(0.0, 1.0, 2.0, 3.0);
+  return roots * roots;
 }
 
 // Rayleigh single scattering (eq. 8) over the ray's segment [t, t + segment]

@@ -81,8 +81,9 @@ inline bool isRim(const opaltracer::Image& traced, int width, int height, int x,
   return false;
 }
 
-inline Agreement compareAt(
-  const opal::RenderImage& image, const opaltracer::Image& traced, std::size_t w, int width, int height)
+// Pixels with `skipped` set (if given) are left out.
+inline Agreement compareAt(const opal::RenderImage& image, const opaltracer::Image& traced, std::size_t w,
+  int width, int height, const std::vector<bool>& skipped = {})
 {
   Agreement a;
   const std::size_t bins = image.Wavelengths.size();
@@ -93,6 +94,8 @@ inline Agreement compareAt(
     for (int x = 0; x < width; ++x)
     {
       const auto p = static_cast<std::size_t>(y * width + x);
+      if (!skipped.empty() && skipped[p])
+        continue;
       const bool productHit = image.Depth[p] > 0;
       a.HitMismatches += productHit != (traced.Hit[p] != 0);
       if (!productHit || !traced.Hit[p])

@@ -37,7 +37,7 @@ std::string stages(const opal::FrameStages& ran)
 {
   std::string s;
   for (auto [name, on] : { std::pair<const char*, bool>{ "upload", ran.Upload }, { "light", ran.LightPass },
-         { "exposure", ran.Exposure }, { "march", ran.March }, { "colour", ran.Colour }, { "readback", ran.Readback } })
+         { "scattered", ran.ScatteredLight }, { "exposure", ran.Exposure }, { "march", ran.March }, { "colour", ran.Colour }, { "readback", ran.Readback } })
   {
     s += on ? std::string(" ") + name : "";
   }
@@ -58,6 +58,34 @@ void checkStagingUploads(
     "the validation layer is silent about the staging copies" + (messages.empty() ? "" : ": " + messages.front()));
 }
 } // namespace
+
+// Every order (docs/design.md §3.10): the field is solved once per light, a
+// camera-only frame and a preview with a moved light (the headlight's drag)
+// keep it, a final frame with a new light solves it again, and single
+// scattering never solves it.
+void checkScatteredLightStages(opal::RenderSession& session, opal::RenderParameters p)
+{
+  p.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  p.ScatteringPhotons = 2000;
+  const auto ran = [&session](const opal::RenderParameters& q) { return session.render(q).Ran; };
+  const opal::FrameStages first = ran(p);
+  OPAL_CHECK(first.ScatteredLight, "the first frame with every order solves the field (" + stages(first) + ")");
+  p.EyePosition = { -8.0, 58.0, 6.0 };
+  const opal::FrameStages camera = ran(p);
+  OPAL_CHECK(!camera.ScatteredLight && !camera.LightPass, "a camera-only frame keeps it (" + stages(camera) + ")");
+  p.LightPosition = { 4.0, 60.0, 0.0 };
+  p.Quality = opal::RenderQuality::Preview;
+  const opal::FrameStages preview = ran(p);
+  OPAL_CHECK(!preview.ScatteredLight && preview.LightPass,
+    "a preview with a moved light reads the held field (" + stages(preview) + ")");
+  p.Quality = opal::RenderQuality::Final;
+  const opal::FrameStages final = ran(p);
+  OPAL_CHECK(final.ScatteredLight, "the final frame solves for its light (" + stages(final) + ")");
+  p.ScatteringOrders = opal::ScatteringOrdersKind::Single;
+  p.LightPosition = { -4.0, 60.0, 0.0 };
+  const opal::FrameStages single = ran(p);
+  OPAL_CHECK(!single.ScatteredLight, "single scattering solves nothing (" + stages(single) + ")");
+}
 
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
@@ -173,6 +201,7 @@ int TestOpalRenderSession(int, char*[])
   OPAL_CHECK(after.Status == opal::FrameStatus::Completed && after.Ran.LightPass,
     "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
 
+  checkScatteredLightStages(session, moved);
   checkStagingUploads(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
 

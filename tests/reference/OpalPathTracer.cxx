@@ -616,6 +616,21 @@ struct Moments
 
 } // namespace
 
+namespace
+{
+// An image of the view's size with every pixel missed and every radiance 0.
+Image blankImage(const View& view, const std::vector<double>& wavelengths)
+{
+  const std::size_t pixels = static_cast<std::size_t>(view.Width) * static_cast<std::size_t>(view.Height);
+  Image image;
+  image.Wavelengths = wavelengths;
+  image.Radiance.assign(pixels * wavelengths.size(), 0);
+  image.StandardError.assign(pixels * wavelengths.size(), 0);
+  image.Hit.assign(pixels, 0);
+  return image;
+}
+} // namespace
+
 Image trace(const Scene& scene, const View& view, const std::vector<double>& wavelengths,
   int samplesPerPixel, std::uint64_t seed)
 {
@@ -630,12 +645,7 @@ Image trace(const Scene& scene, const View& view, const std::vector<double>& wav
   const Camera camera = makeCamera(view);
   const Medium medium = makeMedium(scene);
   const std::vector<double> mu = scatteringPerWavelength(scene, wavelengths);
-  const std::size_t pixels = static_cast<std::size_t>(view.Width) * static_cast<std::size_t>(view.Height);
-  Image image;
-  image.Wavelengths = wavelengths;
-  image.Radiance.assign(pixels * mu.size(), 0);
-  image.StandardError.assign(pixels * mu.size(), 0);
-  image.Hit.assign(pixels, 0);
+  Image image = blankImage(view, wavelengths);
   std::mt19937_64 random(seed);
   std::vector<double> contributions(static_cast<std::size_t>(samplesPerPixel));
   for (int py = 0; py < view.Height; ++py)
@@ -670,12 +680,7 @@ Image traceAllOrders(const Scene& scene, const View& view, const std::vector<dou
   const std::vector<Transport> transports = transportPerWavelength(scene, wavelengths);
   requireEyeOutside(camera.Eye, medium.Axes);
   const HalfEllipsoidBody body(medium.Axes);
-  const std::size_t pixels = static_cast<std::size_t>(view.Width) * static_cast<std::size_t>(view.Height);
-  Image image;
-  image.Wavelengths = wavelengths;
-  image.Radiance.assign(pixels * transports.size(), 0);
-  image.StandardError.assign(pixels * transports.size(), 0);
-  image.Hit.assign(pixels, 0);
+  Image image = blankImage(view, wavelengths);
   std::vector<double> radiances(static_cast<std::size_t>(samplesPerPixel));
   for (int py = 0; py < view.Height; ++py)
   {

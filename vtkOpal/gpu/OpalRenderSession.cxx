@@ -368,7 +368,11 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   timings.LightPass = secondsSince(lightStart);
   const auto scatteredStart = Clock::now();
   const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
-  frame.Ran.ScatteredLight = everyOrder && !(this->ScatteredLight && *this->ScatteredLight == scatteredLightKey(setup));
+  // A preview (the live view's drag, where a headlight moves with the eye)
+  // reads the field the session holds, solved for an earlier light; the
+  // final frame solves for its own (docs/design.md §3.10).
+  const bool heldServes = this->ScatteredLight && (setup.Preview || *this->ScatteredLight == scatteredLightKey(setup));
+  frame.Ran.ScatteredLight = everyOrder && !heldServes;
   if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
   {
     return frame;

@@ -29,7 +29,8 @@ namespace opal
 {
 
 // The field's spectral nodes: ScatteredLightNodes values of s = (550/lambda)^4,
-// evenly spaced from the wavelength table's longest wavelength to its shortest.
+// evenly spaced in sqrt(s) from the wavelength table's longest wavelength to
+// its shortest.
 constexpr int ScatteredLightNodes = 4;
 
 // The medium as the render's march sees it (skin cells filled): per voxel the
