@@ -492,7 +492,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
   const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) *
-    (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0));
+    (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0) +
+      (setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
     spectrumBytes;
