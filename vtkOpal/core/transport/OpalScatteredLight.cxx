@@ -190,6 +190,7 @@ private:
   void scatterFirst(PhotonRandom& random, glm::dvec3& p, const glm::dvec3& direction, double& weight,
     TaskScore& score) const;
   bool flyTo(glm::dvec3& p, const glm::dvec3& direction, double distance, SafeBall& ball) const;
+  bool staysInside(PhotonRandom& random, glm::dvec3& p, glm::dvec3& direction) const;
   glm::dvec3 surfaceBetween(glm::dvec3 inside, glm::dvec3 outside) const;
 
   const ScatteringMedium& Medium;
@@ -365,6 +366,27 @@ void NodeTransport::scatterFirst(
   weight *= kept;
 }
 
+// A photon at the surface from inside: reflected back in with Fresnel's
+// probability (certainly beyond the critical angle), or it leaves (false).
+bool NodeTransport::staysInside(PhotonRandom& random, glm::dvec3& p, glm::dvec3& direction) const
+{
+  const glm::dvec3 normal = this->normalAt(p);
+  const double cosInside = glm::dot(direction, normal);
+  if (cosInside <= 0)
+  {
+    // Leaving by the crossing but inward by the gradient (a grazing ray in a
+    // corner of the sampled surface): stepped back inside, it flies on.
+    p -= this->Step * normal;
+    return true;
+  }
+  if (random.uniform() < internalFresnelReflectance(cosInside, this->Request.RefractiveIndex))
+  {
+    direction -= 2.0 * cosInside * normal;
+    return true;
+  }
+  return false;
+}
+
 // Photon `photon` of `photons`: enters, flies (delta tracking against the
 // majorant), scatters, is reflected inside or leaves; every flight after the
 // first collision, to a real or virtual collision or the surface, scores its
@@ -396,18 +418,8 @@ void NodeTransport::trace(std::int64_t photon, std::int64_t photons, TaskScore& 
     this->Tally.depositTrack(score.Tally, from, p, weight, random.uniform());
     if (!collided)
     {
-      const glm::dvec3 normal = this->normalAt(p);
-      const double cosInside = glm::dot(direction, normal);
-      if (cosInside <= 0)
+      if (this->staysInside(random, p, direction))
       {
-        // Leaving by the crossing but inward by the gradient (a grazing ray
-        // in a corner of the sampled surface): stepped back inside, it flies on.
-        p -= this->Step * normal;
-        continue;
-      }
-      if (random.uniform() < internalFresnelReflectance(cosInside, this->Request.RefractiveIndex))
-      {
-        direction -= 2.0 * cosInside * normal;
         continue;
       }
       score.Escaped += weight;
