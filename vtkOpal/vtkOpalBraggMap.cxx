@@ -6,6 +6,7 @@
 #include "OpalMessages.h"
 #include "OpalParallel.h"
 #include "OpalRenderParameters.h"
+#include "vtkOpalInputArrays.h"
 
 #include "vtkCell.h"
 #include "vtkCellData.h"
@@ -54,70 +55,96 @@ int vtkOpalBraggMap::FillInputPortInformation(int, vtkInformation* info)
 
 namespace
 {
-// Empty if the domain arrays have their components (DomainId 1, Normal 3,
-// ParticleDiameter 1) and, at every element of a domain, a finite non-zero
-// Normal and a positive finite ParticleDiameter; else a sentence naming the
-// array and the element.
-std::string checkDomainValues(vtkDataSetAttributes* attributes)
+using Expected = vtkOpalInputArrays::Expected;
+
+// The arrays the map reads of each element, checked by the input-array rule
+// (vtkOpalInputArrays): DomainId, Normal and ParticleDiameter, and with the
+// coupled-wave model the LatticeOrientation (required for fcc; without it
+// the (111) family stands unspun on the normal).
+struct DomainArrays
 {
-  vtkDataArray* ids = attributes->GetArray("DomainId");
-  vtkDataArray* normals = attributes->GetArray("Normal");
-  vtkDataArray* diameters = attributes->GetArray("ParticleDiameter");
-  if (ids->GetNumberOfComponents() != 1 || normals->GetNumberOfComponents() != 3 ||
-    diameters->GetNumberOfComponents() != 1)
+  vtkDataArray *Ids = nullptr, *Normals = nullptr, *Diameters = nullptr, *Orientations = nullptr;
+};
+
+// The domain arrays of `attributes` (one tuple per element), the
+// LatticeOrientation with the coupled-wave model's settings only; an empty
+// string, or the sentence naming the array.
+std::string findDomainArrays(vtkDataSetAttributes* attributes, vtkIdType elements, bool onPoints,
+  const opal::BraggFamilySettings* coupledWave, DomainArrays& arrays)
+{
+  const char* role = onPoints ? "point array" : "cell array";
+  std::string error;
+  arrays.Ids = vtkOpalInputArrays::Find(attributes, { "DomainId", 1, elements, Expected::Values::Id }, role, true, error);
+  arrays.Normals = vtkOpalInputArrays::Find(attributes, { "Normal", 3, elements }, role, true, error);
+  arrays.Diameters = vtkOpalInputArrays::Find(attributes, { "ParticleDiameter", 1, elements }, role, true, error);
+  if (!error.empty())
   {
-    return "The arrays DomainId, Normal and ParticleDiameter need 1, 3 and 1 components.";
+    return error + (error.find(" lacks ") != std::string::npos ? " Connect an Opal Volume or its domain polygons." : "");
   }
-  for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
+  if (!coupledWave)
   {
-    if (!(ids->GetComponent(i, 0) >= 0))
+    return {};
+  }
+  if (coupledWave->LatticePlanes == opal::LatticePlaneSet::Fcc &&
+    !attributes->GetAbstractArray("LatticeOrientation"))
+  {
+    return std::string("LatticePlanes fcc needs the volume's ") + role + " LatticeOrientation (4 components).";
+  }
+  arrays.Orientations = vtkOpalInputArrays::Find(attributes, { "LatticeOrientation", 4, elements }, role, false, error);
+  return error;
+}
+
+// The Euclidean length of tuple i of `array`.
+double tupleLength(vtkDataArray* array, vtkIdType i)
+{
+  double squares = 0;
+  for (int c = 0; c < array->GetNumberOfComponents(); ++c)
+  {
+    squares += array->GetComponent(i, c) * array->GetComponent(i, c);
+  }
+  return std::sqrt(squares);
+}
+
+// Empty if every element of a domain has a non-zero Normal (and
+// LatticeOrientation, where read) and a positive ParticleDiameter: the map
+// normalises the directions, as the render does its domain table; else the
+// sentence naming the array and the element.
+std::string checkDomainValues(const DomainArrays& arrays)
+{
+  for (vtkIdType i = 0; i < arrays.Ids->GetNumberOfTuples(); ++i)
+  {
+    if (arrays.Ids->GetComponent(i, 0) < 0)
     {
       continue;
     }
-    double n[3];
-    normals->GetTuple(i, n);
-    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double diameter = diameters->GetComponent(i, 0);
-    if (!std::isfinite(length) || !(length > 0))
+    if (!(tupleLength(arrays.Normals, i) > 0))
     {
       return "Normal at element " + std::to_string(i) + " of a domain is not a finite non-zero vector.";
     }
-    if (!std::isfinite(diameter) || !(diameter > 0))
+    if (!(arrays.Diameters->GetComponent(i, 0) > 0))
     {
       return "ParticleDiameter at element " + std::to_string(i) + " of a domain is not a positive finite size.";
+    }
+    if (arrays.Orientations && !(tupleLength(arrays.Orientations, i) > 0))
+    {
+      return "LatticeOrientation at element " + std::to_string(i) + " of a domain is not a non-zero quaternion.";
     }
   }
   return {};
 }
 
-// Empty if the input carries the domain arrays (on its points for the volume,
-// on its cells for the domain polygons) and the light lies outside the opal.
-std::string checkInput(vtkDataSet* input, vtkDataSetAttributes* attributes, bool onPoints, const double light[3])
+// Empty if the light lies outside the opal (a volume's SurfaceDistance says).
+std::string checkLight(vtkDataSet* input, const double light[3])
 {
-  for (const char* name : { "DomainId", "Normal", "ParticleDiameter" })
+  vtkImageData* image = vtkImageData::SafeDownCast(input);
+  vtkDataArray* distance = image ? image->GetPointData()->GetArray("SurfaceDistance") : nullptr;
+  const vtkIdType nearest = distance ? image->FindPoint(const_cast<double*>(light)) : -1;
+  if (nearest >= 0 && nearest < distance->GetNumberOfTuples() && distance->GetComponent(nearest, 0) <= 0)
   {
-    if (!attributes->GetArray(name))
-    {
-      return std::string("The input lacks the ") + (onPoints ? "point" : "cell") + " array " + name +
-        "; connect an Opal Volume or its domain polygons.";
-    }
-  }
-  const std::string values = checkDomainValues(attributes);
-  if (!values.empty())
-  {
-    return values;
-  }
-  if (vtkImageData* image = vtkImageData::SafeDownCast(input))
-  {
-    vtkDataArray* distance = image->GetPointData()->GetArray("SurfaceDistance");
-    const vtkIdType nearest = image->FindPoint(const_cast<double*>(light));
-    if (distance && nearest >= 0 && distance->GetComponent(nearest, 0) <= 0)
-    {
-      std::ostringstream message;
-      message << "LightPosition (" << light[0] << ", " << light[1] << ", " << light[2]
-              << ") is inside the opal; place the light outside it.";
-      return message.str();
-    }
+    std::ostringstream message;
+    message << "LightPosition (" << light[0] << ", " << light[1] << ", " << light[2]
+            << ") is inside the opal; place the light outside it.";
+    return message.str();
   }
   return {};
 }
@@ -202,17 +229,24 @@ struct BraggArrays
   vtkNew<vtkUnsignedCharArray> Colour;
 };
 
-// The crystal of the input volume as its field data records it (the model's defaults if not).
-opal::ColloidalCrystal crystalOf(vtkFieldData* fields)
+// The volume's index (RefractiveIndex, for a filter's 0) and crystal
+// (SphereRefractiveIndex, MatrixRefractiveIndex) as its field data records
+// them, checked by the render's rules; the defaults where absent. An empty
+// string, or the sentence naming the field array.
+std::string readIndices(vtkFieldData* fields, double& refractiveIndex, opal::ColloidalCrystal& crystal)
 {
-  opal::ColloidalCrystal crystal;
-  for (auto [name, target] : { std::pair<const char*, double*>{ "SphereRefractiveIndex", &crystal.SphereIndex },
-         std::pair<const char*, double*>{ "MatrixRefractiveIndex", &crystal.MatrixIndex } })
+  std::string error;
+  for (auto [name, target] : { std::pair<const char*, double*>{ "RefractiveIndex", &refractiveIndex },
+         { "SphereRefractiveIndex", &crystal.SphereIndex }, { "MatrixRefractiveIndex", &crystal.MatrixIndex } })
   {
-    vtkDataArray* recorded = fields->GetArray(name);
-    *target = recorded && recorded->GetNumberOfTuples() > 0 ? recorded->GetComponent(0, 0) : *target;
+    vtkDataArray* recorded = vtkOpalInputArrays::Find(fields, { name, 1, -1 }, "field array", false, error);
+    *target = recorded ? recorded->GetComponent(0, 0) : *target;
   }
-  return crystal;
+  if (error.empty() && !opal::refractiveIndexError(refractiveIndex).empty())
+  {
+    error = "The field array RefractiveIndex holds " + std::to_string(refractiveIndex) + "; a volume's index lies in [1, 4).";
+  }
+  return error.empty() ? opal::crystalError(crystal) : error;
 }
 
 // What the map reads of one domain element and writes for it.
@@ -220,25 +254,22 @@ struct DomainMapping
 {
   vtkDataSet* Input;
   bool OnPoints;
-  vtkDataArray* Ids;
-  vtkDataArray* Normals;
-  vtkDataArray* Diameters;
-  vtkDataArray* Orientations; // LatticeOrientation (w, x, y, z); may be absent with the (111) planes
+  DomainArrays Arrays;
   opal::BraggMapSettings Settings;
   bool CoupledWave;
   opal::BraggFamilySettings Families;
 
   void map(vtkIdType i, vtkIdList* cellPoints, BraggArrays& arrays) const
   {
-    if (this->Ids->GetComponent(i, 0) < 0)
+    if (this->Arrays.Ids->GetComponent(i, 0) < 0)
     {
       arrays.set(i, opal::BraggMapValue());
       return;
     }
     std::array<double, 3> normal;
-    this->Normals->GetTuple(i, normal.data());
+    this->Arrays.Normals->GetTuple(i, normal.data());
     const std::array<double, 3> position = positionOf(this->Input, this->OnPoints, i, cellPoints);
-    const double diameter = this->Diameters->GetComponent(i, 0);
+    const double diameter = this->Arrays.Diameters->GetComponent(i, 0);
     arrays.set(i, opal::braggMapAt(position, normal, diameter, this->Settings));
     if (this->CoupledWave)
     {
@@ -252,11 +283,13 @@ struct DomainMapping
 
   std::array<double, 4> orientationAt(vtkIdType i, const std::array<double, 3>& normal) const
   {
-    std::array<double, 4> q;
-    if (this->Orientations)
+    if (this->Arrays.Orientations)
     {
-      this->Orientations->GetTuple(i, q.data());
-      return q;
+      glm::dquat q;
+      double wxyz[4];
+      this->Arrays.Orientations->GetTuple(i, wxyz);
+      q = glm::normalize(glm::dquat(wxyz[0], wxyz[1], wxyz[2], wxyz[3])); // non-zero: checkDomainValues
+      return { q.w, q.x, q.y, q.z };
     }
     // The (111) family needs only the normal: the lattice unspun about it.
     const glm::dquat unspun = opal::latticeOrientation(glm::normalize(glm::dvec3(normal[0], normal[1], normal[2])), 0.0);
@@ -266,7 +299,7 @@ struct DomainMapping
 // Maps every element in chunks, with progress and abort; false if aborted or not finite.
 bool mapDomains(vtkOpalBraggMap* filter, const DomainMapping& mapping, BraggArrays& arrays)
 {
-  const vtkIdType count = mapping.Ids->GetNumberOfTuples();
+  const vtkIdType count = mapping.Arrays.Ids->GetNumberOfTuples();
   // Cell centres need a thread-safe GetCell: build the links once.
   if (!mapping.OnPoints && count > 0)
   {
@@ -290,12 +323,16 @@ bool mapDomains(vtkOpalBraggMap* filter, const DomainMapping& mapping, BraggArra
     });
     filter->UpdateProgress(static_cast<double>(end) / count);
   }
-  const auto wavelengths = vtk::DataArrayValueRange<1>(arrays.Wavelength.GetPointer());
-  if (!std::all_of(wavelengths.begin(), wavelengths.end(), [](float v) { return std::isfinite(v); }))
+  for (vtkFloatArray* output : { arrays.Wavelength.GetPointer(), arrays.Visible.GetPointer(), arrays.Peak.GetPointer(),
+         arrays.FamilyWavelength.GetPointer(), arrays.FamilyPeak.GetPointer() })
   {
-    vtkErrorWithObjectMacro(filter, "The Bragg map produced a NaN or an infinity in BraggWavelength; check LightPosition, "
-                  "EyePosition and the domain arrays.");
-    return false;
+    const auto values = vtk::DataArrayValueRange(output);
+    if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); }))
+    {
+      vtkErrorWithObjectMacro(filter, "The Bragg map produced a NaN or an infinity in "
+          << output->GetName() << "; check LightPosition, EyePosition and the domain arrays.");
+      return false;
+    }
   }
   return true;
 }
@@ -356,37 +393,29 @@ int vtkOpalBraggMap::RequestData(
   }
   opal::BraggMapSettings settings = opal::inStoneFrame(this->GetSettings()); // light and eye turned once
   // The volume carries the domains on its points, the layout on its cells.
-  const bool onPoints = input->GetPointData()->GetArray("DomainId") != nullptr;
+  const bool onPoints = input->GetPointData()->GetAbstractArray("DomainId") != nullptr;
   vtkDataSetAttributes* attributes =
     onPoints ? static_cast<vtkDataSetAttributes*>(input->GetPointData()) : input->GetCellData();
-  const std::string error =
-    checkInput(input, attributes, onPoints, settings.LightPosition.data());
+  DomainArrays domainArrays;
+  const bool coupledWave = this->BraggModel == static_cast<int>(opal::BraggModelKind::CoupledWave);
+  opal::BraggFamilySettings families{ static_cast<opal::LatticePlaneSet>(this->LatticePlanes), this->CoherentLayers, {} };
+  double volumeIndex = opal::BraggMapSettings().RefractiveIndex;
+  std::string error = findDomainArrays(
+    attributes, onPoints ? input->GetNumberOfPoints() : input->GetNumberOfCells(), onPoints, coupledWave ? &families : nullptr,
+    domainArrays);
+  error = error.empty() ? checkDomainValues(domainArrays) : error;
+  error = error.empty() ? readIndices(input->GetFieldData(), volumeIndex, families.Crystal) : error;
+  error = error.empty() ? checkLight(input, settings.LightPosition.data()) : error;
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
     return 0;
   }
-  if (settings.RefractiveIndex == 0)
-  {
-    // The volume's, as its field data records it (the volume and its domain polygons both carry it).
-    vtkDataArray* recorded = input->GetFieldData()->GetArray("RefractiveIndex");
-    settings.RefractiveIndex = recorded && recorded->GetNumberOfTuples() > 0 ? recorded->GetComponent(0, 0)
-                                                                            : opal::BraggMapSettings().RefractiveIndex;
-  }
-  const bool coupledWave = this->BraggModel == static_cast<int>(opal::BraggModelKind::CoupledWave);
-  opal::BraggFamilySettings families{ static_cast<opal::LatticePlaneSet>(this->LatticePlanes), this->CoherentLayers,
-    crystalOf(input->GetFieldData()) };
+  settings.RefractiveIndex = settings.RefractiveIndex == 0 ? volumeIndex : settings.RefractiveIndex;
   settings.CoupledWaveMeanIndex = coupledWave ? opal::meanIndex(families.Crystal) : 0.0;
-  vtkDataArray* orientations = attributes->GetArray("LatticeOrientation");
-  if (families.LatticePlanes == opal::LatticePlaneSet::Fcc && (!orientations || orientations->GetNumberOfComponents() != 4))
-  {
-    vtkErrorMacro("LatticePlanes fcc needs the volume's LatticeOrientation array (4 components).");
-    return 0;
-  }
-  const DomainMapping mapping{ input, onPoints, attributes->GetArray("DomainId"), attributes->GetArray("Normal"),
-    attributes->GetArray("ParticleDiameter"), orientations, settings, coupledWave, families };
+  const DomainMapping mapping{ input, onPoints, domainArrays, settings, coupledWave, families };
   const int familyCount = !coupledWave ? 0 : families.LatticePlanes == opal::LatticePlaneSet::Fcc ? opal::FccPlaneCount : 1;
-  BraggArrays arrays(mapping.Ids->GetNumberOfTuples(), familyCount);
+  BraggArrays arrays(domainArrays.Ids->GetNumberOfTuples(), familyCount);
   if (!mapDomains(this, mapping, arrays))
   {
     return 0;

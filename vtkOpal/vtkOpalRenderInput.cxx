@@ -1,8 +1,10 @@
 #include "vtkOpalRenderInput.h"
 
 #include "OpalDomainLayout.h"
+#include "OpalMessages.h"
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
+#include "vtkOpalInputArrays.h"
 #include "vtkOpalSource.h"
 
 #include "vtkAOSDataArrayTemplate.h"
@@ -16,6 +18,8 @@
 #include "vtkStringArray.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace
 {
@@ -40,35 +44,25 @@ const T* contiguousValues(vtkDataArray* array, std::vector<T>& storage)
   return storage.data();
 }
 
-// The named point array with one value per point, or nullptr and a reason.
-vtkDataArray* scalarArray(vtkImageData* input, const char* name, std::string& error)
+using Expected = vtkOpalInputArrays::Expected;
+
+// The named point array with one finite value per point (a whole number
+// within int32 for `Id`), or nullptr and the reason in `error`.
+vtkDataArray* pointArray(vtkImageData* input, const char* name, bool required, std::string& error,
+  Expected::Values kind = Expected::Values::Real)
 {
-  vtkDataArray* array = input->GetPointData()->GetArray(name);
-  if (!array)
-  {
-    error = std::string("The input lacks the point array ") + name + "; connect an Opal Volume.";
-  }
-  else if (array->GetNumberOfComponents() != 1 || array->GetNumberOfTuples() != input->GetNumberOfPoints())
-  {
-    error = std::string("The point array ") + name + " needs one component per point.";
-    array = nullptr;
-  }
-  return array;
+  return vtkOpalInputArrays::Find(
+    input->GetPointData(), { name, 1, input->GetNumberOfPoints(), kind }, "point array", required, error);
 }
 
 // The optional absorption (docs/design.md §2.10): AbsorptionCoefficient and
 // its AbsorptionExponent (0, grey, where that array is absent); empty or the reason.
 std::string readAbsorption(vtkImageData* input, opal::RenderVolume& volume, vtkOpalRenderInput::Storage& storage)
 {
-  vtkPointData* points = input->GetPointData();
-  if (!points->GetArray("AbsorptionCoefficient"))
-  {
-    return {};
-  }
   std::string error;
-  vtkDataArray* absorption = scalarArray(input, "AbsorptionCoefficient", error);
-  vtkDataArray* exponent = points->GetArray("AbsorptionExponent") ? scalarArray(input, "AbsorptionExponent", error) : nullptr;
-  if (!error.empty())
+  vtkDataArray* absorption = pointArray(input, "AbsorptionCoefficient", false, error);
+  vtkDataArray* exponent = pointArray(input, "AbsorptionExponent", false, error);
+  if (!error.empty() || !absorption)
   {
     return error;
   }
@@ -85,35 +79,64 @@ std::string readAbsorption(vtkImageData* input, opal::RenderVolume& volume, vtkO
   return {};
 }
 
+// A domain's direction (its normal, its lattice's quaternion) made a unit
+// vector: any finite non-zero one is normalised, the one rule the Bragg map
+// follows too (a normal of length 1.9 once diffracted nothing); false, and
+// left as it was, for zero.
+template <std::size_t N>
+bool normalised(std::array<double, N>& v)
+{
+  double squares = 0;
+  for (double c : v)
+  {
+    squares += c * c;
+  }
+  const double length = std::sqrt(squares);
+  if (!(length > 0))
+  {
+    return false;
+  }
+  for (double& c : v)
+  {
+    c /= length;
+  }
+  return true;
+}
+
 // The domain table from the field arrays DomainNormal, DomainParticleDiameter
 // and DomainOrientation; without the last (a volume saved before it existed)
 // each lattice stands unspun on its normal (docs/design.md §2.6).
 std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>& domains)
 {
   vtkFieldData* fields = input->GetFieldData();
-  vtkDataArray* normals = fields->GetArray("DomainNormal");
-  vtkDataArray* diameters = fields->GetArray("DomainParticleDiameter");
-  vtkDataArray* orientations = fields->GetArray("DomainOrientation");
-  if (!normals || !diameters || normals->GetNumberOfComponents() != 3 ||
-    normals->GetNumberOfTuples() != diameters->GetNumberOfTuples())
+  std::string error;
+  vtkDataArray* normals = vtkOpalInputArrays::Find(fields, { "DomainNormal", 3, -1 }, "field array", true, error);
+  const vtkIdType count = normals ? normals->GetNumberOfTuples() : 0;
+  vtkDataArray* diameters =
+    vtkOpalInputArrays::Find(fields, { "DomainParticleDiameter", 1, count }, "field array", true, error);
+  vtkDataArray* orientations =
+    vtkOpalInputArrays::Find(fields, { "DomainOrientation", 4, count }, "field array", false, error);
+  if (!error.empty())
   {
-    return "The input lacks the domain table (field arrays DomainNormal and DomainParticleDiameter); "
-           "connect an Opal Volume.";
+    return error + (error.find(" lacks ") != std::string::npos ? " Connect an Opal Volume." : "");
   }
-  if (orientations &&
-    (orientations->GetNumberOfComponents() != 4 || orientations->GetNumberOfTuples() != normals->GetNumberOfTuples()))
-  {
-    return "The field array DomainOrientation needs 4 components (w, x, y, z) per domain.";
-  }
-  domains.resize(static_cast<std::size_t>(normals->GetNumberOfTuples()));
-  for (vtkIdType d = 0; d < normals->GetNumberOfTuples(); ++d)
+  domains.resize(static_cast<std::size_t>(count));
+  for (vtkIdType d = 0; d < count; ++d)
   {
     opal::Domain domain;
     normals->GetTuple(d, domain.Normal.data());
+    if (!normalised(domain.Normal))
+    {
+      return "Domain " + std::to_string(d) + " of the domain table has a zero DomainNormal.";
+    }
     std::array<double, 4> orientation = opal::latticeQuaternion(domain);
     if (orientations)
     {
       orientations->GetTuple(d, orientation.data());
+    }
+    if (!normalised(orientation))
+    {
+      return "Domain " + std::to_string(d) + " of the domain table has a zero DomainOrientation.";
     }
     domains[static_cast<std::size_t>(d)] =
       opal::renderDomain(domain.Normal, diameters->GetComponent(d, 0), orientation);
@@ -121,19 +144,27 @@ std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>
   return {};
 }
 
-// The coupled-wave model's crystal from the field data (docs/design.md §7.2);
-// the defaults where a volume does not record it.
-void readCrystal(vtkFieldData* fields, opal::RenderVolume& volume)
+// The volume's indices recorded in its field data (RefractiveIndex, and the
+// coupled-wave model's crystal, docs/design.md §7.2), each checked as one
+// finite value; the defaults where a volume does not record them.
+std::string readIndices(vtkFieldData* fields, opal::RenderVolume& volume)
 {
+  std::string error;
   for (auto [name, index] : { std::pair<const char*, double*>{ "SphereRefractiveIndex", &volume.SphereRefractiveIndex },
-         { "MatrixRefractiveIndex", &volume.MatrixRefractiveIndex } })
+         { "MatrixRefractiveIndex", &volume.MatrixRefractiveIndex }, { "RefractiveIndex", nullptr } })
   {
-    vtkDataArray* array = fields->GetArray(name);
-    if (array && array->GetNumberOfTuples() > 0)
+    vtkDataArray* array = vtkOpalInputArrays::Find(fields, { name, 1, -1 }, "field array", false, error);
+    if (array && index)
     {
       *index = array->GetComponent(0, 0);
     }
+    else if (array && !opal::refractiveIndexError(array->GetComponent(0, 0)).empty())
+    {
+      error = "The field array RefractiveIndex holds " + std::to_string(array->GetComponent(0, 0)) +
+        "; a volume's index lies in [1, 4).";
+    }
   }
+  return error;
 }
 
 // What a saved volume's field data (Preset, RefractiveIndex) implies, but
@@ -141,10 +172,12 @@ void readCrystal(vtkFieldData* fields, opal::RenderVolume& volume)
 // data exists.
 vtkOpalRenderInput::VolumeSettings settingsFromFieldData(vtkFieldData* fields)
 {
+  // A malformed index falls back to the default here; Read refuses it by name.
   double refractiveIndex = vtkOpalRenderInput::VolumeSettings().RefractiveIndex;
-  if (vtkDataArray* index = fields->GetArray("RefractiveIndex"))
+  vtkDataArray* index = fields->GetArray("RefractiveIndex");
+  if (index && index->GetNumberOfTuples() > 0 && opal::refractiveIndexError(index->GetComponent(0, 0)).empty())
   {
-    refractiveIndex = index->GetNumberOfTuples() > 0 ? index->GetComponent(0, 0) : refractiveIndex;
+    refractiveIndex = index->GetComponent(0, 0);
   }
   int preset = opal::CustomPreset;
   auto* name = vtkStringArray::SafeDownCast(fields->GetAbstractArray("Preset"));
@@ -163,12 +196,12 @@ namespace vtkOpalRenderInput
 std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage)
 {
   std::string error;
-  vtkDataArray* scattering = scalarArray(input, "ScatteringCoefficient", error);
-  vtkDataArray* domainIds = scattering ? scalarArray(input, "DomainId", error) : nullptr;
-  vtkDataArray* distance = domainIds ? scalarArray(input, "SurfaceDistance", error) : nullptr;
-  if (!distance)
+  vtkDataArray* scattering = pointArray(input, "ScatteringCoefficient", true, error);
+  vtkDataArray* domainIds = pointArray(input, "DomainId", true, error, Expected::Values::Id);
+  vtkDataArray* distance = pointArray(input, "SurfaceDistance", true, error);
+  if (!error.empty())
   {
-    return error;
+    return error + (error.find(" lacks ") != std::string::npos ? " Connect an Opal Volume." : "");
   }
   int dims[3], extent[6];
   double origin[3], spacing[3];
@@ -185,9 +218,14 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
   volume.ScatteringCoefficient = contiguousValues(scattering, storage.Scattering);
   volume.DomainId = contiguousValues(domainIds, storage.DomainId);
   volume.SurfaceDistance = contiguousValues(distance, storage.SurfaceDistance);
-  error = readAbsorption(input, volume, storage);
-  readCrystal(input->GetFieldData(), volume);
-  return error.empty() ? readDomainTable(input, volume.Domains) : error;
+  for (const std::string& step : { readAbsorption(input, volume, storage), readIndices(input->GetFieldData(), volume) })
+  {
+    if (!step.empty())
+    {
+      return step;
+    }
+  }
+  return readDomainTable(input, volume.Domains);
 }
 
 VolumeSettings ReadSettings(vtkInformation* inputInformation, vtkImageData* volume)

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace opal
 {
@@ -65,6 +66,19 @@ double sphereFormFactor(double x)
     return 1.0 - x * x / 10.0;
   }
   return 3.0 * sphericalBesselJ1(x) / x;
+}
+
+std::string crystalError(const ColloidalCrystal& crystal)
+{
+  for (const auto& [name, index] : { std::pair<const char*, double>{ "SphereRefractiveIndex", crystal.SphereIndex },
+         { "MatrixRefractiveIndex", crystal.MatrixIndex } })
+  {
+    if (!(index >= 1 && index < 4))
+    {
+      return std::string("The input volume's ") + name + " must lie in [1, 4), got " + std::to_string(index) + ".";
+    }
+  }
+  return {};
 }
 
 double meanPermittivity(const ColloidalCrystal& c)

@@ -6,6 +6,8 @@
 // the shaders port coupledModeReflectance as it is (see there).
 #pragma once
 
+#include <string>
+
 namespace opal
 {
 
@@ -23,6 +25,11 @@ struct ColloidalCrystal
   double MatrixIndex = 1.33;                  // n_m, water
   double Filling = 0.74048048969306104;       // f = pi / sqrt(18), close packing (~0.74)
 };
+
+// Empty if the crystal's indices are ones the render and the Bragg map both
+// take ([1, 4), as RefractiveIndex), else the sentence naming the volume's
+// field array (SphereRefractiveIndex or MatrixRefractiveIndex).
+std::string crystalError(const ColloidalCrystal& crystal);
 
 // eps_bar = f n_s^2 + (1 - f) n_m^2: the zeroth Fourier component.
 double meanPermittivity(const ColloidalCrystal& crystal);

@@ -1,5 +1,6 @@
 #include "OpalRenderVolume.h"
 
+#include "OpalCoupledWave.h"
 #include "OpalDomainLayout.h"
 #include "OpalOptics.h"
 
@@ -181,19 +182,6 @@ std::string checkDomains(const RenderVolume& volume)
   return {};
 }
 
-// The coupled-wave model's crystal (docs/design.md §7.2); empty if valid.
-std::string checkCrystal(const RenderVolume& volume)
-{
-  for (const auto& [name, index] : { std::pair<const char*, double>{ "SphereRefractiveIndex", volume.SphereRefractiveIndex },
-         { "MatrixRefractiveIndex", volume.MatrixRefractiveIndex } })
-  {
-    if (!(index >= 1 && index < 4))
-    {
-      return std::string("The input volume's ") + name + " must lie in [1, 4), got " + std::to_string(index) + ".";
-    }
-  }
-  return {};
-}
 } // namespace
 
 std::string validate(const RenderVolume& volume)
@@ -214,7 +202,8 @@ std::string validate(const RenderVolume& volume)
   {
     return "The input volume has one of AbsorptionCoefficient and AbsorptionExponent without the other.";
   }
-  for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume), checkCrystal(volume) })
+  const ColloidalCrystal crystal{ volume.SphereRefractiveIndex, volume.MatrixRefractiveIndex };
+  for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume), crystalError(crystal) })
   {
     if (!error.empty())
     {
