@@ -345,25 +345,36 @@ std::string vtkOpalBraggMap::SettingsError() const
   {
     return index + " (0: the volume's)";
   }
-  if (this->BraggOrder < 1 || !(this->MosaicSpread >= 0 && this->MosaicSpread <= 90))
+  if (this->BraggOrder < 1)
   {
-    return "BraggOrder must be at least 1 and MosaicSpread lie in [0, 90] degrees.";
+    return "BraggOrder must be at least 1, got " + std::to_string(this->BraggOrder) + ".";
+  }
+  if (!(this->MosaicSpread >= 0 && this->MosaicSpread <= 90))
+  {
+    return "MosaicSpread must lie in [0, 90] degrees, got " + std::to_string(this->MosaicSpread) + ".";
   }
   if (!std::all_of(this->ModelRotation, this->ModelRotation + 3, [](double a) { return std::isfinite(a); }))
   {
     return "ModelRotation must be finite.";
   }
-  if (this->BraggModel < 0 || this->BraggModel > 1 || this->LatticePlanes < 0 || this->LatticePlanes > 1)
+  // The coupled-wave settings by the render table's rows: one rule, and one
+  // message, for both filters.
+  opal::RenderParameters coupled;
+  coupled.BraggModel = static_cast<opal::BraggModelKind>(this->BraggModel);
+  coupled.LatticePlanes = static_cast<opal::LatticePlaneSet>(this->LatticePlanes);
+  coupled.CoherentLayers = this->CoherentLayers;
+  for (const char* name : { "BraggModel", "LatticePlanes", "CoherentLayers" })
   {
-    return "BraggModel and LatticePlanes must be 0 or 1 (paper or coupled-wave; 111 or fcc).";
+    const auto* row = opal::findRow(opal::renderParameterRows(), name);
+    if (std::string error = opal::rowRangeError(row->Name, row->Get(coupled), row->Min, row->Max, row->Choices);
+        !error.empty())
+    {
+      return error;
+    }
   }
-  if (this->LatticePlanes == 1 && this->BraggModel != 1)
+  if (coupled.LatticePlanes == opal::LatticePlaneSet::Fcc && coupled.BraggModel != opal::BraggModelKind::CoupledWave)
   {
     return "LatticePlanes fcc needs BraggModel coupled-wave (the paper's band has no families).";
-  }
-  if (this->CoherentLayers < 1 || this->CoherentLayers > opal::MaxCoherentLayers)
-  {
-    return "CoherentLayers must lie in [1, " + std::to_string(opal::MaxCoherentLayers) + "].";
   }
   return {};
 }

@@ -87,7 +87,12 @@ int TestOpalBraggMapBadInput(int, char*[])
     refuses("fcc with the paper's model", [](vtkOpalBraggMap* m) { m->SetLatticePlanes(1); }, good, "LatticePlanes");
     refuses("no coherent layers", [](vtkOpalBraggMap* m) { m->SetBraggModel(1); m->SetCoherentLayers(0); }, good,
       "CoherentLayers");
-    refuses("an unknown Bragg model", [](vtkOpalBraggMap* m) { m->SetBraggModel(7); }, good, "BraggModel");
+    refuses("an unknown Bragg model", [](vtkOpalBraggMap* m) { m->SetBraggModel(7); }, good,
+      "BraggModel must be 0 (paper) or 1 (coupled-wave), got 7");
+    // A value that is not a choice is named as such, not as "needs coupled-wave".
+    refuses("LatticePlanes 5", [](vtkOpalBraggMap* m) { m->SetLatticePlanes(5); }, good,
+      "LatticePlanes must be 0 (111) or 1 (fcc), got 5");
+    refuses("MosaicSpread 91", [](vtkOpalBraggMap* m) { m->SetMosaicSpread(91); }, good, "MosaicSpread");
     vtkNew<vtkImageData> unoriented;
     unoriented->DeepCopy(good);
     unoriented->GetPointData()->RemoveArray("LatticeOrientation");
