@@ -196,28 +196,53 @@ int vtkOpalSpectralRender::RequestData(
     vtkErrorMacro("The input is not image data; connect an Opal Volume.");
     return 0;
   }
-  // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputVector[0]->GetInformationObject(0), input);
-  opal::RenderParameters& p = resolved.Parameters;
-  int extent[6];
-  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  FailedRequest request{ input, input->GetMTime(), this->GetMTime(), {} };
+  outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request.Extent.data());
+  const int* extent = request.Extent.data();
   if (extent[1] < extent[0] || extent[3] < extent[2])
   {
     output->Initialize();
     return 1;
   }
+  // A failed request leaves the output without the requested extent, so the
+  // pipeline asks again at every update (a view: at every frame): the same
+  // request fails at once, having said why, until the input or a setting changes.
+  if (this->LastFailure == request)
+  {
+    return 0;
+  }
+  this->LastFailure.reset();
+  const RenderOutcome outcome = this->RenderExtent(inputVector[0]->GetInformationObject(0), input, extent, output);
+  if (outcome == RenderOutcome::Failed)
+  {
+    this->LastFailure = request;
+  }
+  return outcome == RenderOutcome::Rendered ? 1 : 0;
+}
+
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
+  vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output)
+{
+  // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
+  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputInformation, input);
+  opal::RenderParameters& p = resolved.Parameters;
   p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
   try
   {
     if (!this->UploadVolume(input))
     {
-      return 0;
+      return RenderOutcome::Failed;
     }
     const opal::RenderFrame frame = this->Session().render(resolved, [this](double fraction) {
       this->UpdateProgress(fraction);
       return !this->GetAbortExecute();
     });
-    return this->Publish(frame, output) ? 1 : 0;
+    if (this->Publish(frame, output))
+    {
+      return RenderOutcome::Rendered;
+    }
+    // An aborted frame was not a failure of its input: asked for again, it renders.
+    return frame.Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
   }
   catch (const opal::NoVulkanDeviceError& e)
   {
@@ -227,7 +252,7 @@ int vtkOpalSpectralRender::RequestData(
   {
     vtkErrorMacro(<< e.what());
   }
-  return 0;
+  return RenderOutcome::Failed;
 }
 
 bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData* output)

@@ -18,6 +18,9 @@
  * The output can be produced in pieces: each piece renders its rows from the
  * whole input volume, so pieces under MPI equal the one-process image.
  * With no Vulkan device the request fails with an error saying so.
+ * A data request that failed (and said why) fails again at once, without a
+ * second message or render, while the input, its version, the settings and
+ * the extent are the same.
  *
  * By default the settings a volume implies come from it (a vtkOpalSource
  * records them in its output information, a saved volume in its field data):
@@ -50,7 +53,9 @@
 #include "vtkOpalModule.h" // for export macro
 #include "vtkOpalTableMacros.h" // for OPAL_VTK_SET_GET, OPAL_VTK_MEMBER
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace opal
@@ -162,6 +167,16 @@ private:
   // messages or an aborted frame.
   bool Publish(const opal::RenderFrame& frame, vtkImageData* output);
 
+  enum class RenderOutcome
+  {
+    Rendered,
+    Failed, // said in an error
+    Aborted,
+  };
+  // Renders the update extent of the input into `output`.
+  RenderOutcome RenderExtent(
+    vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output);
+
   // Ends the session (its background frame first), keeping its frame counts.
   void EndSession();
   // Completed and abandoned background frames of the sessions ended so far.
@@ -183,4 +198,20 @@ private:
   // one bad setting is reported once.
   std::string ReportedError;
   vtkMTimeType ReportedErrorTime = 0;
+  // The data request that failed last, and said why: the same input, in the
+  // same version, with the same settings and extent fails again at once,
+  // without a second message or render.
+  struct FailedRequest
+  {
+    vtkDataObject* Input;
+    vtkMTimeType InputTime;
+    vtkMTimeType SettingsTime;
+    std::array<int, 6> Extent;
+    bool operator==(const FailedRequest& other) const
+    {
+      return this->Input == other.Input && this->InputTime == other.InputTime &&
+        this->SettingsTime == other.SettingsTime && this->Extent == other.Extent;
+    }
+  };
+  std::optional<FailedRequest> LastFailure;
 };

@@ -255,8 +255,14 @@ vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
 
 vtkImageData* vtkOpalSpectralImageActor::UpdatedOutput()
 {
+  const vtkMTimeType key = this->Render->GetMTime();
+  if (key == this->FailedKey)
+  {
+    return nullptr;
+  }
   if (!this->Render->GetExecutive()->Update())
   {
+    this->FailedKey = key;
     return nullptr;
   }
   vtkImageData* image = this->Render->GetOutput();

@@ -118,6 +118,10 @@ private:
   // settings (the same until the camera, the size, a setting or the volume changes).
   vtkMTimeType StartedKey = 0; // of the frame last started on the worker
   vtkMTimeType FinalKey = 0;   // of the frame FinalFrame holds
+  // The render filter's MTime at an update that failed (and said why): not
+  // asked again, at every frame, until it changes (the executive would add
+  // its own error each time).
+  vtkMTimeType FailedKey = 0;
   vtkImageData* UploadedImage = nullptr; // the image the textures hold (identity only)
   vtkMTimeType UploadedTime = 0;         // and its MTime then
   bool WarnedParallel = false;
