@@ -350,15 +350,26 @@ float nodeStep()
   return (binRayleighScale(0) - nodeFirst()) / float(SPECTRAL_NODES - 1);
 }
 
+// log G of a node's sum, never below LOG_FLOOR (~ log of the smallest
+// normal float): in a thick body the sum of a short wavelength's node can
+// underflow to 0 (sooner on GPUs that flush denormals), and log 0 = -inf
+// times a cubic weight of 0 is NaN (docs/design.md §3.4).
+const float LOG_FLOOR = -87.0;
+float guardedLog(float g)
+{
+  return g > 0.0 ? max(log(g), LOG_FLOOR) : LOG_FLOOR;
+}
+
 // The nodes' sums G turned into log G in place, once per resampling rather
-// than four logs per bin; false (nodes unchanged) where nothing scattered.
+// than four logs per bin; false (nodes unchanged) where nothing scattered
+// (node 0, the longest wavelength's, holds the largest sum).
 bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
 {
   if (!(nodes[0] > 0.0))
   {
     return false;
   }
-  for (int k = 0; k < SPECTRAL_NODES; ++k) nodes[k] = log(nodes[k]);
+  for (int k = 0; k < SPECTRAL_NODES; ++k) nodes[k] = guardedLog(nodes[k]);
   return true;
 }
 
@@ -367,6 +378,17 @@ float lagrangeCubic(vec4 g, float u)
 {
   return g.x * (u - 1.0) * (u - 2.0) * (u - 3.0) / -6.0 + g.y * u * (u - 2.0) * (u - 3.0) / 2.0 +
     g.z * u * (u - 1.0) * (u - 3.0) / -2.0 + g.w * u * (u - 1.0) * (u - 2.0) / 6.0;
+}
+
+// The cubic through four logs at u, limited to their range where one of them
+// is the floor: the cubic through a drop to LOG_FLOOR overshoots by ~17 in
+// log (e^17) beside it, where the true value lies between the nodes.
+// Untouched elsewhere (the presets' images unchanged).
+float limitedCubic(vec4 g, float u)
+{
+  float value = lagrangeCubic(g, u);
+  float low = min(min(g.x, g.y), min(g.z, g.w));
+  return low <= LOG_FLOOR ? clamp(value, low, max(max(g.x, g.y), max(g.z, g.w))) : value;
 }
 
 // The scattering in bin l from log G on the nodes (nodesToLogs): cubic
@@ -394,7 +416,7 @@ float scatterAt(float logNodes[SPECTRAL_NODES], int l)
     g2 = here ? logNodes[j + 2] : g2;
     g3 = here ? logNodes[j + 3] : g3;
   }
-  return s * exp(lagrangeCubic(vec4(g0, g1, g2, g3), u));
+  return s * exp(limitedCubic(vec4(g0, g1, g2, g3), u));
 }
 
 // The light scattered more than once in bin l from the log of its four
@@ -405,7 +427,7 @@ float scatteredAt(vec4 logNodes, int l)
   float s = binRayleighScale(l);
   float first = sqrt(nodeFirst());
   float u = 3.0 * (sqrt(s) - first) / (sqrt(binRayleighScale(0)) - first);
-  return s * s * exp(lagrangeCubic(logNodes, u));
+  return s * s * exp(limitedCubic(logNodes, u));
 }
 
 // The field's four nodes: sqrt(s) evenly from the longest wavelength's to the
@@ -490,9 +512,10 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
 // bins through the view transmittance of the crossings in front; restarts.
 void flushScatteredLight()
 {
-  if (SCATTERED_LIGHT && all(greaterThan(scatteredNodes, vec4(0.0))))
+  if (SCATTERED_LIGHT && scatteredNodes.x > 0.0)
   {
-    vec4 logNodes = log(scatteredNodes);
+    vec4 logNodes = vec4(guardedLog(scatteredNodes.x), guardedLog(scatteredNodes.y), guardedLog(scatteredNodes.z),
+      guardedLog(scatteredNodes.w));
     for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += transmittedToEye(l) * scatteredAt(logNodes, l);
   }
   scatteredNodes = vec4(0.0);

@@ -5,6 +5,7 @@
 // and for 400-700 nm by 5 nm); domain crossings recorded and
 // diffracted after the walk, in rounds when a ray crosses more domains than
 // the record holds (8), equal the sum of the domains rendered one at a time.
+// A thick body, where a node's sum underflows, renders finite and as close.
 // The preview quality renders half the size and about the same image.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
@@ -51,7 +52,7 @@ RelativeDifference relativeDifference(const opal::RenderImage& a, const opal::Re
 // resampling folds each bin's nodes and weights), so a second table checks
 // that they reach it.
 void checkSpectralNodes(opaltest::SceneRenderer& renderer, const opal::RenderVolume& volume,
-  std::array<double, 2> range, double step)
+  std::array<double, 2> range, double step, const RelativeDifference& allowed = { 1e-4, 1e-3 })
 {
   opal::RenderParameters p;
   p.ImageSize = { 96, 72 };
@@ -68,8 +69,9 @@ void checkSpectralNodes(opaltest::SceneRenderer& renderer, const opal::RenderVol
   const std::string table = tableName.str();
   std::cout << "16 spectral nodes against every wavelength, " << table << ": mean " << 100 * d.Mean << "%, worst "
             << 100 * d.Max << "%" << std::endl;
-  OPAL_CHECK(d.Mean <= 1e-4 && d.Max <= 1e-3, "16 spectral nodes agree with every wavelength (" + table + "): mean " +
-      std::to_string(100 * d.Mean) + "% <= 0.01%, worst " + std::to_string(100 * d.Max) + "% <= 0.1%");
+  OPAL_CHECK(d.Mean <= allowed.Mean && d.Max <= allowed.Max, "16 spectral nodes agree with every wavelength (" + table +
+      "): mean " + std::to_string(100 * d.Mean) + "% <= " + std::to_string(100 * allowed.Mean) + "%, worst " +
+      std::to_string(100 * d.Max) + "% <= " + std::to_string(100 * allowed.Max) + "%");
 }
 
 void checkSpectralNodes(opaltest::SceneRenderer& renderer)
@@ -79,6 +81,22 @@ void checkSpectralNodes(opaltest::SceneRenderer& renderer)
   const auto volume = opal::buildVolume(model);
   checkSpectralNodes(renderer, volume->renderVolume(), { 380.0, 780.0 }, 10.0);
   checkSpectralNodes(renderer, volume->renderVolume(), { 400.0, 700.0 }, 5.0);
+}
+
+// A thick body (scattering spheres of 120-180 nm at a volume fraction of
+// 0.7): a short wavelength's node sum underflows to 0 within the stone, whose
+// log once made the resampled image NaN. The nodes' image is finite and
+// agrees with every wavelength's, less closely than fig12's body: its log G
+// is far from linear in s where blue light dies within a voxel or two
+// (measured on lavapipe: mean 0.07%, worst pixel 2.0%; allowed 0.2% and 3%).
+void checkThickBody(opaltest::SceneRenderer& renderer)
+{
+  opal::ModelParameters model;
+  model.Dimensions = { 80, 40, 100 };
+  model.ScatteringDiameterRange = { 120.0, 180.0 };
+  model.ScatteringVolumeFraction = 0.7;
+  const auto volume = opal::buildVolume(model);
+  checkSpectralNodes(renderer, volume->renderVolume(), { 380.0, 780.0 }, 10.0, { 2e-3, 3e-2 });
 }
 
 // A clear slab (no scattering, so no domain dims another) with `layers`
@@ -162,6 +180,7 @@ int TestOpalSpectralMarch(int, char*[])
     return opaltest::noDeviceReturnCode();
   }
   checkSpectralNodes(*renderer);
+  checkThickBody(*renderer);
   checkCrossingRounds(*renderer);
   checkPreview(*renderer);
   const auto messages = renderer->context().validationMessages();
