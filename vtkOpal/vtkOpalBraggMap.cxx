@@ -239,7 +239,7 @@ std::string readIndices(vtkFieldData* fields, double& refractiveIndex, opal::Col
   for (auto [name, target] : { std::pair<const char*, double*>{ "RefractiveIndex", &refractiveIndex },
          { "SphereRefractiveIndex", &crystal.SphereIndex }, { "MatrixRefractiveIndex", &crystal.MatrixIndex } })
   {
-    vtkDataArray* recorded = vtkOpalInputArrays::Find(fields, { name, 1, -1 }, "field array", false, error);
+    vtkDataArray* recorded = vtkOpalInputArrays::Find(fields, { name, 1, Expected::FieldValue }, "field array", false, error);
     *target = recorded ? recorded->GetComponent(0, 0) : *target;
   }
   if (error.empty() && !opal::refractiveIndexError(refractiveIndex).empty())

@@ -79,9 +79,12 @@ std::string shapeError(vtkDataArray* array, const Expected& expected, const char
     return message.str();
   }
   const vtkIdType tuples = array->GetNumberOfTuples();
-  if (expected.Tuples < 0 ? tuples < 1 : tuples != expected.Tuples)
+  const bool fits = expected.Tuples == Expected::AnyCount ||
+    (expected.Tuples == Expected::FieldValue ? tuples >= 1 : tuples == expected.Tuples);
+  if (!fits)
   {
-    message << " needs " << (expected.Tuples < 0 ? std::string("a value") : std::to_string(expected.Tuples) + " tuples")
+    message << " needs "
+            << (expected.Tuples == Expected::FieldValue ? std::string("a value") : std::to_string(expected.Tuples) + " tuples")
             << ", it has " << tuples << (tuples == 1 ? " tuple." : " tuples.");
     return message.str();
   }

@@ -26,9 +26,11 @@ struct Expected
   };
   const char* Name;
   int Components;
-  // The tuples the reader indexes: one per point, cell or domain; -1 for a
-  // field value (at least one tuple, the first read).
+  // The tuples the reader indexes: one per point, cell or domain; or
+  // FieldValue (at least one tuple, the first read) or AnyCount (a table).
   vtkIdType Tuples;
+  static constexpr vtkIdType FieldValue = -1;
+  static constexpr vtkIdType AnyCount = -2;
   Values Kind = Values::Real;
 };
 

@@ -110,7 +110,7 @@ std::string readDomainTable(vtkImageData* input, std::vector<opal::RenderDomain>
 {
   vtkFieldData* fields = input->GetFieldData();
   std::string error;
-  vtkDataArray* normals = vtkOpalInputArrays::Find(fields, { "DomainNormal", 3, -1 }, "field array", true, error);
+  vtkDataArray* normals = vtkOpalInputArrays::Find(fields, { "DomainNormal", 3, Expected::AnyCount }, "field array", true, error);
   const vtkIdType count = normals ? normals->GetNumberOfTuples() : 0;
   vtkDataArray* diameters =
     vtkOpalInputArrays::Find(fields, { "DomainParticleDiameter", 1, count }, "field array", true, error);
@@ -153,7 +153,7 @@ std::string readIndices(vtkFieldData* fields, opal::RenderVolume& volume)
   for (auto [name, index] : { std::pair<const char*, double*>{ "SphereRefractiveIndex", &volume.SphereRefractiveIndex },
          { "MatrixRefractiveIndex", &volume.MatrixRefractiveIndex }, { "RefractiveIndex", nullptr } })
   {
-    vtkDataArray* array = vtkOpalInputArrays::Find(fields, { name, 1, -1 }, "field array", false, error);
+    vtkDataArray* array = vtkOpalInputArrays::Find(fields, { name, 1, Expected::FieldValue }, "field array", false, error);
     if (array && index)
     {
       *index = array->GetComponent(0, 0);
