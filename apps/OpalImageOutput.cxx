@@ -5,7 +5,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -29,6 +33,45 @@ std::vector<T> interleave(const std::vector<T>& first, const std::vector<float>&
     }
   }
   return out;
+}
+
+// The fewest decimals that state a wavelength to 1e-9 of itself: finer
+// digits are the rounding of lo + i * step (400.29999999999995 is 400.3).
+int decimalsNeeded(double wavelength)
+{
+  int decimals = 0;
+  for (double scale = 1.0;
+       decimals < 9 && std::abs(std::round(wavelength * scale) / scale - wavelength) > 1e-9 * wavelength;
+       scale *= 10.0)
+  {
+    ++decimals;
+  }
+  return decimals;
+}
+
+// The spectral channels' names: each wavelength in nm with the decimals the
+// finest of them needs, so each states its own exactly and they sort in
+// wavelength order (EXR keeps channels sorted by name): spectrum.400nm for a
+// whole step, spectrum.400,0nm and spectrum.400,5nm for 0.5 nm. The decimal
+// separator is a comma, as in the spectral EXR layout of Fichet et al. (JCGT
+// 2021): EXR readers split a channel name into layers at its dots.
+// Wavelengths lie at least 0.01 nm apart (WavelengthStep), so names differ.
+std::vector<std::string> spectralChannelNames(const std::vector<double>& wavelengths)
+{
+  int decimals = 0;
+  for (double wavelength : wavelengths)
+  {
+    decimals = std::max(decimals, decimalsNeeded(wavelength));
+  }
+  std::vector<std::string> names;
+  for (double wavelength : wavelengths)
+  {
+    char number[64];
+    std::snprintf(number, sizeof(number), "%.*f", decimals, wavelength);
+    std::replace(number, number + std::strlen(number), '.', ',');
+    names.push_back(std::string("spectrum.") + number + "nm");
+  }
+  return names;
 }
 
 // Writes the spec's pixels through OpenImageIO; false with the reason.
@@ -63,9 +106,10 @@ std::string writeImage(const opal::RenderImage& image, const std::string& path, 
   }
   std::vector<std::string> names{ "R", "G", "B" };
   const std::size_t extra = spectral ? image.Wavelengths.size() : 0;
-  for (std::size_t i = 0; i < extra; ++i)
+  if (spectral)
   {
-    names.push_back("spectrum." + std::to_string(static_cast<int>(image.Wavelengths[i] + 0.5)) + "nm");
+    const std::vector<std::string> wavelengths = spectralChannelNames(image.Wavelengths);
+    names.insert(names.end(), wavelengths.begin(), wavelengths.end());
   }
   OIIO::ImageSpec spec(image.Region[2], image.Region[3], static_cast<int>(names.size()),
     exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
