@@ -4,6 +4,7 @@
 #include <cctype>
 #include <fcntl.h>
 #include <fstream>
+#include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -73,6 +74,36 @@ bool writtenWhole(const std::filesystem::path& file)
   stream.read(tail.data(), static_cast<std::streamsize>(tail.size()));
   return stream.gcount() == static_cast<std::streamsize>(tail.size()) && tail.find(ending) != std::string::npos;
 }
+
+// Where a path leads with every symbolic link followed, even one to a file
+// not yet written (which weakly_canonical leaves as the link's own name).
+std::filesystem::path followedPath(const std::filesystem::path& path)
+{
+  std::error_code ignored; // a step that fails leaves the path as far as it got
+  std::filesystem::path current = std::filesystem::absolute(path, ignored);
+  // 40 links at most, as the kernel follows (ELOOP beyond).
+  for (int hop = 0; hop < 40 && std::filesystem::is_symlink(current, ignored); ++hop)
+  {
+    // A relative link is relative to the folder the link is in.
+    const std::filesystem::path link = std::filesystem::read_symlink(current, ignored);
+    current = std::filesystem::weakly_canonical(current.parent_path(), ignored) / link;
+  }
+  std::error_code error;
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(current, error);
+  return error ? current.lexically_normal() : resolved;
+}
+
+// Whether two paths name one file: the same device and inode where both
+// exist (hard links too), else the same path once links are followed.
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b)
+{
+  struct stat first = {}, second = {};
+  if (::stat(a.c_str(), &first) == 0 && ::stat(b.c_str(), &second) == 0)
+  {
+    return first.st_dev == second.st_dev && first.st_ino == second.st_ino;
+  }
+  return followedPath(a) == followedPath(b);
+}
 } // namespace
 
 std::string lowerCaseExtension(const std::filesystem::path& path)
@@ -89,6 +120,22 @@ std::filesystem::path resolvedTarget(const std::filesystem::path& path)
   const std::filesystem::path resolved =
     std::filesystem::is_symlink(path, error) ? std::filesystem::weakly_canonical(path, error) : path;
   return error ? path : resolved;
+}
+
+std::string sharedFileError(const std::vector<OutputName>& outputs)
+{
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < outputs.size(); ++j)
+    {
+      if (sameFile(outputs[i].Path, outputs[j].Path))
+      {
+        return outputs[i].Flag + " " + outputs[i].Path + " and " + outputs[j].Flag + " " + outputs[j].Path +
+          " are one file; give each output a file of its own";
+      }
+    }
+  }
+  return {};
 }
 
 std::string writeFileAtomically(

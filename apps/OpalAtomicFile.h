@@ -15,6 +15,18 @@ std::string lowerCaseExtension(const std::filesystem::path& path);
 // The file a path names: a symbolic link's target, the path itself otherwise.
 std::filesystem::path resolvedTarget(const std::filesystem::path& path);
 
+// One output of a run: the flag that named it and its path.
+struct OutputName
+{
+  std::string Flag, Path;
+};
+
+// Empty when every output names a file of its own; else one line naming the
+// first two that resolve to one file (the same name, ./x and x, a symbolic
+// link to it, even one to a file not yet written, or a hard link): the run
+// would write that file twice, and a later failed write would delete it.
+std::string sharedFileError(const std::vector<OutputName>& outputs);
+
 // Calls write(temporaryPath); on success renames it to path: to the file a
 // symbolic link there names, keeping an existing file's permissions, and
 // refusing one this process may not write, as cp does. Returns an empty
@@ -41,7 +53,7 @@ private:
 // The outputs of one run, replaced all or none: each is written atomically;
 // unless commit() is called, the ones already replaced get their earlier
 // contents back (kept as hard links, or copies, beside them) and new ones are
-// removed.
+// removed. The targets must be distinct files (sharedFileError).
 class FileSetTransaction
 {
 public:

@@ -70,6 +70,24 @@ void addOutputOptions(CLI::App& app, Outputs& outputs)
     ->group("Output");
 }
 
+// Every output file with the flag that names it, in the order written.
+std::vector<OutputName> outputNames(const Outputs& outputs)
+{
+  std::vector<OutputName> names;
+  for (const std::string& path : outputs.Images)
+  {
+    names.push_back({ "-o", path });
+  }
+  for (const OutputName& vti : { OutputName{ "--save-image", outputs.ImageData }, OutputName{ "--save-volume", outputs.Volume } })
+  {
+    if (!vti.Path.empty())
+    {
+      names.push_back(vti);
+    }
+  }
+  return names;
+}
+
 // Builds the volume with only the arrays the render reads
 // (VolumeArrays::Render: no description), warning about a small shape or
 // domains that could not be placed; throws on failure.
@@ -161,13 +179,10 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
 bool writeOutputs(const Outputs& outputs, const opal::RenderImage& image, const std::string& deviceName,
   const OpalModelOptions& model, std::vector<std::string>& written)
 {
-  std::vector<std::filesystem::path> targets(outputs.Images.begin(), outputs.Images.end());
-  for (const std::string& path : { outputs.ImageData, outputs.Volume })
+  std::vector<std::filesystem::path> targets;
+  for (const OutputName& output : outputNames(outputs))
   {
-    if (!path.empty())
-    {
-      targets.emplace_back(path);
-    }
+    targets.emplace_back(output.Path);
   }
   const SignalsHeld held; // released after the transaction below has committed or restored
   FileSetTransaction transaction(targets);
@@ -241,6 +256,13 @@ int main(int argc, char** argv)
   if (outputs.Images.empty() && outputs.ImageData.empty())
   {
     std::cerr << "opal-render: nothing to write; give -o FILE.png (or .exr) or --save-image FILE.vti" << std::endl;
+    return 2;
+  }
+  // Two outputs that are one file would be written twice, and a later failed
+  // write would take the earlier one's file with it: refused before any work.
+  if (const std::string shared = sharedFileError(outputNames(outputs)); !shared.empty())
+  {
+    std::cerr << "opal-render: " << shared << std::endl;
     return 2;
   }
   opal::RenderParameters parameters = render.parameters(model.presetName(), model.refractiveIndex());
