@@ -1,6 +1,8 @@
 // Writes a file under a temporary name in the same folder and renames it into
 // place, so an earlier file is never replaced by a partial one; and a set of
-// files replaced all or none.
+// files replaced all or none. The temporary files and the earlier contents
+// kept aside get unpredictable names, created exclusively: nothing planted in
+// a shared folder is written through or deleted.
 #pragma once
 
 #include <csignal>
@@ -27,12 +29,22 @@ struct OutputName
 // would write that file twice, and a later failed write would delete it.
 std::string sharedFileError(const std::vector<OutputName>& outputs);
 
-// Calls write(temporaryPath); on success renames it to path: to the file a
-// symbolic link there names, keeping an existing file's permissions, and
-// refusing one this process may not write, as cp does. Returns an empty
-// string on success, else the reason; the temporary file never survives.
+// Calls write(file) and, on success, renames what it wrote to path: to the
+// file a symbolic link there names, keeping an existing file's permissions,
+// and refusing one this process may not write, as cp does. `file` opens a
+// file this call created exclusively under an unpredictable name beside the
+// target (through /proc/self/fd, so a link planted under that name cannot
+// redirect the writer); writers take the format from path, not from it.
+// Returns an empty string on success, else "could not write PATH: " and the
+// cause (the folder, the disk, the file-size limit); the temporary file never
+// survives. A writer's exception is such a failure, not the caller's.
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write);
+
+// The same for writers that say why they failed (write(file, reason)): the
+// reason follows the cause in brackets.
+std::string writeFileAtomically(
+  const std::filesystem::path& path, const std::function<bool(const std::string&, std::string&)>& write);
 
 // Holds back the signals that end a program (SIGINT, SIGTERM, SIGHUP,
 // SIGQUIT) while files are written: one arriving then is delivered when the
@@ -68,7 +80,8 @@ public:
 private:
   struct Target
   {
-    std::filesystem::path Path, Backup; // Backup empty where no earlier file existed
+    std::filesystem::path Path, Backup; // Backup empty where no earlier file existed, or none could be kept
+    bool Existed;                       // a file without a backup is left, never removed
   };
   std::vector<Target> Targets;
   bool Committed = false;

@@ -1,5 +1,8 @@
-// The image output module of opal-render (OpalOutputModules.h): PNG, EXR and
-// the other formats of OpenImageIO, the format from the extension.
+// The image output module of opal-render (OpalOutputModules.h): EXR and TIFF
+// through OpenImageIO, the format from the extension. Their libraries report
+// errors back (libtiff through OpenImageIO's handler, OpenEXR by exceptions
+// OpenImageIO catches); JPEG is not written here, as OpenImageIO leaves
+// libjpeg's default handler in place, which calls exit() on a full disk.
 #include "OpalAtomicFile.h"
 #include "OpalOutputModules.h"
 
@@ -74,16 +77,34 @@ std::vector<std::string> spectralChannelNames(const std::vector<double>& wavelen
   return names;
 }
 
-// Writes the spec's pixels through OpenImageIO; false with the reason.
-bool writeWithOpenImageIO(const std::string& path, const OIIO::ImageSpec& spec, const void* pixels, std::string& reason)
+// Whether the file reads back with all its pixels. libtiff reports a
+// directory it could not write (a full disk, a file-size limit) only to its
+// error handler, and OpenImageIO's close() still returns true for a TIFF cut
+// short; OpenEXR's errors are exceptions OpenImageIO turns into failures.
+bool readsBackWhole(const std::string& file, const std::string& extension, const OIIO::ImageSpec& spec)
 {
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(extension.substr(1));
+  OIIO::ImageSpec found;
+  if (!in || !in->open(file, found) || found.width != spec.width || found.height != spec.height)
+  {
+    return false;
+  }
+  std::vector<float> pixels(found.image_pixels() * static_cast<std::size_t>(found.nchannels));
+  return in->read_image(0, 0, 0, found.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()) && in->close();
+}
+
+// Writes the spec's pixels through OpenImageIO in the format `extension`
+// names (the file's name, from /proc/self/fd, has none); false with the reason.
+bool writeWithOpenImageIO(const std::string& file, const std::string& extension, const OIIO::ImageSpec& spec,
+  const void* pixels, std::string& reason)
+{
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(extension.substr(1));
   if (!out)
   {
     reason = "no OpenImageIO writer: " + OIIO::geterror();
     return false;
   }
-  if (!out->open(path, spec))
+  if (!out->open(file, spec))
   {
     reason = out->geterror();
     return false;
@@ -93,12 +114,19 @@ bool writeWithOpenImageIO(const std::string& path, const OIIO::ImageSpec& spec, 
   {
     reason = out->geterror();
   }
-  return out->close() && written;
+  const bool closed = out->close() && written;
+  if (closed && extension != ".exr" && !readsBackWhole(file, extension, spec))
+  {
+    reason = "the file does not read back whole";
+    return false;
+  }
+  return closed;
 }
 
 std::string writeImage(const opal::RenderImage& image, const std::string& path, bool spectralChannels)
 {
-  const bool exr = lowerCaseExtension(path) == ".exr";
+  const std::string extension = lowerCaseExtension(path);
+  const bool exr = extension == ".exr";
   const bool spectral = exr && spectralChannels;
   if (spectral && image.Spectrum.empty())
   {
@@ -120,11 +148,10 @@ std::string writeImage(const opal::RenderImage& image, const std::string& path, 
   }
   const std::vector<float> floats = exr ? interleave(image.Radiance, image.Spectrum, extra) : std::vector<float>();
   const std::vector<std::uint8_t> bytes = exr ? std::vector<std::uint8_t>() : interleave(image.RGB, {}, 0);
-  std::string reason;
-  const std::string error = writeFileAtomically(path, [&](const std::string& temporary) {
-    return writeWithOpenImageIO(temporary, spec, exr ? static_cast<const void*>(floats.data()) : bytes.data(), reason);
+  return writeFileAtomically(path, [&](const std::string& file, std::string& reason) {
+    return writeWithOpenImageIO(
+      file, extension, spec, exr ? static_cast<const void*>(floats.data()) : bytes.data(), reason);
   });
-  return error.empty() ? error : error + (reason.empty() ? "" : " (" + reason + ")");
 }
 
 const opal::ImageOutputModule module{ &writeImage };

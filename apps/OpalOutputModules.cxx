@@ -37,10 +37,17 @@ const Table& loadModule(const char* file, const char* entry)
 
 const ImageOutputModule& imageOutputModule(const std::string& path)
 {
-  if (lowerCaseExtension(path) == ".png")
+  const std::string extension = lowerCaseExtension(path);
+  if (extension == ".png")
   {
     static const ImageOutputModule& png = loadModule<ImageOutputModule>(OPAL_PNG_OUTPUT_MODULE, "opalPngOutputModule");
     return png;
+  }
+  if (extension == ".jpg" || extension == ".jpeg")
+  {
+    static const ImageOutputModule& jpeg =
+      loadModule<ImageOutputModule>(OPAL_JPEG_OUTPUT_MODULE, "opalJpegOutputModule");
+    return jpeg;
   }
   static const ImageOutputModule& module =
     loadModule<ImageOutputModule>(OPAL_IMAGE_OUTPUT_MODULE, "opalImageOutputModule");

@@ -1,7 +1,8 @@
 // opal-render's file output lives in plugin libraries, loaded only when a
 // file of their kind is written, so the program itself starts without them:
-// PNG through libpng, the other images through OpenImageIO (Debian's build
-// loads ~260 libraries, 0.2 s) and .vti through VTK. Each module exports one C function
+// PNG through libpng, JPEG through libjpeg, the other images through
+// OpenImageIO (Debian's build loads ~260 libraries, 0.2 s) and .vti through
+// VTK. Each writer's errors come back to the caller: none ends the process. Each module exports one C function
 // returning its table of functions.
 #pragma once
 
@@ -31,8 +32,8 @@ struct VtiOutputModule
 
 // The modules, loaded on first use from the library folder beside the
 // program's (../lib/); throw std::runtime_error naming the file if they
-// cannot be loaded. The image module for a path: libpng's for .png (any
-// case), OpenImageIO's for the other formats.
+// cannot be loaded. The image module for a path: libpng's for .png,
+// libjpeg's for .jpg and .jpeg (any case), OpenImageIO's for the others.
 const ImageOutputModule& imageOutputModule(const std::string& path);
 const VtiOutputModule& vtiOutputModule();
 
@@ -41,4 +42,5 @@ const VtiOutputModule& vtiOutputModule();
 // What each module exports.
 extern "C" const opal::ImageOutputModule* opalImageOutputModule();
 extern "C" const opal::ImageOutputModule* opalPngOutputModule();
+extern "C" const opal::ImageOutputModule* opalJpegOutputModule();
 extern "C" const opal::VtiOutputModule* opalVtiOutputModule();

@@ -29,10 +29,8 @@ bool writePng(const std::string& path, const opal::RenderImage& image, std::stri
 
 std::string writeImage(const opal::RenderImage& image, const std::string& path, bool /*spectralChannels*/)
 {
-  std::string reason;
-  const std::string error =
-    writeFileAtomically(path, [&](const std::string& temporary) { return writePng(temporary, image, reason); });
-  return error.empty() ? error : error + (reason.empty() ? "" : " (" + reason + ")");
+  return writeFileAtomically(
+    path, [&](const std::string& file, std::string& reason) { return writePng(file, image, reason); });
 }
 
 const opal::ImageOutputModule module{ &writeImage };
