@@ -11,12 +11,15 @@
 #include "OpalVolumeBuild.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <thread>
 #include <vector>
@@ -226,6 +229,20 @@ void benchScatteringOrders(opal::RenderSession& session, opal::RenderParameters 
     median(camera[0]),
     median(camera[1]) / median(camera[0]), 100.0 * (1.0 - light[0] / light[1]));
 }
+// WIDTH or HEIGHT: the whole word in digits, at least 1 (atoi took "1x" as 1
+// and "x" as 0); exits with a message otherwise.
+int pixels(const char* word)
+{
+  int value = 0;
+  const char* last = word + std::strlen(word);
+  const auto [stop, error] = std::from_chars(word, last, value);
+  if (stop == word || stop != last || error != std::errc() || value < 1)
+  {
+    std::fprintf(stderr, "opal-bench-render: WIDTH and HEIGHT must be whole numbers of pixels, got \"%s\"\n", word);
+    std::exit(2);
+  }
+  return value;
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -233,7 +250,7 @@ int main(int argc, char** argv)
   opal::RenderParameters p; // the paper's set-up
   if (argc > 2)
   {
-    p.ImageSize = { std::atoi(argv[1]), std::atoi(argv[2]) };
+    p.ImageSize = { pixels(argv[1]), pixels(argv[2]) };
   }
   const auto volume = opal::buildVolume(opal::ModelParameters()); // fig12 at paper scale
   opal::RenderSession session;

@@ -13,9 +13,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 
-#include <cstdint>
 #include <initializer_list>
-#include <limits>
 #include <vector>
 
 namespace
@@ -53,10 +51,7 @@ void AddModelParameters(
     array->SetName(row.Name);
     for (const double value : row.Get(p))
     {
-      // An int row as VTK holds it (the uint32 Seed wraps as the source's int property does).
-      array->InsertNextTuple1(row.Type == opal::ParameterType::Double
-          ? value
-          : static_cast<double>(static_cast<int>(static_cast<long long>(value))));
+      array->InsertNextTuple1(value); // every int row's range lies within an int's
     }
     f->AddArray(array);
   }
@@ -82,13 +77,6 @@ opal::ModelParameters ReadModelParameters(vtkFieldData* fields)
     for (int i = 0; i < row.Components; ++i)
     {
       values[static_cast<std::size_t>(i)] = array->GetVariantValue(i).ToDouble();
-    }
-    if (row.Type != opal::ParameterType::Double && row.Max > std::numeric_limits<int>::max())
-    {
-      for (double& v : values)
-      {
-        v = static_cast<double>(static_cast<std::uint32_t>(static_cast<int>(v))); // Seed: a uint32 held as int
-      }
     }
     row.Set(p, values);
   }

@@ -146,10 +146,15 @@ opal::RenderSession& vtkOpalSpectralRender::Session()
   if (!this->RenderSession || this->SessionDeviceIndex != this->DeviceIndex ||
     this->SessionMemoryLimit != this->DeviceMemoryLimit)
   {
+    if (this->DeviceMemoryLimit < 0)
+    {
+      throw std::invalid_argument(
+        "DeviceMemoryLimit must be 0 (no limit) or a number of MB, got " + std::to_string(this->DeviceMemoryLimit));
+    }
     this->EndSession();
     opal::VulkanOptions options;
-    options.DeviceIndex = this->DeviceIndex;
-    options.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, this->DeviceMemoryLimit)) << 20;
+    options.DeviceIndex = this->DeviceIndex; // below -1 the context refuses it
+    options.MemoryLimitBytes = static_cast<std::uint64_t>(this->DeviceMemoryLimit) << 20;
     this->RenderSession = std::make_unique<opal::RenderSession>(options); // ended at exit by OpalGpu
     this->SessionDeviceIndex = this->DeviceIndex;
     this->SessionMemoryLimit = this->DeviceMemoryLimit;

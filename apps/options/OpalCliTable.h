@@ -1,9 +1,12 @@
 // A parameter table's row as a CLI11 flag (docs/design.md §1.1): a number or
 // N numbers, an enumeration's name (or its value), or a switch, with the
-// row's description and its default from the parameters' struct. The range
-// is validate's to check, so a refusal names the parameter as every layer does.
+// row's description and its default from the parameters' struct. Numbers are
+// read strictly (OpalCliNumbers.h); a whole number's range is checked here, as
+// CLI11 converts it to an int, a fraction's is validate's: either refusal
+// names the parameter as every layer does.
 #pragma once
 
+#include "OpalCliNumbers.h"
 #include "OpalParameterRow.h"
 
 #include <CLI/CLI.hpp>
@@ -11,6 +14,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 template <typename Parameters>
@@ -54,7 +58,8 @@ CLI::Option* addNumbersOption(CLI::App& app, const opal::ParameterRow<Parameters
       row.Flag,
       [&target, set](const std::vector<Number>& values) { set(target, std::vector<double>(values.begin(), values.end())); },
       help)
-    ->expected(row.Components);
+    ->expected(row.Components)
+    ->transform(opalcli::numberCheck(row.Name, row.Min, row.Max, std::is_integral_v<Number>));
 }
 
 template <typename Parameters>

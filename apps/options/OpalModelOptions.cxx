@@ -26,10 +26,6 @@ void OpalModelOptions::addTo(CLI::App& app)
       addRowOption(app, row, p, "Model");
     }
   }
-  // The seed as CLI11 reads a uint32 (VTK's property, an int, holds half of them).
-  app.add_option("--seed", p.Seed, "Seed of every random choice of the model")
-    ->capture_default_str()
-    ->group("Model");
   // Each flag of a value a preset may set wins over the preset when given.
   for (const opal::ModelField& field : opal::presetModelFields())
   {

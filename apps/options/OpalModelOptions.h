@@ -1,6 +1,6 @@
 // Command-line flags for every model parameter, from the model parameters'
-// table (OPAL_MODEL_PARAMETERS: --domain-count, --domain-diameter-range, ...),
-// with --preset and --seed.
+// table (OPAL_MODEL_PARAMETERS: --domain-count, --domain-diameter-range, ...,
+// --seed), with --preset.
 // Shared by the command-line programs and the argument fuzzer; no VTK here.
 #pragma once
 

@@ -4,8 +4,7 @@
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 
-#include <cmath>
-#include <cstdlib>
+#include <climits>
 
 void OpalRenderOptions::addTo(CLI::App& app)
 {
@@ -19,22 +18,25 @@ void OpalRenderOptions::addTo(CLI::App& app)
       this->RowOptions[row.Name] = addRowOption(app, row, p, group);
     }
   }
-  // Shortcuts for one component of a row.
-  this->WidthOption = app.add_option("--width", p.ImageSize[0], "Image width in pixels (default: the preset's)")->group(group);
-  this->HeightOption = app.add_option("--height", p.ImageSize[1], "Image height in pixels (default: the preset's)")->group(group);
+  // Shortcuts for one component of a row, read as the row's numbers are.
+  const opal::ParameterRow<opal::RenderParameters>* size = opal::findRow(opal::renderParameterRows(), "ImageSize");
+  const CLI::Validator pixels = opalcli::numberCheck(size->Name, size->Min, size->Max, true);
+  this->WidthOption = app.add_option("--width", p.ImageSize[0], "Image width in pixels (default: the preset's)")
+                        ->transform(pixels)
+                        ->group(group);
+  this->HeightOption = app.add_option("--height", p.ImageSize[1], "Image height in pixels (default: the preset's)")
+                         ->transform(pixels)
+                         ->group(group);
   // ModelRotation's first component by another name: checked here, so a refusal names the flag given.
   app.add_option("--rotate-x", p.ModelRotation[0], "Turn the stone about x by degrees, after the preset's placement (fig13: 5)")
-    ->check(CLI::Validator(
-      [](std::string& value) {
-        const double number = std::strtod(value.c_str(), nullptr); // a non-number is CLI11's to refuse
-        return std::isfinite(number) ? std::string() : std::string("must be finite");
-      },
-      "DEGREES"))
+    ->transform(opalcli::numberCheck("ModelRotation", -opal::Unbounded, opal::Unbounded, false))
     ->group(group);
   app.add_option("--device", this->DeviceIndex, "Vulkan device index (-1: OPAL_VULKAN_DEVICE or the best)")
+    ->transform(opalcli::numberCheck("DeviceIndex", -1, INT_MAX, true))
     ->capture_default_str()
     ->group(group);
   app.add_option("--device-memory-limit", this->DeviceMemoryLimit, "Refuse device memory beyond this many MB (0: none)")
+    ->transform(opalcli::numberCheck("DeviceMemoryLimit", 0, INT_MAX, true))
     ->capture_default_str()
     ->group(group);
 }

@@ -86,8 +86,8 @@ expect_one_line "unknown Bragg model" "--bragg-model" "$render" "${small[@]}" --
 expect_one_line "fcc with the paper's model" "LatticePlanes" "$render" "${small[@]}" --lattice-planes fcc -o x.png
 expect_one_line "no coherent layers" "CoherentLayers" "$render" "${small[@]}" --bragg-model coupled-wave --coherent-layers 0 -o x.png
 expect_one_line "sphere index below 1" "SphereRefractiveIndex" "$volume" --sphere-refractive-index 0.5 -o x.vti
-expect_one_line "width beyond an int" "from -2147483648 to 2147483647" "$render" --width 99999999999 -o x.png
-expect_one_line "negative seed" "from 0 to 18446744073709551615" "$render" --seed -1 -o x.png
+expect_one_line "width beyond an int" "ImageSize must lie in .0, 16384" "$render" --width 99999999999 -o x.png
+expect_one_line "negative seed" "Seed must lie in .0, 2147483647" "$render" --seed -1 -o x.png
 # Enough digits to tell the value from the bound; one refractive-index rule for volume and render.
 expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --scattering-volume-fraction 0.7400001 -o x.vti
 expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti

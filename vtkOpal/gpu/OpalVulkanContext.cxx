@@ -3,10 +3,13 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
-#include <cerrno>
+#include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <sstream>
+#include <system_error>
 #include <utility>
 
 namespace opal
@@ -16,10 +19,39 @@ namespace
 {
 const char* const ValidationLayer = "VK_LAYER_KHRONOS_validation";
 
+// The environment's numbers are read strictly, the whole value in decimal
+// digits (std::from_chars: no sign, space or "0x"): atoi and strtoull let
+// "-1", " 0" and an index past INT_MAX fall back to a default without a word.
+
+// The variable's value, digits only and at most `max`; nothing otherwise.
+std::optional<std::uint64_t> environmentDigits(const std::string& value, std::uint64_t max)
+{
+  std::uint64_t number = 0;
+  const char* last = value.data() + value.size();
+  const auto [stop, error] = std::from_chars(value.data(), last, number);
+  const bool digits = !value.empty() && std::isdigit(static_cast<unsigned char>(value.front()));
+  if (!digits || stop != last || error != std::errc() || number > max)
+  {
+    return std::nullopt;
+  }
+  return number;
+}
+
+// A switch: unset or empty is off, 0 off, 1 on; anything else is refused
+// naming the variable (a "false" or "no" must not turn it on).
 bool environmentFlag(const char* name)
 {
   const char* value = std::getenv(name);
-  return value && std::strcmp(value, "0") != 0 && std::strcmp(value, "") != 0;
+  if (!value || !*value)
+  {
+    return false;
+  }
+  const std::optional<std::uint64_t> flag = environmentDigits(value, 1);
+  if (!flag)
+  {
+    throw VulkanError(std::string(name) + " must be 0 or 1, got \"" + value + "\"", VK_ERROR_INITIALIZATION_FAILED);
+  }
+  return *flag == 1;
 }
 
 bool layerAvailable(const char* name)
@@ -110,6 +142,37 @@ int typeRank(VkPhysicalDeviceType type)
   }
 }
 
+// The device asked for: an index (-1: none), or part of a name (empty: any).
+struct DeviceSelector
+{
+  int Index = -1;
+  std::string Name;
+};
+
+// OPAL_VULKAN_DEVICE: a device's index or part of a device's name. A value
+// that reads as a number (digits, perhaps with a sign or spaces) is an index
+// and must be digits naming one of the devices.
+DeviceSelector environmentDevice(std::size_t deviceCount)
+{
+  const char* value = std::getenv("OPAL_VULKAN_DEVICE");
+  const std::string text = value ? value : "";
+  const bool numeric = text.find_first_of("0123456789") != std::string::npos &&
+    text.find_first_not_of("0123456789+- \t") == std::string::npos;
+  if (!numeric)
+  {
+    return { -1, text };
+  }
+  const std::optional<std::uint64_t> device = environmentDigits(text, deviceCount - 1);
+  if (!device)
+  {
+    throw VulkanError("OPAL_VULKAN_DEVICE must be a device index from 0 to " + std::to_string(deviceCount - 1) +
+        " in digits (" + std::to_string(deviceCount) + " device(s) exist) or part of a device's name, got \"" +
+        text + "\"",
+      VK_ERROR_INITIALIZATION_FAILED);
+  }
+  return { static_cast<int>(*device), {} };
+}
+
 VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int requested)
 {
   auto name = [](VkPhysicalDevice d) {
@@ -117,17 +180,14 @@ VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int 
     vkGetPhysicalDeviceProperties(d, &p);
     return std::string(p.deviceName);
   };
-  std::string selector;
-  if (requested < 0 && std::getenv("OPAL_VULKAN_DEVICE"))
+  if (requested < -1)
   {
-    selector = std::getenv("OPAL_VULKAN_DEVICE");
-    const bool numeric = !selector.empty() && std::all_of(selector.begin(), selector.end(), ::isdigit);
-    if (numeric)
-    {
-      requested = std::atoi(selector.c_str());
-      selector.clear();
-    }
+    throw VulkanError("DeviceIndex must be -1 (OPAL_VULKAN_DEVICE or the best device) or a device's index, got " +
+        std::to_string(requested),
+      VK_ERROR_INITIALIZATION_FAILED);
   }
+  const DeviceSelector selector = requested < 0 ? environmentDevice(devices.size()) : DeviceSelector{ requested, {} };
+  requested = selector.Index;
   if (requested >= 0)
   {
     if (requested >= static_cast<int>(devices.size()))
@@ -147,7 +207,7 @@ VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int 
   int bestRank = 1 << 20;
   for (VkPhysicalDevice device : devices)
   {
-    if (!suitable(device) || (!selector.empty() && name(device).find(selector) == std::string::npos))
+    if (!suitable(device) || name(device).find(selector.Name) == std::string::npos)
     {
       continue;
     }
@@ -161,9 +221,9 @@ VkPhysicalDevice chooseDevice(const std::vector<VkPhysicalDevice>& devices, int 
   }
   if (best == VK_NULL_HANDLE)
   {
-    throw NoVulkanDeviceError(selector.empty()
+    throw NoVulkanDeviceError(selector.Name.empty()
         ? "no Vulkan 1.1 device with a compute queue; install mesa-vulkan-drivers for lavapipe"
-        : "no Vulkan device whose name contains \"" + selector + "\" (OPAL_VULKAN_DEVICE)");
+        : "no Vulkan device whose name contains \"" + selector.Name + "\" (OPAL_VULKAN_DEVICE)");
   }
   return best;
 }
@@ -176,15 +236,15 @@ std::uint64_t environmentMemoryLimit()
   {
     return 0;
   }
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long megabytes = std::strtoull(limit, &end, 10);
-  if (*end != '\0' || errno == ERANGE || limit[0] == '-' || megabytes > (1ull << 40))
+  constexpr std::uint64_t MaxMegabytes = 1ull << 40;
+  const std::optional<std::uint64_t> megabytes = environmentDigits(limit, MaxMegabytes);
+  if (!megabytes)
   {
-    throw VulkanError(std::string("OPAL_VULKAN_MEMORY_LIMIT_MB must be a whole number of MB, got \"") + limit + "\"",
+    throw VulkanError(std::string("OPAL_VULKAN_MEMORY_LIMIT_MB must be a whole number of MB from 0 to ") +
+        std::to_string(MaxMegabytes) + " in digits, got \"" + limit + "\"",
       VK_ERROR_INITIALIZATION_FAILED);
   }
-  return static_cast<std::uint64_t>(megabytes) << 20;
+  return *megabytes << 20;
 }
 } // namespace
 

@@ -59,5 +59,5 @@
     "Index of the crystal's spheres, in [1, 4) (the coupled-wave model's; silica)")                         \
   X(MatrixRefractiveIndex, double, 1, 1, 4, "", "--matrix-refractive-index", 0,                              \
     "Index of the matrix between them, in [1, 4) (water)")                                                  \
-  X(Seed, int, 1, 0, 4294967295.0, "", "", 0,                                                                \
-    "Seed of every random choice of the model (the CLI's --seed takes any uint32)")
+  X(Seed, int, 1, 0, 2147483647, "", "--seed", 0,                                                           \
+    "Seed of every random choice of the model, a whole number in [0, 2147483647]")

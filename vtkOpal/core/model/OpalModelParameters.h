@@ -59,7 +59,9 @@ struct ModelParameters
   // spheres of one index in a matrix of another; only that render model reads them.
   double SphereRefractiveIndex = 1.45; // n_s, silica
   double MatrixRefractiveIndex = 1.33; // n_m, water (hydrated silica in natural opal)
-  std::uint32_t Seed = 1;
+  // [0, 2147483647]: the range VTK's int property, ParaView's and the field
+  // data's int array all hold exactly (and the CLI takes).
+  int Seed = 1;
 
   // True if any voxel absorbs: the volume then carries AbsorptionCoefficient.
   bool absorbs() const;
