@@ -133,6 +133,18 @@ std::string vtkOpalSource::Validate() const
   return error.empty() ? opal::volumeMemoryError(parameters) : error;
 }
 
+bool vtkOpalSource::Refuses()
+{
+  const std::string error = this->Validate();
+  if (!error.empty() && (error != this->ReportedError || this->GetMTime() != this->ReportedErrorTime))
+  {
+    vtkErrorMacro(<< error);
+  }
+  this->ReportedError = error;
+  this->ReportedErrorTime = this->GetMTime();
+  return !error.empty();
+}
+
 int vtkOpalSource::FillOutputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkImageData" : "vtkPolyData");
@@ -142,14 +154,15 @@ int vtkOpalSource::FillOutputPortInformation(int port, vtkInformation* info)
 int vtkOpalSource::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  const std::string error = this->Validate();
-  if (!error.empty())
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (this->Refuses())
   {
-    vtkErrorMacro(<< error);
+    // An empty image, so the executive adds no error of its own about a missing extent.
+    const int none[6] = { 0, -1, 0, -1, 0, -1 };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), none, 6);
     return 0;
   }
   const opal::Grid grid = opal::Grid::fromParameters(this->GetModelParameters());
-  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   const int wholeExtent[6] = { 0, grid.Dimensions[0] - 1, 0, grid.Dimensions[1] - 1, 0,
     grid.Dimensions[2] - 1 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent, 6);
@@ -343,10 +356,8 @@ bool vtkOpalSource::FillVolume(
 int vtkOpalSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  const std::string error = this->Validate();
-  if (!error.empty())
+  if (this->Refuses())
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
   const opal::ModelParameters parameters = this->GetModelParameters();

@@ -101,8 +101,16 @@ private:
 
   // Empty if the parameters are valid, else the message naming the parameter.
   std::string Validate() const;
+  // Validate's error, said once per change of the settings (the pipeline asks
+  // for the information and then the data, ParaView more than once); true if
+  // there is one.
+  bool Refuses();
   // The domain layout (warning when not all domains fit); empty if aborted.
   std::optional<opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
   // Fills the image's extent with the voxel arrays; false if aborted.
   bool FillVolume(vtkImageData* image, const opal::ModelParameters& parameters, const opal::DomainLayout& layout);
+
+  // The error last said and the source's modification time then.
+  std::string ReportedError;
+  vtkMTimeType ReportedErrorTime = 0;
 };
