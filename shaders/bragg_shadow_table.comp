@@ -44,7 +44,7 @@ float saturationLength(DomainRecord lattice, vec3 ray)
 
 void main()
 {
-  int domain = int(gl_GlobalInvocationID.x);
+  int domain = passItem(ShadowTableGroupSize);
   if (domain >= P.domainCount) return;
   DomainRecord lattice = domains[domain];
   vec3 towardLight = normalize(P.light - lattice.centre);

@@ -271,7 +271,9 @@ void queueVoxel(int index, int y)
   entryVoxels[y * layerSize + int(slot)] = uint(index);
   if (slot % uint(LightPassGroupSize) == 0u)
   {
-    atomicAdd(queues[y].groupsX, 1u);
+    uvec2 grid = dispatchGrid(slot / uint(LightPassGroupSize) + 1u);
+    atomicMax(queues[y].groupsX, grid.x);
+    atomicMax(queues[y].groupsY, grid.y);
   }
 }
 
@@ -342,7 +344,7 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
 int voxelOfInvocation()
 {
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
-  int local = int(gl_GlobalInvocationID.x);
+  int local = passItem(LightPassGroupSize);
   if (LIGHT_PASS_MODE == LightPassMarchTowardsLight)
   {
     return local < work.count ? work.first + local : -1;

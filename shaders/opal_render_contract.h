@@ -73,6 +73,9 @@ OPAL_CONSTANT int BindingCount = 21;
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
 OPAL_CONSTANT int HighlightShade = 1;  // the queued pixels: supersample the highlight
 OPAL_CONSTANT int HighlightGroupSize = 64;
+// The colour pass's workgroup (one pixel each) and the march's (a square of pixels).
+OPAL_CONSTANT int ColourGroupSize = 64;
+OPAL_CONSTANT int MarchGroupSide = 8;
 
 // Every setting of a frame. A uniform block: read-only and never aliased by
 // the storage buffers, so compilers keep it in registers.
@@ -114,6 +117,7 @@ struct OPAL_ALIGNED RenderParameterBlock
   float permittivityContrast;         // f (n_s^2 - n_m^2): eps_G = this x 3 j1(x)/x
   float coherentLayers;               // CoherentLayers, the most layers N
   int latticeFamilies;                // 1: (111) only; 13: the FCC families
+  int maxGroupsX;                     // the device's maxComputeWorkGroupCount[0] as the session plans with it
 };
 
 // One wavelength bin (core/colour/OpalSpectralSampling.h): its centre and width,
@@ -244,12 +248,6 @@ OPAL_CONSTANT int LightPassGroupSize = 256;
 struct MarchTile
 {
   ivec2 origin;
-};
-
-// Push constants of the colour pass: the first pixel of this dispatch.
-struct ColourRange
-{
-  int first;
 };
 
 // Specialisation constants, by constant_id: each pass's layout(constant_id =

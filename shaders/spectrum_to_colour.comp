@@ -4,9 +4,9 @@
 // -> exposure -> hue-preserving tone map -> sRGB transfer -> 8 bit.
 #extension GL_GOOGLE_include_directive : require
 
-layout(local_size_x = 64) in;
-
 #include "opal_render_bindings.glsl"
+
+layout(local_size_x = ColourGroupSize) in;
 
 layout(std430, set = 0, binding = PixelColourBinding) readonly buffer PixelColourImage { PixelColour pixelColour[]; };
 layout(std430, set = 0, binding = PixelBraggBinding) readonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
@@ -40,11 +40,9 @@ vec3 huePreservingToneMap(vec3 rgb)
   return highest > 1.0 ? rgb / highest : rgb;
 }
 
-layout(push_constant) uniform ColourPush { ColourRange range; };
-
 void main()
 {
-  int index = range.first + int(gl_GlobalInvocationID.x);
+  int index = passItem(ColourGroupSize);
   if (index >= P.rectSize.x * P.rectSize.y)
   {
     return;

@@ -165,7 +165,7 @@ void shade(ivec2 local, int pixelIndex)
 
 void main()
 {
-  int item = int(gl_GlobalInvocationID.x);
+  int item = passItem(HighlightGroupSize);
   if (HIGHLIGHT_MODE == HighlightSelect)
   {
     if (item >= P.rectSize.x * P.rectSize.y) return;
@@ -174,7 +174,12 @@ void main()
     {
       uint slot = atomicAdd(queue.count, 1u);
       queuedPixels[slot] = uint(item);
-      if (slot % uint(HighlightGroupSize) == 0u) atomicAdd(queue.groupsX, 1u);
+      if (slot % uint(HighlightGroupSize) == 0u)
+      {
+        uvec2 grid = dispatchGrid(slot / uint(HighlightGroupSize) + 1u);
+        atomicMax(queue.groupsX, grid.x);
+        atomicMax(queue.groupsY, grid.y);
+      }
     }
     return;
   }

@@ -11,7 +11,7 @@
 
 #include "opal_render_bindings.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = MarchGroupSide, local_size_y = MarchGroupSide) in;
 layout(constant_id = MarchWavelengthsConstant) const int WAVELENGTHS = 41;
 // The body's scattering spectrum (docs/design.md §3.4): accumulated on
 // SPECTRAL_NODES (>= 4) nodes uniform in s = (550/lambda)^4 and resampled once

@@ -60,6 +60,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("P.", RenderParameterBlock, permittivityContrast),
     OPAL_FIELD("P.", RenderParameterBlock, coherentLayers),
     OPAL_FIELD("P.", RenderParameterBlock, latticeFamilies),
+    OPAL_FIELD("P.", RenderParameterBlock, maxGroupsX),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, lambda),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, width),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
@@ -92,7 +93,6 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
     OPAL_FIELD("tile.", MarchTile, origin),
-    OPAL_FIELD("range.", ColourRange, first),
   };
 #undef OPAL_FIELD
   return table;

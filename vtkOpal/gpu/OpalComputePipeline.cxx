@@ -95,6 +95,8 @@ void StorageBufferBindings::bind(const std::vector<const VulkanBuffer*>& buffers
 ComputePipeline::ComputePipeline(VulkanContext& context, const StorageBufferBindings& bindings,
   const std::uint32_t* spirv, std::size_t spirvWords, const std::vector<std::int32_t>& specialisation)
   : Bindings(bindings)
+  , MaxGroupsX(context.limits().maxComputeWorkGroupCount[0])
+  , MaxGroupsY(context.limits().maxComputeWorkGroupCount[1])
 {
   VkDevice device = context.device();
   auto moduleInfo = vulkanStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
@@ -162,6 +164,21 @@ void ComputePipeline::dispatchBytes(VkCommandBuffer commands, const void* pushCo
   std::uint32_t groupsX, std::uint32_t groupsY, std::uint32_t groupsZ) const
 {
   this->bindAndPush(commands, pushConstants, bytes);
+  if (groupsX > this->MaxGroupsX && groupsY == 1 && groupsZ == 1)
+  {
+    // A one-dimensional pass beyond the device's count: laid out as rows of
+    // MaxGroupsX groups, which passItem (opal_render_bindings.glsl) reads back
+    // as one sequence; the groups past the end find no item.
+    groupsY = (groupsX + this->MaxGroupsX - 1) / this->MaxGroupsX;
+    groupsX = this->MaxGroupsX;
+  }
+  if (groupsX > this->MaxGroupsX || groupsY > this->MaxGroupsY)
+  {
+    throw VulkanError("a dispatch of " + std::to_string(groupsX) + " x " + std::to_string(groupsY) +
+        " workgroups exceeds the device's maxComputeWorkGroupCount of " + std::to_string(this->MaxGroupsX) + " x " +
+        std::to_string(this->MaxGroupsY),
+      VK_ERROR_FEATURE_NOT_PRESENT);
+  }
   vkCmdDispatch(commands, groupsX, groupsY, groupsZ);
   barrierAfterDispatch(commands);
 }

@@ -56,7 +56,9 @@ public:
 
   // Records: bind pipeline and set, push constants (one of the contract's
   // push-constant structs, exactly its size), dispatch, then a barrier so the
-  // next dispatch or the host sees the writes.
+  // next dispatch or the host sees the writes. A one-dimensional dispatch of
+  // more groups than the device takes along x goes as a grid of rows (the
+  // shaders' passItem reads it as one sequence).
   template <typename PushConstants>
   void dispatch(VkCommandBuffer commands, const PushConstants& pushConstants, std::uint32_t groupsX,
     std::uint32_t groupsY = 1, std::uint32_t groupsZ = 1) const
@@ -81,6 +83,7 @@ private:
   void dispatchIndirectRecorded(VkCommandBuffer commands, const VulkanBuffer& arguments, std::uint64_t offset) const;
 
   const StorageBufferBindings& Bindings;
+  std::uint32_t MaxGroupsX, MaxGroupsY; // the device's maxComputeWorkGroupCount as the context plans with it
   VulkanHandle<VkPipeline> Pipeline;
 };
 

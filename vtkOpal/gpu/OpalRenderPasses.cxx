@@ -257,7 +257,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
         for (int tx = 0; tx < tilesX; ++tx)
         {
           const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
-          march.dispatch(commands, tile, MarchTileSize / 8, MarchTileSize / 8);
+          march.dispatch(commands, tile, MarchTileSize / gpu::MarchGroupSide, MarchTileSize / gpu::MarchGroupSide);
         }
       }
       if (endRow == tilesY)
@@ -314,21 +314,17 @@ bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress,
   return true;
 }
 
-// Colour: XYZ to linear and 8-bit sRGB with the exposure, in chunks within
-// the dispatch limit.
+// Colour: XYZ to linear and 8-bit sRGB with the exposure (one dispatch,
+// split by ComputePipeline where it exceeds the device's group count).
 void RenderSession::runColourPass(const FrameSetup& setup, double exposure)
 {
   gpu::RenderParameterBlock* block = this->Buffers->Parameters->as<gpu::RenderParameterBlock>();
   block->exposure = static_cast<float>(exposure);
-  constexpr std::size_t ColourChunk = 65535 * 64;
-  for (std::size_t first = 0; first < setup.Pixels; first += ColourChunk)
-  {
-    const gpu::ColourRange range{ static_cast<std::int32_t>(first) };
-    const std::size_t count = std::min(ColourChunk, setup.Pixels - first);
-    this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->ColourPass->dispatch(commands, range, static_cast<std::uint32_t>((count + 63) / 64));
-    });
-  }
+  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  this->Context->submitAndWait([&](VkCommandBuffer commands) {
+    this->ColourPass->dispatch(commands, unused,
+      static_cast<std::uint32_t>((setup.Pixels + gpu::ColourGroupSize - 1) / gpu::ColourGroupSize));
+  });
 }
 
 // Read-back: the pixel buffers into the image's arrays.

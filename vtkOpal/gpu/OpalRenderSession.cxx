@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace opal
@@ -90,6 +91,40 @@ std::vector<gpu::DomainRecord> domainRecords(const RenderVolume& volume)
   return records;
 }
 
+// The passes' workgroups within the device's limits (docs/design.md §3.7),
+// checked once: a device that cannot run one is refused naming the limit.
+// (Vulkan guarantees 65535 groups per axis and 128 invocations; the light
+// pass takes 256.)
+void checkWorkgroupSizes(const VkPhysicalDeviceLimits& limits)
+{
+  const auto tileGroups = static_cast<std::uint32_t>(MarchTileSize / gpu::MarchGroupSide);
+  if (limits.maxComputeWorkGroupCount[0] < tileGroups || limits.maxComputeWorkGroupCount[1] < tileGroups)
+  {
+    throw VulkanError("the device dispatches fewer than " + std::to_string(tileGroups) +
+        " workgroups per axis (maxComputeWorkGroupCount), a march tile's", VK_ERROR_FEATURE_NOT_PRESENT);
+  }
+  struct Group
+  {
+    const char* Pass;
+    int X, Y;
+  };
+  for (const Group& group : { Group{ "light pass", gpu::LightPassGroupSize, 1 }, { "highlight", gpu::HighlightGroupSize, 1 },
+         { "shadow table", gpu::ShadowTableGroupSize, 1 }, { "colour pass", gpu::ColourGroupSize, 1 },
+         { "view march", gpu::MarchGroupSide, gpu::MarchGroupSide } })
+  {
+    const auto x = static_cast<std::uint32_t>(group.X), y = static_cast<std::uint32_t>(group.Y);
+    if (x > limits.maxComputeWorkGroupSize[0] || y > limits.maxComputeWorkGroupSize[1] ||
+      x * y > limits.maxComputeWorkGroupInvocations)
+    {
+      throw VulkanError(std::string("the device's compute workgroups are too small for the ") + group.Pass + " (" +
+          std::to_string(group.X) + " x " + std::to_string(group.Y) + " invocations; maxComputeWorkGroupSize " +
+          std::to_string(limits.maxComputeWorkGroupSize[0]) + " x " + std::to_string(limits.maxComputeWorkGroupSize[1]) +
+          ", maxComputeWorkGroupInvocations " + std::to_string(limits.maxComputeWorkGroupInvocations) + ")",
+        VK_ERROR_FEATURE_NOT_PRESENT);
+    }
+  }
+}
+
 // A buffer in device-local memory, holding `values` if given: what only the
 // device reads and writes.
 std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
@@ -149,6 +184,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   : Context(std::make_unique<VulkanContext>(options))
   , Buffers(std::make_unique<FrameBuffers>())
 {
+  checkWorkgroupSizes(this->Context->limits());
   std::vector<VkDescriptorType> types(gpu::BindingCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   types[gpu::ParametersBinding] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
@@ -479,6 +515,8 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.specularSamples = p.SpecularSamples;
   block.domainCount = static_cast<int>(shape.Domains.size());
   block.braggOrders = p.BraggOrders;
+  block.maxGroupsX = static_cast<int>(std::min<std::uint32_t>(
+    this->Context->limits().maxComputeWorkGroupCount[0], static_cast<std::uint32_t>(std::numeric_limits<int>::max())));
   block.absorptionExponent = this->Volume->AbsorptionExponent;
   setCoupledWave(block, p, shape);
   return setup;

@@ -38,8 +38,7 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
-static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
-  sizeof(gpu::ColourRange) <= PushConstantBytes);
+static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes);
 
 using Clock = std::chrono::steady_clock;
 inline double secondsSince(Clock::time_point start)

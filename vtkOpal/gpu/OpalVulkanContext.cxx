@@ -306,6 +306,15 @@ void VulkanContext::choosePhysicalDevice(const VulkanOptions& options)
   }
   this->PhysicalDevice = chooseDevice(devices, options.DeviceIndex);
   vkGetPhysicalDeviceProperties(this->PhysicalDevice, &this->Properties);
+  VkPhysicalDeviceLimits& limits = this->Properties.limits;
+  const VulkanOptions::SimulatedLimits& simulated = options.Simulated;
+  for (auto [limit, smaller] : { std::pair<std::uint32_t*, std::uint32_t>{ &limits.maxComputeWorkGroupCount[0],
+           simulated.MaxComputeWorkGroupCount },
+         { &limits.maxComputeWorkGroupInvocations, simulated.MaxComputeWorkGroupInvocations },
+         { &limits.maxStorageBufferRange, simulated.MaxStorageBufferRange } })
+  {
+    *limit = smaller ? std::min(*limit, smaller) : *limit;
+  }
   vkGetPhysicalDeviceMemoryProperties(this->PhysicalDevice, &this->MemoryProperties);
   this->QueueFamily = static_cast<std::uint32_t>(computeQueueFamily(this->PhysicalDevice));
 }

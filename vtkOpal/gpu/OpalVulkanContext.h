@@ -32,6 +32,14 @@ struct VulkanOptions
   // Upload the volume through staging buffers even where device-local memory
   // is host-visible (lavapipe): exercises the path a discrete GPU takes.
   bool StagingUploads = false;
+  // Limits smaller than the device's to plan with (0: the device's own), so
+  // that the tests run on lavapipe the paths a GPU's limits take.
+  struct SimulatedLimits
+  {
+    std::uint32_t MaxComputeWorkGroupCount = 0; // along x
+    std::uint32_t MaxComputeWorkGroupInvocations = 0;
+    std::uint32_t MaxStorageBufferRange = 0;
+  } Simulated;
 };
 
 class VulkanContext;
@@ -63,6 +71,7 @@ public:
 
   VkDevice device() const { return this->Device.get(); }
   VkPhysicalDevice physicalDevice() const { return this->PhysicalDevice; }
+  // The device's limits as the session plans with them (VulkanOptions::Simulated applied).
   const VkPhysicalDeviceLimits& limits() const { return this->Properties.limits; }
   std::string deviceName() const { return this->Properties.deviceName; }
 
