@@ -35,13 +35,30 @@ layout(constant_id = LightBraggShadowConstant) const bool BRAGG_SHADOW = false;
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"
 
+#ifdef OPAL_VOLUME_ADDRESSES
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldRef { LightFieldPair value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AbsorptionCellRef { vec2 value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightShadowRef { LightShadow value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer EntryVoxelRef { uint value; };
+#define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
+#define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
+#define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
+#define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
+#define ENTRY_VOXEL_AT(i) EntryVoxelRef(voxelAddress(volumeAddresses.entryVoxels, (i), 4u)).value
+#else
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
+layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
+#define LIGHT_FIELD_AT(i) lightField[i]
+#define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
+#define ABSORPTION_CELL_AT(i) absorptionCells[i]
+#define LIGHT_SHADOW_AT(i) lightShadow[i]
+#define ENTRY_VOXEL_AT(i) entryVoxels[i]
+#endif
 
 layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueues { DispatchQueue queues[]; };
-layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 
 layout(push_constant) uniform LightPassPush { LightPassWork work; };
 
@@ -107,29 +124,29 @@ void followShadow(inout ShadowWalk w, int domain, float length)
 // its Bragg shadow with BRAGG_SHADOW.
 void storeLight(int index, LightSample light, ShadowWalk shadow)
 {
-  if (BRAGG_SHADOW) lightShadow[index] = shadow.record;
+  if (BRAGG_SHADOW) LIGHT_SHADOW_AT(index) = shadow.record;
   int x = index % P.gridDimensions.x;
   vec2 field = vec2(light.tau.x, light.geometry);
-  lightField[index].voxel = field;
-  if (x > 0) lightField[index - 1].nextVoxel = field;
-  if (x == P.gridDimensions.x - 1) lightField[index].nextVoxel = field;
+  LIGHT_FIELD_AT(index).voxel = field;
+  if (x > 0) LIGHT_FIELD_AT(index - 1).nextVoxel = field;
+  if (x == P.gridDimensions.x - 1) LIGHT_FIELD_AT(index).nextVoxel = field;
   if (ABSORPTION)
   {
-    lightAbsorption[index].voxel = light.tau.yz;
-    if (x > 0) lightAbsorption[index - 1].nextVoxel = light.tau.yz;
-    if (x == P.gridDimensions.x - 1) lightAbsorption[index].nextVoxel = light.tau.yz;
+    LIGHT_ABSORPTION_AT(index).voxel = light.tau.yz;
+    if (x > 0) LIGHT_ABSORPTION_AT(index - 1).nextVoxel = light.tau.yz;
+    if (x == P.gridDimensions.x - 1) LIGHT_ABSORPTION_AT(index).nextVoxel = light.tau.yz;
   }
 }
 
 // A voxel's extinction coefficients at 550 nm: (mu_s, coloured mu_a, grey mu_a).
 vec3 mediumOf(VoxelCell voxel, int index)
 {
-  return vec3(voxel.scattering, ABSORPTION ? absorptionCells[index] : vec2(0.0));
+  return vec3(voxel.scattering, ABSORPTION ? ABSORPTION_CELL_AT(index) : vec2(0.0));
 }
 
 vec3 mediumAt(int index)
 {
-  return mediumOf(voxelCells[index], index);
+  return mediumOf(VOXEL_CELL_AT(index), index);
 }
 
 vec3 mediumIn(ivec3 cell)
@@ -149,7 +166,7 @@ CellContents contentsOf(ivec3 cell)
 {
   if (!insideGrid(cell)) return CellContents(vec3(0.0), -1);
   int index = voxelIndex(cell);
-  VoxelCell voxel = voxelCells[index];
+  VoxelCell voxel = VOXEL_CELL_AT(index);
   return CellContents(mediumOf(voxel, index), voxel.domainId);
 }
 
@@ -268,7 +285,7 @@ void queueVoxel(int index, int y)
 {
   int layerSize = P.gridDimensions.x * P.gridDimensions.z;
   uint slot = atomicAdd(queues[y].count, 1u);
-  entryVoxels[y * layerSize + int(slot)] = uint(index);
+  ENTRY_VOXEL_AT(y * layerSize + int(slot)) = uint(index);
   if (slot % uint(LightPassGroupSize) == 0u)
   {
     uvec2 grid = dispatchGrid(slot / uint(LightPassGroupSize) + 1u);
@@ -307,7 +324,7 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   int above = min(c.y + 1, P.gridDimensions.y - 1);
   int nearZ = voxelIndex(ivec3(c0.x, above, c0.y)), farZ = voxelIndex(ivec3(c0.x, above, c1.y));
   // q's four corners' SurfaceDistance in two pairs (a corner and its +x neighbour).
-  vec2 nearCorners = surfaceDistancePairs[nearZ], farCorners = surfaceDistancePairs[farZ];
+  vec2 nearCorners = SURFACE_DISTANCE_AT(nearZ), farCorners = SURFACE_DISTANCE_AT(farZ);
   bool skin = c.y == P.gridDimensions.y - 1 || voxelSurfaceDistance(index) > 0.0 ||
     max(max(nearCorners.x, nearCorners.y), max(farCorners.x, farCorners.y)) > 0.0;
   if (skin)
@@ -316,12 +333,12 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
     return;
   }
   // The corners' light: two pairs, each a corner and its +x neighbour.
-  LightFieldPair nearPair = lightField[nearZ], farPair = lightField[farZ];
+  LightFieldPair nearPair = LIGHT_FIELD_AT(nearZ), farPair = LIGHT_FIELD_AT(farZ);
   vec2 lightQ = mix(mix(nearPair.voxel, nearPair.nextVoxel, f.x), mix(farPair.voxel, farPair.nextVoxel, f.x), f.y);
   vec2 absorptionQ = vec2(0.0);
   if (ABSORPTION)
   {
-    LightFieldPair nearAbsorption = lightAbsorption[nearZ], farAbsorption = lightAbsorption[farZ];
+    LightFieldPair nearAbsorption = LIGHT_ABSORPTION_AT(nearZ), farAbsorption = LIGHT_ABSORPTION_AT(farZ);
     absorptionQ = mix(mix(nearAbsorption.voxel, nearAbsorption.nextVoxel, f.x),
       mix(farAbsorption.voxel, farAbsorption.nextVoxel, f.x), f.y);
   }
@@ -334,7 +351,7 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
   {
     // The nearest of q's corners carries its shadow on (domain ids do not interpolate).
     int nearest = voxelIndex(ivec3(f.x < 0.5 ? c0.x : c1.x, above, f.y < 0.5 ? c0.y : c1.y));
-    shadow.record = shadowFromAbove(lightShadow[nearest], voxelCells[nearest].domainId, voxelCells[index].domainId, step);
+    shadow.record = shadowFromAbove(LIGHT_SHADOW_AT(nearest), VOXEL_CELL_AT(nearest).domainId, VOXEL_CELL_AT(index).domainId, step);
   }
   storeLight(index, LightSample(vec3(lightQ.x, absorptionQ) + segment,
     P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)), shadow);
@@ -352,7 +369,7 @@ int voxelOfInvocation()
   if (LIGHT_PASS_MODE == LightPassMarchQueued)
   {
     int layerSize = nx * P.gridDimensions.z;
-    return local < int(queues[work.layer].count) ? int(entryVoxels[work.layer * layerSize + local]) : -1;
+    return local < int(queues[work.layer].count) ? int(ENTRY_VOXEL_AT(work.layer * layerSize + local)) : -1;
   }
   return local < nx * P.gridDimensions.z ? local % nx + nx * (work.layer + ny * (local / nx)) : -1;
 }
@@ -381,7 +398,7 @@ void main()
     sweepFromLayerAbove(index, c, p, direction);
     return;
   }
-  ShadowWalk shadow = startShadow(BRAGG_SHADOW ? voxelCells[index].domainId : -1);
+  ShadowWalk shadow = startShadow(BRAGG_SHADOW ? VOXEL_CELL_AT(index).domainId : -1);
   LightSample light = lightAlongPath(p, direction, distanceToLight, d, shadow);
   storeLight(index, light, shadow);
 }

@@ -26,6 +26,7 @@ using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using ivec2 = glm::ivec2;
 using ivec3 = glm::ivec3;
+using uvec2 = glm::uvec2;
 #define OPAL_CONSTANT constexpr
 #define OPAL_ALIGNED alignas(16)
 #else
@@ -67,7 +68,11 @@ OPAL_CONSTANT int ShadowTableBinding = 19;      // a row of SHADOW_TABLE_ROW_VEC
 // voxel a vec4, its mean radiance over s at the four nodes spanning the
 // table's s; a placeholder without ScatteringOrders all.
 OPAL_CONSTANT int ScatteredLightBinding = 20;
-OPAL_CONSTANT int BindingCount = 21;
+// Where a per-voxel field outgrows one storage buffer (maxStorageBufferRange),
+// the passes compiled with OPAL_VOLUME_ADDRESSES read every per-voxel field
+// through its device address (docs/design.md §3.7); else a placeholder.
+OPAL_CONSTANT int VolumeAddressesBinding = 21; // one VolumeAddresses
+OPAL_CONSTANT int BindingCount = 22;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -229,6 +234,20 @@ struct DispatchQueue
   uint groupsY;
   uint groupsZ;
   uint count;
+};
+
+// The device addresses of the per-voxel fields (low word, high word), for the
+// passes compiled with OPAL_VOLUME_ADDRESSES.
+struct VolumeAddresses
+{
+  uvec2 voxelCells;
+  uvec2 surfaceDistance;
+  uvec2 lightField;
+  uvec2 lightAbsorption;
+  uvec2 absorptionCells;
+  uvec2 lightShadow;
+  uvec2 entryVoxels;
+  uvec2 scatteredLight;
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in

@@ -2,11 +2,22 @@
 // values (scattering coefficient, domain id), trilinear for the smooth ones
 // (surface distance, light optical depth and geometry), clamped at the edges.
 
-layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells { VoxelCell voxelCells[]; };
+#include "opal_volume_addresses.glsl"
+
 // SurfaceDistance of each voxel and of its +x neighbour (the last voxel of a
 // row repeats its own): a trilinear read takes four loads instead of eight,
 // and surface tracing is most of what a pixel reads.
+#ifdef OPAL_VOLUME_ADDRESSES
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VoxelCellRef { VoxelCell value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer SurfaceDistanceRef { vec2 value; };
+#define VOXEL_CELL_AT(i) VoxelCellRef(voxelAddress(volumeAddresses.voxelCells, (i), 8u)).value
+#define SURFACE_DISTANCE_AT(i) SurfaceDistanceRef(voxelAddress(volumeAddresses.surfaceDistance, (i), 8u)).value
+#else
+layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells { VoxelCell voxelCells[]; };
 layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { vec2 surfaceDistancePairs[]; };
+#define VOXEL_CELL_AT(i) voxelCells[i]
+#define SURFACE_DISTANCE_AT(i) surfaceDistancePairs[i]
+#endif
 
 int voxelIndex(ivec3 c)
 {
@@ -32,7 +43,7 @@ vec3 voxelCentre(ivec3 c)
 // A voxel's own SurfaceDistance (no interpolation at a centre).
 float voxelSurfaceDistance(int index)
 {
-  return surfaceDistancePairs[index].x;
+  return SURFACE_DISTANCE_AT(index).x;
 }
 
 // SurfaceDistance trilinear over voxel centres, clamped.
@@ -43,10 +54,10 @@ float trilinearSurfaceDistance(vec3 position)
   ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
   vec3 f = clamp(g - vec3(c0), 0.0, 1.0);
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
-  vec2 p00 = surfaceDistancePairs[c0.x + c0.y * sy + c0.z * sz];
-  vec2 p10 = surfaceDistancePairs[c0.x + c1.y * sy + c0.z * sz];
-  vec2 p01 = surfaceDistancePairs[c0.x + c0.y * sy + c1.z * sz];
-  vec2 p11 = surfaceDistancePairs[c0.x + c1.y * sy + c1.z * sz];
+  vec2 p00 = SURFACE_DISTANCE_AT(c0.x + c0.y * sy + c0.z * sz);
+  vec2 p10 = SURFACE_DISTANCE_AT(c0.x + c1.y * sy + c0.z * sz);
+  vec2 p01 = SURFACE_DISTANCE_AT(c0.x + c0.y * sy + c1.z * sz);
+  vec2 p11 = SURFACE_DISTANCE_AT(c0.x + c1.y * sy + c1.z * sz);
   return mix(mix(mix(p00.x, p00.y, f.x), mix(p10.x, p10.y, f.x), f.y),
     mix(mix(p01.x, p01.y, f.x), mix(p11.x, p11.y, f.x), f.y), f.z);
 }

@@ -49,13 +49,30 @@ layout(constant_id = MarchScatteredLightConstant) const bool SCATTERED_LIGHT = f
 // (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
 // members one by one, a vec4 at once (lavapipe: paper march ~14% faster,
 // with absorption ~19%; images bit-identical).
+#ifdef OPAL_VOLUME_ADDRESSES
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightFieldRef { LightFieldPairAsVec4 value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AbsorptionCellRef { vec2 value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightShadowRef { LightShadow value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ScatteredLightRef { vec4 value; };
+#define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
+#define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
+#define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
+#define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
+#define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
+#else
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
-layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
-layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
+#define LIGHT_FIELD_AT(i) lightField[i]
+#define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
+#define ABSORPTION_CELL_AT(i) absorptionCells[i]
+#define LIGHT_SHADOW_AT(i) lightShadow[i]
+#define SCATTERED_LIGHT_AT(i) scatteredLight[i]
+#endif
+layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
+layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
 const int SHADOW_ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
 // Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
 layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
@@ -99,7 +116,7 @@ float transmittedToEye(int l)
 // A voxel's absorption at 550 nm, (coloured, grey); 0 without ABSORPTION.
 vec2 absorptionAt(int index)
 {
-  return ABSORPTION ? absorptionCells[index] : vec2(0.0);
+  return ABSORPTION ? ABSORPTION_CELL_AT(index) : vec2(0.0);
 }
 
 // The absorption's spectral factor at a wavelength of Rayleigh scale s =
@@ -133,8 +150,8 @@ vec2 trilinearPairs(vec4 p00, vec4 p10, vec4 p01, vec4 p11, vec3 f)
 LightSample voxelLightAt(vec3 p)
 {
   int v = voxelIndex(clamp(voxelOf(p), ivec3(0), P.gridDimensions - 1));
-  vec2 light = lightField[v].xy;
-  vec2 absorption = ABSORPTION ? lightAbsorption[v].xy : vec2(0.0);
+  vec2 light = LIGHT_FIELD_AT(v).xy;
+  vec2 absorption = ABSORPTION ? LIGHT_ABSORPTION_AT(v).xy : vec2(0.0);
   return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
 }
 
@@ -153,9 +170,9 @@ LightSample lightAt(vec3 p)
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
   int i00 = c0.x + c0.y * sy + c0.z * sz, i10 = c0.x + c1.y * sy + c0.z * sz;
   int i01 = c0.x + c0.y * sy + c1.z * sz, i11 = c0.x + c1.y * sy + c1.z * sz;
-  vec2 light = trilinearPairs(lightField[i00], lightField[i10], lightField[i01], lightField[i11], f);
+  vec2 light = trilinearPairs(LIGHT_FIELD_AT(i00), LIGHT_FIELD_AT(i10), LIGHT_FIELD_AT(i01), LIGHT_FIELD_AT(i11), f);
   vec2 absorption = ABSORPTION
-    ? trilinearPairs(lightAbsorption[i00], lightAbsorption[i10], lightAbsorption[i01], lightAbsorption[i11], f)
+    ? trilinearPairs(LIGHT_ABSORPTION_AT(i00), LIGHT_ABSORPTION_AT(i10), LIGHT_ABSORPTION_AT(i01), LIGHT_ABSORPTION_AT(i11), f)
     : vec2(0.0);
   // Outside voxels beside the opal hold depths continued linearly (negative)
   // from the inside: a read just inside the surface stays at or above 0.
@@ -549,7 +566,7 @@ const LightShadow NO_SHADOW = LightShadow(-1, 0.0, 0.0);
 LightShadow shadowOfVoxel(int v, int domain)
 {
   if (!ENERGY_CONSERVATION) return NO_SHADOW;
-  LightShadow shadow = lightShadow[v];
+  LightShadow shadow = LIGHT_SHADOW_AT(v);
   return shadow.domain == domain ? NO_SHADOW : shadow;
 }
 
@@ -572,7 +589,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
     if (segment > 0.0 && insideGrid(state.walk.cell))
     {
       int v = voxelIndex(state.walk.cell);
-      VoxelCell cell = voxelCells[v];
+      VoxelCell cell = VOXEL_CELL_AT(v);
       int domain = cell.domainId;
       float mus = cell.scattering;
       vec2 absorption = absorptionAt(v);
@@ -596,7 +613,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       if (mus > 0.0)
       {
         state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView,
-          shadow.domain >= 0, SCATTERED_LIGHT ? scatteredLight[v] : vec4(0.0));
+          shadow.domain >= 0, SCATTERED_LIGHT ? SCATTERED_LIGHT_AT(v) : vec4(0.0));
       }
       else if (ABSORPTION)
       {

@@ -5,9 +5,11 @@
 // of rows of eight groups; the images are identical to those of the device's own limits for
 // the light from above (the layer sweep and its queues, the highlight's
 // queue), from the side (the per-voxel march) and with energy conservation
-// (the Bragg shadow table), and the validation layer is silent. A device
-// whose workgroups cannot hold a pass's is refused at start-up naming the
-// limit.
+// (the Bragg shadow table), and the validation layer is silent. With a
+// storage-buffer range of 128 KiB, a volume whose fields exceed it is read
+// through its fields' device addresses, with the same images (every order
+// of scattering and absorption too). A device whose workgroups cannot hold a
+// pass's is refused at start-up naming the limit.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
@@ -67,6 +69,30 @@ void checkSplitDispatches(const opal::RenderVolume& volume)
   }
 }
 
+// Fields beyond the storage-buffer range, read through their addresses.
+void checkAddressedFields(const opal::RenderVolume& volume, const opal::RenderVolume& absorbing)
+{
+  opaltest::SceneRenderer own(withValidation());
+  opal::VulkanOptions smallRange = withValidation();
+  smallRange.Simulated.MaxStorageBufferRange = 128 << 10; // the cells' 320 KB exceed it, 48 x 36 pixels do not
+  opaltest::SceneRenderer addressed(smallRange);
+  std::vector<Scene> cases = scenes();
+  opal::RenderParameters everyOrder = cases.front().Parameters;
+  everyOrder.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  everyOrder.ScatteringPhotons = 4096;
+  cases.push_back({ "every order", everyOrder });
+  for (Scene& scene : cases)
+  {
+    scene.Parameters.ImageSize = { 48, 36 };
+    OPAL_CHECK(identical(own.render(volume, scene.Parameters), addressed.render(volume, scene.Parameters)),
+      scene.Name + ": fields read through their addresses give the bound fields' image");
+  }
+  OPAL_CHECK(identical(own.render(absorbing, cases.front().Parameters), addressed.render(absorbing, cases.front().Parameters)),
+    "an absorbing volume: fields read through their addresses give the bound fields' image");
+  const auto messages = addressed.context().validationMessages();
+  OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+}
+
 void checkSmallWorkgroupsRefused()
 {
   opal::VulkanOptions small = withValidation();
@@ -96,6 +122,10 @@ int TestOpalDeviceLimits(int, char*[])
   model.Dimensions = { 40, 20, 50 };
   const auto volume = opal::buildVolume(model);
   checkSplitDispatches(volume->renderVolume());
+  model.BackingThickness = 1.0; // an absorbing backing layer (docs/design.md §2.10)
+  model.BackingAbsorption = 2.0;
+  const auto absorbing = opal::buildVolume(model);
+  checkAddressedFields(volume->renderVolume(), absorbing->renderVolume());
   checkSmallWorkgroupsRefused();
   return opaltest::finish("TestOpalDeviceLimits");
 }

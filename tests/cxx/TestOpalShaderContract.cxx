@@ -15,6 +15,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace
 {
@@ -93,6 +95,14 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
     OPAL_FIELD("tile.", MarchTile, origin),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, voxelCells),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, surfaceDistance),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, lightField),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, lightAbsorption),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, absorptionCells),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, lightShadow),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, entryVoxels),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, scatteredLight),
   };
 #undef OPAL_FIELD
   return table;
@@ -100,17 +110,21 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 
 // Prefixes of the contract's structs in the shaders' reflection.
 const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "domains[0].", "pixelColour[0].",
-  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "range." };
+  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "volumeAddresses." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
   { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) } };
 
-std::string reflect(const std::string& validator, const std::string& shaderDir, const std::string& shader)
+// The reflection of a pass as built: `options` "" or, for the passes that
+// read per-voxel fields by address, "--target-env vulkan1.2 -DOPAL_VOLUME_ADDRESSES".
+std::string reflect(
+  const std::string& validator, const std::string& shaderDir, const std::string& shader, const std::string& options)
 {
-  const std::string command = validator + " -V -q --reflect-all-block-variables --target-env vulkan1.1 -I" +
-    shaderDir + " -o /dev/null " + shaderDir + "/" + shader + " 2>&1";
+  const std::string command = validator + " -V -q --reflect-all-block-variables " +
+    (options.empty() ? std::string("--target-env vulkan1.1") : options) + " -I" + shaderDir + " -o /dev/null " +
+    shaderDir + "/" + shader + " 2>&1";
   std::string output;
   if (FILE* pipe = ::popen(command.c_str(), "r"))
   {
@@ -199,11 +213,13 @@ int TestOpalShaderContract(int argc, char* argv[])
     return 2;
   }
   std::set<std::string> seen;
-  for (const char* shader :
-    { "light_optical_depth.comp", "view_march.comp", "specular_highlight.comp", "spectrum_to_colour.comp",
-      "bragg_shadow_table.comp" })
+  const std::string addressed = "--target-env vulkan1.2 -DOPAL_VOLUME_ADDRESSES";
+  for (const auto& [shader, options] : std::vector<std::pair<std::string, std::string>>{ { "light_optical_depth.comp", "" },
+         { "view_march.comp", "" }, { "specular_highlight.comp", "" }, { "spectrum_to_colour.comp", "" },
+         { "bragg_shadow_table.comp", "" }, { "light_optical_depth.comp", addressed }, { "view_march.comp", addressed },
+         { "specular_highlight.comp", addressed } })
   {
-    const std::set<std::string> names = checkShader(shader, reflect(argv[1], argv[2], shader));
+    const std::set<std::string> names = checkShader(shader, reflect(argv[1], argv[2], shader, options));
     seen.insert(names.begin(), names.end());
   }
   for (const auto& [name, offset] : expectedOffsets())

@@ -19,5 +19,9 @@ Spirv viewMarchShader();
 Spirv specularHighlightShader();
 Spirv spectrumToColourShader();
 Spirv braggShadowTableShader();
+// The passes that read per-voxel fields, compiled with OPAL_VOLUME_ADDRESSES.
+Spirv lightOpticalDepthAddressedShader();
+Spirv viewMarchAddressedShader();
+Spirv specularHighlightAddressedShader();
 
 } // namespace opal::embedded

@@ -97,10 +97,12 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
 {
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
   const int shadow = braggShadow ? 1 : 0;
-  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow }];
+  const bool addressed = this->Volume->addressed();
+  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow, addressed ? 1 : 0 }];
   if (!pass)
   {
-    const embedded::Spirv code = embedded::lightOpticalDepthShader();
+    const embedded::Spirv code =
+      addressed ? embedded::lightOpticalDepthAddressedShader() : embedded::lightOpticalDepthShader();
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
       specialisation(gpu::LightPassConstantCount, { { gpu::LightPassModeConstant, mode },
         { gpu::LightAbsorptionConstant, absorbs }, { gpu::LightBraggShadowConstant, shadow } }));
@@ -129,7 +131,7 @@ bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progres
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
   v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context,
-    field->MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", BufferPlacement::DeviceLocal);
+    field->MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
   v.ScatteredLight->upload(field->MeanRadiancePerScale.data(), field->MeanRadiancePerScale.size() * sizeof(gpu::vec4));
   this->bindBuffers();
   this->ScatteredLightWarning = field->Warning;
@@ -147,7 +149,7 @@ void RenderSession::prepareShadowField()
   }
   v.LightShadow.reset();
   v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.Shape.voxelCount() * sizeof(gpu::LightShadow),
-    "light Bragg shadow field", BufferPlacement::DeviceLocal);
+    "light Bragg shadow field", v.FieldPlacement);
   v.HasShadowField = true;
   this->bindBuffers();
 }
@@ -214,11 +216,12 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
   const int nearestLight = setup.Preview ? 1 : 0;
   const int scattered = p.ScatteringOrders == ScatteringOrdersKind::All ? 1 : 0;
+  const bool addressed = this->Volume->addressed();
   std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{
-    wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight, scattered }];
+    wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight, scattered, addressed ? 1 : 0 }];
   if (!march)
   {
-    const embedded::Spirv code = embedded::viewMarchShader();
+    const embedded::Spirv code = addressed ? embedded::viewMarchAddressedShader() : embedded::viewMarchShader();
     march = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
       specialisation(gpu::MarchConstantCount,
         { { gpu::MarchWavelengthsConstant, wavelengths }, { gpu::MarchSpectralNodesConstant, nodes },
@@ -276,13 +279,28 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
 // The highlight over the rectangle the march wrote (it recorded the mirror
 // rays): every pixel selects, the queued few are shaded (indirect). The host
 // emptied the queue before the submit.
-void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const
+void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect)
 {
   const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
   const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
-  this->HighlightPasses.at(gpu::HighlightSelect)
-    ->dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
-  this->HighlightPasses.at(gpu::HighlightShade)->dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
+  this->highlightPass(gpu::HighlightSelect)
+    .dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+  this->highlightPass(gpu::HighlightShade).dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
+}
+
+// A highlight pass's mode for the volume's field reads (made on first use).
+ComputePipeline& RenderSession::highlightPass(int mode)
+{
+  const bool addressed = this->Volume->addressed();
+  std::unique_ptr<ComputePipeline>& pass = this->HighlightPasses[{ mode, addressed ? 1 : 0 }];
+  if (!pass)
+  {
+    const embedded::Spirv code =
+      addressed ? embedded::specularHighlightAddressedShader() : embedded::specularHighlightShader();
+    pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
+      specialisation(gpu::HighlightConstantCount, { { gpu::HighlightModeConstant, mode } }));
+  }
+  return *pass;
 }
 
 // Automatic exposure: the body's median luminance to a mid grey (0.18),

@@ -125,12 +125,13 @@ void checkWorkgroupSizes(const VkPhysicalDeviceLimits& limits)
   }
 }
 
-// A buffer in device-local memory, holding `values` if given: what only the
-// device reads and writes.
-std::unique_ptr<VulkanBuffer> deviceLocalBuffer(
-  VulkanContext& context, std::uint64_t bytes, const char* what, const void* values = nullptr)
+// A buffer in device-local memory (addressed by the shaders where
+// `placement` says so), holding `values` if given: what only the device
+// reads and writes.
+std::unique_ptr<VulkanBuffer> deviceLocalBuffer(VulkanContext& context, std::uint64_t bytes, const char* what,
+  const void* values = nullptr, BufferPlacement placement = BufferPlacement::DeviceLocal)
 {
-  auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, BufferPlacement::DeviceLocal);
+  auto buffer = std::make_unique<VulkanBuffer>(context, bytes, what, placement);
   if (values)
   {
     buffer->upload(values, bytes);
@@ -158,13 +159,44 @@ std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::ve
 
 // The absorption cells on the device; without absorption a placeholder,
 // bound but never read (the passes without ABSORPTION).
-std::unique_ptr<VulkanBuffer> absorptionBuffer(VulkanContext& context, const std::vector<gpu::vec2>& cells)
+std::unique_ptr<VulkanBuffer> absorptionBuffer(
+  VulkanContext& context, const std::vector<gpu::vec2>& cells, BufferPlacement placement)
 {
   if (cells.empty())
   {
-    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder");
+    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
   }
-  return deviceLocalBuffer(context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data());
+  return deviceLocalBuffer(
+    context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data(), placement);
+}
+
+// The halves of a device address, as the shaders read it.
+gpu::uvec2 addressWords(const VulkanBuffer& buffer)
+{
+  const std::uint64_t address = buffer.address();
+  return gpu::uvec2(static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32));
+}
+
+// Where a volume's per-voxel fields live (docs/design.md §3.7): bound as
+// storage buffers while the widest (the light field's 16 bytes a voxel)
+// fits the device's maxStorageBufferRange, else addressed by the shaders,
+// where the device can; refused naming both limits where it cannot.
+BufferPlacement fieldPlacement(const VulkanContext& context, std::size_t voxels)
+{
+  const std::uint64_t widest = static_cast<std::uint64_t>(voxels) * sizeof(gpu::LightFieldPair);
+  const std::uint64_t range = context.limits().maxStorageBufferRange;
+  if (widest <= range)
+  {
+    return BufferPlacement::DeviceLocal;
+  }
+  if (!context.bufferDeviceAddresses())
+  {
+    throw VulkanError("the volume's light field needs a " + std::to_string(widest) +
+        "-byte buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
+        " bytes, and the device cannot address buffers (bufferDeviceAddress); use fewer voxels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+  return BufferPlacement::DeviceAddressed;
 }
 } // namespace
 
@@ -193,7 +225,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   // Without absorption and Bragg shadows (pipelines with either made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[{ mode, 0, 0 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
+    this->LightPasses[{ mode, 0, 0, 0 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
       light.Words, light.WordCount,
       specialisation(gpu::LightPassConstantCount,
         { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, 0 }, { gpu::LightBraggShadowConstant, 0 } }));
@@ -203,7 +235,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   const embedded::Spirv highlight = embedded::specularHighlightShader();
   for (int mode : { gpu::HighlightSelect, gpu::HighlightShade })
   {
-    this->HighlightPasses[mode] = std::make_unique<ComputePipeline>(
+    this->HighlightPasses[{ mode, 0 }] = std::make_unique<ComputePipeline>(
       *this->Context, *this->Bindings, highlight.Words, highlight.WordCount,
       specialisation(gpu::HighlightConstantCount, { { gpu::HighlightModeConstant, mode } }));
   }
@@ -272,24 +304,30 @@ void RenderSession::setVolume(const RenderVolume& volume)
   }
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
+  const BufferPlacement placement = fieldPlacement(context, voxels);
+  uploaded->FieldPlacement = placement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
   std::vector<gpu::VoxelCell> cells(voxels);
   forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   fillSkin(cells, skin);
   uploaded->Cells = deviceLocalBuffer(
-    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data());
+    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data(), placement);
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->Medium.Absorption = absorptionCells(volume, skin);
-  uploaded->AbsorptionCells = absorptionBuffer(context, uploaded->Medium.Absorption);
+  uploaded->AbsorptionCells = absorptionBuffer(context, uploaded->Medium.Absorption, placement);
   uploaded->LightAbsorption = deviceLocalBuffer(context,
-    absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field");
-  uploaded->SurfaceDistance = deviceLocalBuffer(
-    context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", surfaceDistancePairs(volume).data());
-  uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field");
-  uploaded->LightShadow = deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder");
-  uploaded->EntryVoxels = deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels");
+    absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
+    placement);
+  uploaded->SurfaceDistance = deviceLocalBuffer(context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)",
+    surfaceDistancePairs(volume).data(), placement);
+  uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field", nullptr, placement);
+  uploaded->LightShadow =
+    deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);
+  uploaded->EntryVoxels =
+    deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels", nullptr, placement);
+  uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
   // The host resets the light pass's queues before every sweep.
   uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
@@ -301,7 +339,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   std::transform(cells.begin(), cells.end(), uploaded->Medium.Scattering.begin(),
     [](const gpu::VoxelCell& cell) { return cell.scattering; });
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
-  uploaded->ScatteredLight = deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder");
+  uploaded->ScatteredLight =
+    deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
   uploaded->Shape.DomainId = nullptr;
@@ -653,6 +692,7 @@ void RenderSession::bindBuffers()
   }
   const DeviceVolume& v = *this->Volume;
   std::vector<const VulkanBuffer*> buffers(gpu::BindingCount, nullptr);
+  buffers[gpu::VolumeAddressesBinding] = v.Addresses.get();
   buffers[gpu::ParametersBinding] = b.Parameters.get();
   buffers[gpu::WavelengthTableBinding] = b.WavelengthTable.get();
   buffers[gpu::VoxelCellBinding] = v.Cells.get();
@@ -674,7 +714,37 @@ void RenderSession::bindBuffers()
   buffers[gpu::LightShadowBinding] = v.LightShadow.get();
   buffers[gpu::ShadowTableBinding] = b.ShadowTable.get();
   buffers[gpu::ScatteredLightBinding] = v.ScatteredLight.get();
+  if (v.addressed())
+  {
+    this->addressFields(buffers);
+  }
   this->Bindings->bind(buffers);
+}
+
+// The per-voxel fields of an addressed volume (docs/design.md §3.7): their
+// addresses into the table the passes read, and in their bindings, which no
+// pass of that volume reads, the table itself (a field may exceed the
+// range a binding takes).
+void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) const
+{
+  const DeviceVolume& v = *this->Volume;
+  gpu::VolumeAddresses addresses;
+  const std::pair<gpu::uvec2*, const VulkanBuffer*> fields[] = { { &addresses.voxelCells, v.Cells.get() },
+    { &addresses.surfaceDistance, v.SurfaceDistance.get() }, { &addresses.lightField, v.LightField.get() },
+    { &addresses.lightAbsorption, v.LightAbsorption.get() }, { &addresses.absorptionCells, v.AbsorptionCells.get() },
+    { &addresses.lightShadow, v.LightShadow.get() }, { &addresses.entryVoxels, v.EntryVoxels.get() },
+    { &addresses.scatteredLight, v.ScatteredLight.get() } };
+  for (const auto& [address, buffer] : fields)
+  {
+    *address = addressWords(*buffer);
+  }
+  v.Addresses->upload(&addresses, sizeof(addresses));
+  for (int binding : { gpu::VoxelCellBinding, gpu::SurfaceDistanceBinding, gpu::LightFieldBinding,
+         gpu::LightAbsorptionBinding, gpu::AbsorptionCellBinding, gpu::LightShadowBinding, gpu::LightEntryVoxelsBinding,
+         gpu::ScatteredLightBinding })
+  {
+    buffers[static_cast<std::size_t>(binding)] = v.Addresses.get();
+  }
 }
 
 RenderImage RenderSession::readBack(const FrameSetup& setup) const

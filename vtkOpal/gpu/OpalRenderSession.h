@@ -149,6 +149,7 @@ private:
   void prepareFrameBuffers(const FrameSetup& setup);
   void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
   void bindBuffers();
+  void addressFields(std::vector<const VulkanBuffer*>& buffers) const;
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
@@ -157,28 +158,29 @@ private:
   void runShadowTable(const FrameSetup& setup);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
-  void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect) const;
+  void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
   ComputePipeline& marchPipeline(const FrameSetup& setup);
   ComputePipeline& lightPass(int mode, bool braggShadow);
+  ComputePipeline& highlightPass(int mode);
   ComputePipeline& shadowTablePass(int wavelengths, bool coupledWave);
 
   std::unique_ptr<VulkanContext> Context;
   std::unique_ptr<StorageBufferBindings> Bindings;
   // The light pass's three modes (shaders/opal_render_contract.h), by mode,
   // whether the volume absorbs (docs/design.md §3.9) and whether the pass
-  // records Bragg shadows (§7.2).
-  std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> LightPasses;
-  // The highlight pass's two modes (select and shade), by mode.
-  std::map<int, std::unique_ptr<ComputePipeline>> HighlightPasses;
+  // records Bragg shadows (§7.2), and whether it reads the fields by address (§3.7).
+  std::map<std::array<int, 4>, std::unique_ptr<ComputePipeline>> LightPasses;
+  // The highlight pass's two modes (select and shade), by mode and address reads.
+  std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength), absorption,
   // coupled-wave and energy conservation (0 or 1), the bins' first centre
   // and step (their float bits), the preview's light read and the scattered
-  // light (0 or 1).
-  std::map<std::array<std::int32_t, 9>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // light and address reads (0 or 1).
+  std::map<std::array<std::int32_t, 10>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;

@@ -85,6 +85,12 @@ struct RenderSession::DeviceVolume
   // The light scattered more than once (ScatteredLightBinding): a vec4 per
   // voxel once a frame with every order solved it, a placeholder before.
   std::unique_ptr<VulkanBuffer> ScatteredLight;
+  // Where the per-voxel fields live: DeviceAddressed for a volume beyond one
+  // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES
+  // read them through the address table), else DeviceLocal (docs/design.md §3.7).
+  BufferPlacement FieldPlacement = BufferPlacement::DeviceLocal;
+  std::unique_ptr<VulkanBuffer> Addresses; // gpu::VolumeAddresses
+  bool addressed() const { return this->FieldPlacement == BufferPlacement::DeviceAddressed; }
 };
 
 // The per-frame buffers, kept while they are large enough.

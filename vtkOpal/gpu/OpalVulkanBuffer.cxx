@@ -16,7 +16,7 @@ VulkanBuffer::VulkanBuffer(
   , What(what)
 {
   const std::uint64_t range = context.limits().maxStorageBufferRange;
-  if (this->Size > range)
+  if (this->Size > range && placement != BufferPlacement::DeviceAddressed)
   {
     throw VulkanError("the " + what + " needs a " + std::to_string(this->Size) +
         "-byte storage buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
@@ -27,7 +27,8 @@ VulkanBuffer::VulkanBuffer(
   auto info = vulkanStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);
   info.size = this->Size;
   info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
-    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+    (placement == BufferPlacement::DeviceAddressed ? VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT : 0);
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer = VK_NULL_HANDLE;
   checkVulkan(vkCreateBuffer(device, &info, nullptr, &buffer), "vkCreateBuffer");
@@ -44,12 +45,15 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
   // Released by the member's destructor also when a later step throws.
   this->Reservation = this->Context.reserveMemory(requirements.size);
   constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  const std::uint32_t type = placement == BufferPlacement::DeviceLocal
-    ? this->Context.deviceLocalMemoryType(requirements.memoryTypeBits)
-    : this->Context.memoryType(requirements.memoryTypeBits, hostVisible);
+  const bool deviceLocal = placement != BufferPlacement::HostVisible;
+  const std::uint32_t type = deviceLocal ? this->Context.deviceLocalMemoryType(requirements.memoryTypeBits)
+                                         : this->Context.memoryType(requirements.memoryTypeBits, hostVisible);
   auto allocateInfo = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   allocateInfo.allocationSize = requirements.size;
   allocateInfo.memoryTypeIndex = type;
+  auto addressed = vulkanStruct<VkMemoryAllocateFlagsInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO);
+  addressed.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  allocateInfo.pNext = placement == BufferPlacement::DeviceAddressed ? &addressed : nullptr;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   checkVulkan(vkAllocateMemory(device, &allocateInfo, nullptr, &memory),
     ("vkAllocateMemory (" + what + ", " + std::to_string(requirements.size) + " bytes)").c_str());
@@ -57,11 +61,18 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
     VulkanHandle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
   checkVulkan(vkBindBufferMemory(device, this->Buffer.get(), memory, 0), "vkBindBufferMemory");
   const bool mappable = (this->Context.memoryTypeFlags(type) & hostVisible) == hostVisible &&
-    !(placement == BufferPlacement::DeviceLocal && this->Context.stagingUploads());
+    !(deviceLocal && this->Context.stagingUploads());
   if (mappable)
   {
     checkVulkan(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &this->Mapped), "vkMapMemory");
   }
+}
+
+std::uint64_t VulkanBuffer::address() const
+{
+  auto info = vulkanStruct<VkBufferDeviceAddressInfo>(VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO);
+  info.buffer = this->Buffer.get();
+  return vkGetBufferDeviceAddress(this->Context.device(), &info);
 }
 
 VulkanBuffer::~VulkanBuffer()

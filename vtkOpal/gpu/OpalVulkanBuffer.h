@@ -24,6 +24,9 @@ enum class BufferPlacement
 {
   HostVisible,
   DeviceLocal,
+  // DeviceLocal, read by shaders through its device address rather than a
+  // descriptor, so no maxStorageBufferRange bounds it (docs/design.md §3.7).
+  DeviceAddressed,
 };
 
 class VulkanBuffer
@@ -40,6 +43,8 @@ public:
 
   VkBuffer buffer() const { return this->Buffer.get(); }
   std::uint64_t size() const { return this->Size; }
+  // The device address of a DeviceAddressed buffer.
+  std::uint64_t address() const;
   // The mapped memory (nullptr for a DeviceLocal buffer in dedicated memory).
   template <typename T>
   T* as() const

@@ -69,7 +69,7 @@ VulkanHandle<VkInstance> createInstance(bool validation)
   auto application = vulkanStruct<VkApplicationInfo>(VK_STRUCTURE_TYPE_APPLICATION_INFO);
   application.pApplicationName = "Opal";
   application.pEngineName = "Opal";
-  application.apiVersion = VK_API_VERSION_1_1;
+  application.apiVersion = VK_API_VERSION_1_2; // the most used: 1.1 devices still do (bufferDeviceAddresses)
   auto info = vulkanStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
   info.pApplicationInfo = &application;
   const char* debugUtils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
@@ -330,6 +330,19 @@ void VulkanContext::createDevice()
   auto deviceInfo = vulkanStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
+  // Buffer device addresses where the device has them (Vulkan 1.2): the
+  // passes for volumes beyond one storage buffer's range read so (§3.7).
+  auto vulkan12 = vulkanStruct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+  if (this->Properties.apiVersion >= VK_API_VERSION_1_2)
+  {
+    auto features = vulkanStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+    features.pNext = &vulkan12;
+    vkGetPhysicalDeviceFeatures2(this->PhysicalDevice, &features);
+    this->BufferDeviceAddresses = vulkan12.bufferDeviceAddress == VK_TRUE;
+    vulkan12 = vulkanStruct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
+    vulkan12.bufferDeviceAddress = this->BufferDeviceAddresses ? VK_TRUE : VK_FALSE;
+    deviceInfo.pNext = &vulkan12;
+  }
   VkDevice device = VK_NULL_HANDLE;
   checkVulkan(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");
   this->Device = VulkanHandle<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });

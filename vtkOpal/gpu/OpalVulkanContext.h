@@ -84,6 +84,8 @@ public:
     return this->MemoryProperties.memoryTypes[type].propertyFlags;
   }
   bool stagingUploads() const { return this->StagingUploads; }
+  // Whether shaders may address buffers (Vulkan 1.2's bufferDeviceAddress).
+  bool bufferDeviceAddresses() const { return this->BufferDeviceAddresses; }
 
   // Book-keeping of the optional memory limit: a reservation of `bytes`,
   // released when the returned object goes; throws a VulkanError naming the
@@ -126,6 +128,7 @@ private:
   VulkanHandle<VkFence> Fence;
   std::uint64_t MemoryLimit = 0;
   bool StagingUploads = false;
+  bool BufferDeviceAddresses = false;
   std::uint64_t MemoryInUse = 0;
   mutable std::mutex MessageMutex;
   std::vector<std::string> Messages;
