@@ -249,6 +249,11 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
     // An aborted frame was not a failure of its input: asked for again, it renders.
     return frame.Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
   }
+  catch (const opal::DeviceLostError& e)
+  {
+    this->DropLostDevice(e);
+    return RenderOutcome::DeviceLost;
+  }
   catch (const opal::NoVulkanDeviceError& e)
   {
     vtkErrorMacro("No Vulkan device: " << e.what());
@@ -308,6 +313,10 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
     this->Session().startFrame(frame); // the session's own worker (the frame ticket)
     return true;
   }
+  catch (const opal::DeviceLostError& e)
+  {
+    this->DropLostDevice(e);
+  }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< e.what());
@@ -327,6 +336,10 @@ bool vtkOpalSpectralRender::TakeBackgroundFrame(vtkImageData* image)
     const std::optional<opal::RenderFrame> frame =
       this->RenderSession ? this->RenderSession->takeFrame() : std::nullopt;
     return frame && this->Publish(*frame, image);
+  }
+  catch (const opal::DeviceLostError& e)
+  {
+    this->DropLostDevice(e); // the worker's frame, rethrown by takeFrame
   }
   catch (const std::exception& e)
   {
@@ -363,6 +376,15 @@ void vtkOpalSpectralRender::EndSession()
   }
   this->RenderSession.reset();
   this->UploadedVolume = nullptr;
+}
+
+void vtkOpalSpectralRender::DropLostDevice(const opal::DeviceLostError& error)
+{
+  this->EndSession();
+  vtkErrorMacro(<< error.what() << "; the next render creates a new device");
+  // The filter's state changed (it has no device): a live view that
+  // remembers a failed update by the filter's MTime asks again.
+  this->Modified();
 }
 
 void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)

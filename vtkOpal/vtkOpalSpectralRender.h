@@ -36,7 +36,9 @@
  * The filter keeps a render session (docs/design.md §5): the volume stays on
  * the device while the input is unchanged, and the light field while the
  * light, the rotation and the refractive index are, so a new camera re-renders
- * without upload or light pass.
+ * without upload or light pass. A device lost (VK_ERROR_DEVICE_LOST) ends
+ * the session: that request fails with one error naming it, and the next
+ * creates a new device and uploads the volume again.
  *
  * A frame can also be rendered in the background while the caller goes on
  * (StartBackgroundFrame; the live view's final frames, docs/design.md §5.2):
@@ -64,6 +66,7 @@ struct RenderFrame;
 struct RenderParameters;
 struct ResolvedFrame;
 class RenderSession;
+class DeviceLostError;
 }
 
 class vtkImageData;
@@ -172,6 +175,7 @@ private:
     Rendered,
     Failed, // said in an error
     Aborted,
+    DeviceLost, // said in an error; not the request's failure: asked again, it renders on a new device
   };
   // Renders the update extent of the input into `output`.
   RenderOutcome RenderExtent(
@@ -179,6 +183,10 @@ private:
 
   // Ends the session (its background frame first), keeping its frame counts.
   void EndSession();
+  // After VK_ERROR_DEVICE_LOST nothing made on the device is usable: the
+  // session and the volume's upload go, said once in an error, and the next
+  // request creates a new device.
+  void DropLostDevice(const opal::DeviceLostError& error);
   // Completed and abandoned background frames of the sessions ended so far.
   int EndedSessionFrames[2] = { 0, 0 };
 

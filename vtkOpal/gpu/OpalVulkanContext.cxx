@@ -3,6 +3,7 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <charconv>
 #include <cstdlib>
@@ -246,7 +247,54 @@ std::uint64_t environmentMemoryLimit()
   }
   return *megabytes << 20;
 }
+
+// The test hook's countdown, shared by every context: the one that replaces
+// a lost device must not lose its own.
+std::atomic<std::uint64_t>& submitsUntilLoss()
+{
+  static std::atomic<std::uint64_t> submits{ 0 };
+  return submits;
+}
+
+// Counts a submit down; true for the one that reaches the loss.
+bool deviceLossDue()
+{
+  std::atomic<std::uint64_t>& submits = submitsUntilLoss();
+  std::uint64_t left = submits.load();
+  while (left > 0 && !submits.compare_exchange_weak(left, left - 1))
+  {
+  }
+  return left == 1;
+}
+
+// OPAL_VULKAN_TEST_LOSE_DEVICE=<n>: the n-th submit of the process reports
+// the loss. Read once, so that the context made after the loss renders.
+void armDeviceLossFromEnvironment()
+{
+  static const bool armed = [] {
+    const char* value = std::getenv("OPAL_VULKAN_TEST_LOSE_DEVICE");
+    if (!value || !*value)
+    {
+      return false;
+    }
+    const std::optional<std::uint64_t> submits = environmentDigits(value, UINT32_MAX);
+    if (!submits)
+    {
+      throw VulkanError(std::string("OPAL_VULKAN_TEST_LOSE_DEVICE must be a submit's number in digits, got \"") +
+          value + "\"",
+        VK_ERROR_INITIALIZATION_FAILED);
+    }
+    VulkanContext::loseDeviceAtSubmitForTesting(*submits);
+    return true;
+  }();
+  (void)armed;
+}
 } // namespace
+
+void VulkanContext::loseDeviceAtSubmitForTesting(std::uint64_t submits)
+{
+  submitsUntilLoss().store(submits);
+}
 
 VulkanContext::VulkanContext(const VulkanOptions& options)
 {
@@ -265,6 +313,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   this->choosePhysicalDevice(options);
   this->createDevice();
   this->createCommandObjects();
+  armDeviceLossFromEnvironment();
   this->StagingUploads = options.StagingUploads;
   // An explicit limit wins over the environment's.
   this->MemoryLimit = options.MemoryLimitBytes ? options.MemoryLimitBytes : environmentMemoryLimit();
@@ -458,6 +507,10 @@ void VulkanContext::releaseMemory(std::uint64_t bytes)
 
 void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& record)
 {
+  if (this->Lost)
+  {
+    checkVulkan(VK_ERROR_DEVICE_LOST, "vkQueueSubmit");
+  }
   VkDevice device = this->Device.get();
   auto allocateInfo = vulkanStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
   allocateInfo.commandPool = this->CommandPool.get();
@@ -481,7 +534,9 @@ void VulkanContext::submitAndWait(const std::function<void(VkCommandBuffer)>& re
   VkFence fence = this->Fence.get();
   checkVulkan(vkResetFences(device, 1, &fence), "vkResetFences");
   checkVulkan(vkQueueSubmit(this->Queue, 1, &submit, fence), "vkQueueSubmit");
-  checkVulkan(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  const VkResult waited = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  this->Lost = waited == VK_SUCCESS && deviceLossDue();
+  checkVulkan(this->Lost ? VK_ERROR_DEVICE_LOST : waited, "vkWaitForFences");
 }
 
 std::vector<std::string> VulkanContext::validationMessages() const

@@ -99,6 +99,13 @@ public:
   // Records commands into a one-time command buffer, submits it and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
 
+  // Test hook: the n-th submitAndWait from now, in any context of the
+  // process, reports VK_ERROR_DEVICE_LOST (after its work ran), as a GPU
+  // reset would, and so does every later submit of that context, as on a
+  // lost device; 0 disarms. OPAL_VULKAN_TEST_LOSE_DEVICE=<n> arms it when
+  // the process's first context is created (for pvpython and the programs).
+  static void loseDeviceAtSubmitForTesting(std::uint64_t submits);
+
   // Messages the validation layer emitted (warnings and errors) so far.
   std::vector<std::string> validationMessages() const;
   bool validationEnabled() const { return static_cast<bool>(this->Messenger); }
@@ -126,6 +133,7 @@ private:
   std::uint32_t QueueFamily = 0;
   VulkanHandle<VkCommandPool> CommandPool;
   VulkanHandle<VkFence> Fence;
+  bool Lost = false; // by the test hook: the device runs nothing more
   std::uint64_t MemoryLimit = 0;
   bool StagingUploads = false;
   bool BufferDeviceAddresses = false;

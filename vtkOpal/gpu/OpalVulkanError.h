@@ -30,11 +30,29 @@ public:
   using VulkanError::VulkanError;
 };
 
+// VK_ERROR_DEVICE_LOST: the device and every object made on it are unusable
+// (a GPU reset, a watchdog, a driver fault). Unlike other failures it is
+// not the request's: whoever holds the device drops it, and a new device
+// renders the same request.
+class DeviceLostError : public VulkanError
+{
+public:
+  explicit DeviceLostError(const char* call)
+    : VulkanError(std::string("The Vulkan device was lost (VK_ERROR_DEVICE_LOST) in ") + call, VK_ERROR_DEVICE_LOST)
+  {
+  }
+};
+
 const char* vulkanResultName(VkResult result);
 
-// Throws VulkanError("<call> failed: <VK_ERROR_...>") unless result is VK_SUCCESS.
+// Throws VulkanError("<call> failed: <VK_ERROR_...>") unless result is
+// VK_SUCCESS; DeviceLostError for VK_ERROR_DEVICE_LOST.
 inline void checkVulkan(VkResult result, const char* call)
 {
+  if (result == VK_ERROR_DEVICE_LOST)
+  {
+    throw DeviceLostError(call);
+  }
   if (result != VK_SUCCESS)
   {
     throw VulkanError(std::string(call) + " failed: " + vulkanResultName(result), result);
