@@ -124,7 +124,7 @@ ComputePipeline::ComputePipeline(VulkanContext& context, const StorageBufferBind
   info.stage.pSpecializationInfo = specialisation.empty() ? nullptr : &specialisationInfo;
   info.layout = bindings.pipelineLayout();
   VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVulkan(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+  checkVulkan(vkCreateComputePipelines(device, context.pipelineCache(), 1, &info, nullptr, &pipeline),
     "vkCreateComputePipelines");
   this->Pipeline = VulkanHandle<VkPipeline>(pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
 }

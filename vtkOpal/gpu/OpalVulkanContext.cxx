@@ -313,6 +313,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   this->choosePhysicalDevice(options);
   this->createDevice();
   this->createCommandObjects();
+  this->Pipelines = std::make_unique<PipelineCache>(this->Device.get(), this->Properties);
   armDeviceLossFromEnvironment();
   this->StagingUploads = options.StagingUploads;
   // An explicit limit wins over the environment's.

@@ -4,6 +4,7 @@
 // every message it emits is recorded (tests fail on any).
 #pragma once
 
+#include "OpalPipelineCache.h"
 #include "OpalVulkanHandle.h"
 
 #include <vulkan/vulkan.h>
@@ -106,6 +107,12 @@ public:
   // the process's first context is created (for pvpython and the programs).
   static void loseDeviceAtSubmitForTesting(std::uint64_t submits);
 
+  // The pipeline cache every compute pipeline is created with, kept on disk
+  // between runs (OpalPipelineCache.h).
+  VkPipelineCache pipelineCache() const { return this->Pipelines->get(); }
+  // Its file (empty for none: OPAL_VULKAN_PIPELINE_CACHE=0).
+  const std::string& pipelineCacheFile() const { return this->Pipelines->file(); }
+
   // Messages the validation layer emitted (warnings and errors) so far.
   std::vector<std::string> validationMessages() const;
   bool validationEnabled() const { return static_cast<bool>(this->Messenger); }
@@ -133,6 +140,7 @@ private:
   std::uint32_t QueueFamily = 0;
   VulkanHandle<VkCommandPool> CommandPool;
   VulkanHandle<VkFence> Fence;
+  std::unique_ptr<PipelineCache> Pipelines; // saved to its file before the device goes
   bool Lost = false; // by the test hook: the device runs nothing more
   std::uint64_t MemoryLimit = 0;
   bool StagingUploads = false;
