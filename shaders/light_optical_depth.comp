@@ -291,6 +291,7 @@ void queueVoxel(int index, int y)
     uvec2 grid = dispatchGrid(slot / uint(LightPassGroupSize) + 1u);
     atomicMax(queues[y].groupsX, grid.x);
     atomicMax(queues[y].groupsY, grid.y);
+    if (slot == 0u) queues[y].groupsZ = 1u; // the queue starts all zero: a dispatch of none
   }
 }
 

@@ -179,6 +179,7 @@ void main()
         uvec2 grid = dispatchGrid(slot / uint(HighlightGroupSize) + 1u);
         atomicMax(queue.groupsX, grid.x);
         atomicMax(queue.groupsY, grid.y);
+        if (slot == 0u) queue.groupsZ = 1u; // the queue starts all zero: a dispatch of none
       }
     }
     return;

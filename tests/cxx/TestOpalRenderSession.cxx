@@ -29,7 +29,7 @@ opal::RenderParameters smallView()
 // The same image, value for value.
 bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
 {
-  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance &&
+  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance && a.Spectrum == b.Spectrum &&
     a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
 }
 
@@ -44,15 +44,16 @@ std::string stages(const opal::FrameStages& ran)
   return "ran:" + s;
 }
 // The path of a GPU with dedicated memory, forced on lavapipe.
-void checkStagingUploads(
+void checkStagingTransfers(
   const opal::RenderVolume& volume, const opal::RenderParameters& p, const opal::RenderImage& expected)
 {
   opal::VulkanOptions staging;
   staging.Validation = true;
-  staging.StagingUploads = true;
+  staging.StagingTransfers = true;
   opaltest::SceneRenderer throughStaging(staging);
   const opal::RenderImage image = throughStaging.render(volume, p);
-  OPAL_CHECK(identical(expected, image), "a volume uploaded through staging buffers renders the same image");
+  OPAL_CHECK(identical(expected, image),
+    "a volume uploaded and an image read back through staging buffers (one copy) give the same image");
   const auto messages = throughStaging.context().validationMessages();
   OPAL_CHECK(messages.empty(),
     "the validation layer is silent about the staging copies" + (messages.empty() ? "" : ": " + messages.front()));
@@ -202,7 +203,7 @@ int TestOpalRenderSession(int, char*[])
     "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
 
   checkScatteredLightStages(session, moved);
-  checkStagingUploads(volume->renderVolume(), moved, b.Image);
+  checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
 
   const auto messages = renderer->context().validationMessages();

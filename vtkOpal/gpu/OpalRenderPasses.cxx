@@ -44,9 +44,6 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
   const int layers = dims[1];
   const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + gpu::LightPassGroupSize - 1) /
     gpu::LightPassGroupSize);
-  // Every layer's queue of entry voxels empty, its indirect dispatch of none.
-  auto* queues = this->Volume->EntryQueues->as<gpu::DispatchQueue>();
-  std::fill(queues, queues + layers, gpu::DispatchQueue{ 0, 1, 1, 0 });
   const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
   const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow);
   const int layersPerSubmit =
@@ -54,6 +51,10 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
   for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
   {
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      if (top == layers - 1)
+      {
+        this->Volume->EntryQueues->recordClear(commands); // every layer's queue empty, a dispatch of none
+      }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
         const gpu::LightPassWork work{ 0, 0, layer };
@@ -250,7 +251,6 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
   const int rowsPerSubmit = static_cast<int>(
     std::max<std::int64_t>(1, MarchPixelsPerSubmit / (static_cast<std::int64_t>(tilesX) * MarchTileSize * MarchTileSize)));
-  *this->Buffers->HighlightQueue->as<gpu::DispatchQueue>() = gpu::DispatchQueue{ 0, 1, 1, 0 };
   for (int firstRow = 0; firstRow < tilesY; firstRow += rowsPerSubmit)
   {
     const int endRow = std::min(tilesY, firstRow + rowsPerSubmit);
@@ -277,12 +277,13 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
 }
 
 // The highlight over the rectangle the march wrote (it recorded the mirror
-// rays): every pixel selects, the queued few are shaded (indirect). The host
-// emptied the queue before the submit.
+// rays): the queue emptied, every pixel selects, the queued few are shaded
+// (indirect).
 void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect)
 {
   const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
   const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  this->Buffers->HighlightQueue->recordClear(commands);
   this->highlightPass(gpu::HighlightSelect)
     .dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
   this->highlightPass(gpu::HighlightShade).dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
@@ -313,10 +314,13 @@ bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress,
   {
     return false;
   }
-  const auto* colour = this->Buffers->PixelColour->as<gpu::PixelColour>();
-  const auto* bragg = this->Buffers->PixelBragg->as<gpu::PixelBragg>();
+  const std::size_t pixels = static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]);
+  const HostReadback host(*this->Context, { { this->Buffers->PixelColour.get(), pixels * sizeof(gpu::PixelColour) },
+    { this->Buffers->PixelBragg.get(), pixels * sizeof(gpu::PixelBragg) } });
+  const auto* colour = host.view<gpu::PixelColour>(0);
+  const auto* bragg = host.view<gpu::PixelBragg>(1);
   std::vector<float> luminance;
-  for (std::size_t i = 0; i < static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]); ++i)
+  for (std::size_t i = 0; i < pixels; ++i)
   {
     if (bragg[i].hit != 0 && colour[i].xyz.y > 0)
     {

@@ -241,8 +241,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
   }
   this->Buffers->Parameters =
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
-  this->Buffers->HighlightQueue =
-    std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::DispatchQueue), "highlight queue header");
+  this->Buffers->HighlightQueue = std::make_unique<VulkanBuffer>(
+    *this->Context, sizeof(gpu::DispatchQueue), "highlight queue header", BufferPlacement::DeviceLocal);
   sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
@@ -328,8 +328,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->EntryVoxels =
     deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels", nullptr, placement);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
-  // The host resets the light pass's queues before every sweep.
-  uploaded->EntryQueues = std::make_unique<VulkanBuffer>(
+  // The light pass's queues, emptied on the device before every sweep.
+  uploaded->EntryQueues = deviceLocalBuffer(
     context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
@@ -609,12 +609,14 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.HighlightPixels.reset();
     b.PixelRadiance.reset();
     b.PixelRGB8.reset();
-    b.PixelColour = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelColour), "XYZ image");
-    b.PixelBragg = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelBragg), "Bragg image");
-    b.PixelMirror = std::make_unique<VulkanBuffer>(context, n * sizeof(gpu::PixelMirror), "mirror image");
-    b.HighlightPixels = std::make_unique<VulkanBuffer>(context, n * sizeof(std::uint32_t), "highlight queue");
-    b.PixelRadiance = std::make_unique<VulkanBuffer>(context, n * 3 * sizeof(float), "Radiance image");
-    b.PixelRGB8 = std::make_unique<VulkanBuffer>(context, n * sizeof(std::uint32_t), "RGB image");
+    // Device-local: mapped where that memory is host-visible (lavapipe,
+    // integrated GPUs), else read back through one staging copy (hostViews).
+    b.PixelColour = deviceLocalBuffer(context, n * sizeof(gpu::PixelColour), "XYZ image");
+    b.PixelBragg = deviceLocalBuffer(context, n * sizeof(gpu::PixelBragg), "Bragg image");
+    b.PixelMirror = deviceLocalBuffer(context, n * sizeof(gpu::PixelMirror), "mirror image");
+    b.HighlightPixels = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "highlight queue");
+    b.PixelRadiance = deviceLocalBuffer(context, n * 3 * sizeof(float), "Radiance image");
+    b.PixelRGB8 = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "RGB image");
     b.PixelCapacity = n;
     rebind = true;
   }
@@ -632,7 +634,7 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
   if (!b.PixelSpectrum || spectrumFloats > b.SpectrumFloats)
   {
     b.PixelSpectrum.reset();
-    b.PixelSpectrum = std::make_unique<VulkanBuffer>(context, spectrumFloats * sizeof(float), "Spectrum image");
+    b.PixelSpectrum = deviceLocalBuffer(context, spectrumFloats * sizeof(float), "Spectrum image");
     b.SpectrumFloats = spectrumFloats;
     rebind = true;
   }
@@ -761,10 +763,14 @@ RenderImage RenderSession::readBack(const FrameSetup& setup) const
   const bool d65 = setup.Parameters.Illuminant == LightSpectrum::D65;
   image.Illuminant = d65 ? "D65" : "none";
   image.IlluminantScale = d65 && !setup.Bins.empty() ? setup.Bins.front().D65Scale : 1.0;
-  const auto* rgb8 = b.PixelRGB8->as<std::uint32_t>();
-  const auto* colour = b.PixelColour->as<gpu::PixelColour>();
-  const auto* bragg = b.PixelBragg->as<gpu::PixelBragg>();
-  const auto* radiance = b.PixelRadiance->as<float>();
+  const std::size_t spectrumFloats = setup.Parameters.WriteSpectrum ? pixels * setup.Bins.size() : 0;
+  const HostReadback host(*this->Context, { { b.PixelRGB8.get(), pixels * sizeof(std::uint32_t) },
+    { b.PixelColour.get(), pixels * sizeof(gpu::PixelColour) }, { b.PixelBragg.get(), pixels * sizeof(gpu::PixelBragg) },
+    { b.PixelRadiance.get(), pixels * 3 * sizeof(float) }, { b.PixelSpectrum.get(), spectrumFloats * sizeof(float) } });
+  const auto* rgb8 = host.view<std::uint32_t>(0);
+  const auto* colour = host.view<gpu::PixelColour>(1);
+  const auto* bragg = host.view<gpu::PixelBragg>(2);
+  const auto* radiance = host.view<float>(3);
   image.Radiance.assign(radiance, radiance + 3 * pixels);
   image.RGB.resize(pixels * 3);
   image.XYZ.resize(pixels * 3);
@@ -780,10 +786,10 @@ RenderImage RenderSession::readBack(const FrameSetup& setup) const
     image.Depth[i] = colour[i].depth;
     image.DominantBraggWavelength[i] = bragg[i].dominantWavelength;
   }
-  if (setup.Parameters.WriteSpectrum)
+  if (spectrumFloats > 0)
   {
-    const auto* spectrum = b.PixelSpectrum->as<float>();
-    image.Spectrum.assign(spectrum, spectrum + pixels * setup.Bins.size());
+    const auto* spectrum = host.view<float>(4);
+    image.Spectrum.assign(spectrum, spectrum + spectrumFloats);
   }
   return image;
 }

@@ -61,10 +61,72 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
     VulkanHandle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
   checkVulkan(vkBindBufferMemory(device, this->Buffer.get(), memory, 0), "vkBindBufferMemory");
   const bool mappable = (this->Context.memoryTypeFlags(type) & hostVisible) == hostVisible &&
-    !(deviceLocal && this->Context.stagingUploads());
+    !(deviceLocal && this->Context.stagingTransfers());
   if (mappable)
   {
     checkVulkan(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &this->Mapped), "vkMapMemory");
+  }
+}
+
+void VulkanBuffer::recordClear(VkCommandBuffer commands) const
+{
+  vkCmdFillBuffer(commands, this->buffer(), 0, VK_WHOLE_SIZE, 0);
+  auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+namespace
+{
+// Before the copies: the passes' writes visible to transfers (a fence wait
+// orders execution, not memory, between submits); after: the copies' to the host.
+void barrier(VkCommandBuffer commands, VkPipelineStageFlags from, VkAccessFlags written, VkPipelineStageFlags to,
+  VkAccessFlags read)
+{
+  auto memory = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  memory.srcAccessMask = written;
+  memory.dstAccessMask = read;
+  vkCmdPipelineBarrier(commands, from, to, 0, 1, &memory, 0, nullptr, 0, nullptr);
+}
+} // namespace
+
+HostReadback::HostReadback(
+  VulkanContext& context, const std::vector<std::pair<const VulkanBuffer*, std::uint64_t>>& parts)
+{
+  std::uint64_t total = 0;
+  for (const auto& [buffer, bytes] : parts)
+  {
+    this->Views.push_back(buffer->as<const void>());
+    total += this->Views.back() ? 0 : (bytes + 15) / 16 * 16;
+  }
+  if (total == 0)
+  {
+    return; // every buffer mapped
+  }
+  this->Staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostVisible);
+  std::vector<std::uint64_t> offsets;
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+      VK_ACCESS_TRANSFER_READ_BIT);
+    std::uint64_t offset = 0;
+    for (std::size_t i = 0; i < parts.size(); ++i)
+    {
+      offsets.push_back(offset);
+      if (!this->Views[i] && parts[i].second > 0)
+      {
+        const VkBufferCopy region{ 0, offset, parts[i].second };
+        vkCmdCopyBuffer(commands, parts[i].first->buffer(), this->Staging->buffer(), 1, &region);
+        offset += (parts[i].second + 15) / 16 * 16;
+      }
+    }
+    barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+      VK_ACCESS_HOST_READ_BIT);
+  });
+  for (std::size_t i = 0; i < parts.size(); ++i)
+  {
+    this->Views[i] = this->Views[i] ? this->Views[i] : this->Staging->as<const char>() + offsets[i];
   }
 }
 

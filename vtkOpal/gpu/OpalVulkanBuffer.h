@@ -13,7 +13,10 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace opal
 {
@@ -54,6 +57,9 @@ public:
   // Copies `bytes` from the host into the buffer's start: directly where it
   // is mapped, else through a staging buffer (waits for the copy).
   void upload(const void* source, std::uint64_t bytes);
+  // Records: the whole buffer set to zero on the device, then a barrier so
+  // that the next dispatch (or indirect dispatch) sees it.
+  void recordClear(VkCommandBuffer commands) const;
 
 private:
   void allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what);
@@ -67,6 +73,26 @@ private:
   VulkanHandle<VkBuffer> Buffer;
   VulkanHandle<VkDeviceMemory> Memory;
   void* Mapped = nullptr;
+};
+
+// The host's view of device buffers the passes wrote (docs/design.md §3.7):
+// their own memory where it is mapped (lavapipe, integrated GPUs), else one
+// staging buffer that one submit fills from all of them (a discrete GPU's
+// memory is not the host's to read element by element).
+class HostReadback
+{
+public:
+  // The first `bytes` of each buffer.
+  HostReadback(VulkanContext& context, const std::vector<std::pair<const VulkanBuffer*, std::uint64_t>>& parts);
+  template <typename T>
+  const T* view(std::size_t part) const
+  {
+    return static_cast<const T*>(this->Views.at(part));
+  }
+
+private:
+  std::unique_ptr<VulkanBuffer> Staging;
+  std::vector<const void*> Views;
 };
 
 } // namespace opal

@@ -93,6 +93,17 @@ VulkanHandle<VkInstance> createInstance(bool validation)
   return VulkanHandle<VkInstance>(instance, [](VkInstance i) { vkDestroyInstance(i, nullptr); });
 }
 
+bool deviceExtensionAvailable(VkPhysicalDevice device, const char* name)
+{
+  std::uint32_t count = 0;
+  checkVulkan(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr), "vkEnumerateDeviceExtensionProperties");
+  std::vector<VkExtensionProperties> extensions(count);
+  checkVulkan(
+    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()), "vkEnumerateDeviceExtensionProperties");
+  return std::any_of(extensions.begin(), extensions.end(),
+    [name](const VkExtensionProperties& extension) { return std::strcmp(extension.extensionName, name) == 0; });
+}
+
 std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance)
 {
   std::uint32_t count = 0;
@@ -315,7 +326,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   this->createCommandObjects();
   this->Pipelines = std::make_unique<PipelineCache>(this->Device.get(), this->Properties);
   armDeviceLossFromEnvironment();
-  this->StagingUploads = options.StagingUploads;
+  this->StagingTransfers = options.StagingTransfers;
   // An explicit limit wins over the environment's.
   this->MemoryLimit = options.MemoryLimitBytes ? options.MemoryLimitBytes : environmentMemoryLimit();
 }
@@ -393,6 +404,11 @@ void VulkanContext::createDevice()
     vulkan12.bufferDeviceAddress = this->BufferDeviceAddresses ? VK_TRUE : VK_FALSE;
     deviceInfo.pNext = &vulkan12;
   }
+  // The heaps' budgets where the device reports them (memoryBudget).
+  const char* memoryBudget = VK_EXT_MEMORY_BUDGET_EXTENSION_NAME;
+  this->MemoryBudgets = deviceExtensionAvailable(this->PhysicalDevice, memoryBudget);
+  deviceInfo.enabledExtensionCount = this->MemoryBudgets ? 1 : 0;
+  deviceInfo.ppEnabledExtensionNames = &memoryBudget;
   VkDevice device = VK_NULL_HANDLE;
   checkVulkan(vkCreateDevice(this->PhysicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");
   this->Device = VulkanHandle<VkDevice>(device, [](VkDevice d) { vkDestroyDevice(d, nullptr); });
@@ -489,16 +505,19 @@ std::uint64_t VulkanContext::memoryBudget() const
   {
     return this->MemoryLimit;
   }
-  std::uint64_t largest = 0;
-  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  // The heap of the memory type a device-local buffer takes (on a discrete
+  // GPU its own memory, not the host's, which the largest host-visible heap was).
+  const std::uint32_t heap = this->MemoryProperties.memoryTypes[this->deviceLocalMemoryType(~0u)].heapIndex;
+  if (!this->MemoryBudgets)
   {
-    const VkMemoryType& type = this->MemoryProperties.memoryTypes[i];
-    if (type.propertyFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
-    {
-      largest = std::max<std::uint64_t>(largest, this->MemoryProperties.memoryHeaps[type.heapIndex].size);
-    }
+    return this->MemoryProperties.memoryHeaps[heap].size;
   }
-  return largest;
+  auto budget = vulkanStruct<VkPhysicalDeviceMemoryBudgetPropertiesEXT>(
+    VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT);
+  auto properties = vulkanStruct<VkPhysicalDeviceMemoryProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2);
+  properties.pNext = &budget;
+  vkGetPhysicalDeviceMemoryProperties2(this->PhysicalDevice, &properties);
+  return budget.heapBudget[heap]; // what this process may hold in all, its own buffers included
 }
 
 void VulkanContext::releaseMemory(std::uint64_t bytes)

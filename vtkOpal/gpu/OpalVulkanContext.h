@@ -30,9 +30,10 @@ struct VulkanOptions
   // Refuse device allocations beyond this many bytes in all (0: no limit);
   // also settable by OPAL_VULKAN_MEMORY_LIMIT_MB. Simulates a small device.
   std::uint64_t MemoryLimitBytes = 0;
-  // Upload the volume through staging buffers even where device-local memory
-  // is host-visible (lavapipe): exercises the path a discrete GPU takes.
-  bool StagingUploads = false;
+  // Treat device-local memory as the host's to neither map nor read (a
+  // discrete GPU's) even where it is host-visible (lavapipe): uploads and
+  // read-backs go through staging buffers, the path a discrete GPU takes.
+  bool StagingTransfers = false;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.
   struct SimulatedLimits
@@ -84,7 +85,7 @@ public:
   {
     return this->MemoryProperties.memoryTypes[type].propertyFlags;
   }
-  bool stagingUploads() const { return this->StagingUploads; }
+  bool stagingTransfers() const { return this->StagingTransfers; }
   // Whether shaders may address buffers (Vulkan 1.2's bufferDeviceAddress).
   bool bufferDeviceAddresses() const { return this->BufferDeviceAddresses; }
 
@@ -93,8 +94,9 @@ public:
   // limit when it would be exceeded.
   MemoryReservation reserveMemory(std::uint64_t bytes);
 
-  // What the render may use: the memory limit if one is set, else the largest
-  // heap with host-visible memory (where the buffers live).
+  // What the render may use: the memory limit if one is set, else the budget
+  // of the heap the device-local buffers come from (VK_EXT_memory_budget's,
+  // what other programs leave, where the device reports it; else its size).
   std::uint64_t memoryBudget() const;
 
   // Records commands into a one-time command buffer, submits it and waits.
@@ -143,8 +145,9 @@ private:
   std::unique_ptr<PipelineCache> Pipelines; // saved to its file before the device goes
   bool Lost = false; // by the test hook: the device runs nothing more
   std::uint64_t MemoryLimit = 0;
-  bool StagingUploads = false;
+  bool StagingTransfers = false;
   bool BufferDeviceAddresses = false;
+  bool MemoryBudgets = false; // VK_EXT_memory_budget enabled
   std::uint64_t MemoryInUse = 0;
   mutable std::mutex MessageMutex;
   std::vector<std::string> Messages;
