@@ -73,13 +73,22 @@ VulkanHandle<VkInstance> createInstance(bool validation)
   application.apiVersion = VK_API_VERSION_1_2; // the most used: 1.1 devices still do (bufferDeviceAddresses)
   auto info = vulkanStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
   info.pApplicationInfo = &application;
-  const char* debugUtils = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  // Both extensions come with the validation layer. Synchronization validation
+  // is off in the layer by default; on, a missing barrier (a hazard between
+  // dispatches, copies or submits) is an error message like any other, so it
+  // fails whatever checks validation, under ctest or a user's own run.
+  const char* extensions[] = { VK_EXT_DEBUG_UTILS_EXTENSION_NAME, VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME };
+  const VkValidationFeatureEnableEXT synchronization = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  auto features = vulkanStruct<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT);
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &synchronization;
   if (validation)
   {
+    info.pNext = &features;
     info.enabledLayerCount = 1;
     info.ppEnabledLayerNames = &ValidationLayer;
-    info.enabledExtensionCount = 1;
-    info.ppEnabledExtensionNames = &debugUtils;
+    info.enabledExtensionCount = 2;
+    info.ppEnabledExtensionNames = extensions;
   }
   VkInstance instance = VK_NULL_HANDLE;
   const VkResult result = vkCreateInstance(&info, nullptr, &instance);
