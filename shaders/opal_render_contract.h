@@ -51,7 +51,7 @@ OPAL_CONSTANT int PixelRGB8Binding = 11;       // uint per pixel: 8-bit sRGB, R 
 OPAL_CONSTANT int LightEntryQueuesBinding = 12; // DispatchQueue per layer of the grid
 OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
 OPAL_CONSTANT int PixelMirrorBinding = 14;     // PixelMirror per pixel
-OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue: the pixels queued for the highlight
+OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue, its count: the pixels queued for the highlight
 // Absorption (docs/design.md §3.9), read only by the passes specialised on it
 // (ABSORPTION); without absorption both hold a placeholder.
 OPAL_CONSTANT int AbsorptionCellBinding = 16;   // vec2 per voxel: mu_a at 550 nm, coloured and grey (1/mm)
@@ -262,11 +262,19 @@ struct LightPassWork
 // Invocations per workgroup of the light pass.
 OPAL_CONSTANT int LightPassGroupSize = 256;
 
-// Push constants of the view march and the highlight pass: the tile of the
-// rendered rectangle this dispatch covers.
+// Push constants of the view march: the first pixel, in the rendered
+// rectangle, of the band of rows this dispatch covers.
 struct MarchTile
 {
   ivec2 origin;
+};
+
+// Push constants of the highlight's shade pass: the queued pixels
+// [first, first + count) this dispatch shades.
+struct HighlightWork
+{
+  int first;
+  int count;
 };
 
 // Specialisation constants, by constant_id: each pass's layout(constant_id =

@@ -9,7 +9,8 @@
 // dispatches of this shader (specialisation constant 0): HighlightSelect over
 // every pixel reads what the march recorded and queues the pixels that may
 // see the light (and those at the rectangle's edge, whose neighbour it must
-// trace); HighlightShade, indirect, supersamples only those.
+// trace); HighlightShade supersamples only those, in dispatches of the
+// queue's items the host sizes (no submit runs long).
 #extension GL_GOOGLE_include_directive : require
 
 #include "opal_render_bindings.glsl"
@@ -24,7 +25,8 @@ layout(std430, set = 0, binding = PixelColourBinding) buffer PixelColourImage { 
 layout(std430, set = 0, binding = PixelBraggBinding) readonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
 layout(std430, set = 0, binding = PixelSpectrumBinding) buffer PixelSpectrum { float pixelSpectrum[]; };
 layout(std430, set = 0, binding = PixelMirrorBinding) readonly buffer PixelMirrorImage { PixelMirror pixelMirror[]; };
-layout(std430, set = 0, binding = HighlightQueueBinding) buffer HighlightQueue { DispatchQueue queue; };
+layout(std430, set = 0, binding = HighlightQueueBinding) buffer HighlightQueue { DispatchQueue queue; }; // its count
+layout(push_constant) uniform HighlightPush { HighlightWork highlightWork; };
 layout(std430, set = 0, binding = HighlightPixelsBinding) buffer HighlightPixels { uint queuedPixels[]; };
 
 // The mirror point of the primary ray through the pixel `offset` from
@@ -172,19 +174,12 @@ void main()
     ivec2 local = ivec2(item % P.rectSize.x, item / P.rectSize.x);
     if (reachOfLight(local, item, true).x >= 0.0)
     {
-      uint slot = atomicAdd(queue.count, 1u);
-      queuedPixels[slot] = uint(item);
-      if (slot % uint(HighlightGroupSize) == 0u)
-      {
-        uvec2 grid = dispatchGrid(slot / uint(HighlightGroupSize) + 1u);
-        atomicMax(queue.groupsX, grid.x);
-        atomicMax(queue.groupsY, grid.y);
-        if (slot == 0u) queue.groupsZ = 1u; // the queue starts all zero: a dispatch of none
-      }
+      queuedPixels[atomicAdd(queue.count, 1u)] = uint(item);
     }
     return;
   }
-  if (item >= int(queue.count)) return;
+  item += highlightWork.first;
+  if (item >= highlightWork.first + highlightWork.count || item >= int(queue.count)) return;
   int pixelIndex = int(queuedPixels[item]);
   shade(ivec2(pixelIndex % P.rectSize.x, pixelIndex / P.rectSize.x), pixelIndex);
 }

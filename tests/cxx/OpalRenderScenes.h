@@ -76,6 +76,12 @@ public:
     {
       throw std::runtime_error("the frame did not complete");
     }
+    // Every test's frames under the validation layer (synchronization included): any message fails it.
+    const std::vector<std::string> messages = this->Session.context().validationMessages();
+    if (!messages.empty())
+    {
+      throw std::runtime_error("the Vulkan validation layer reported: " + messages.front());
+    }
     return std::move(frame.Image);
   }
 

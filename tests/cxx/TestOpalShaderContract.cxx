@@ -95,6 +95,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
     OPAL_FIELD("tile.", MarchTile, origin),
+    OPAL_FIELD("highlightWork.", HighlightWork, first),
+    OPAL_FIELD("highlightWork.", HighlightWork, count),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, voxelCells),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, surfaceDistance),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, lightField),
@@ -110,7 +112,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 
 // Prefixes of the contract's structs in the shaders' reflection.
 const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "domains[0].", "pixelColour[0].",
-  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "volumeAddresses." };
+  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "highlightWork.", "volumeAddresses." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },

@@ -46,10 +46,11 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
     gpu::LightPassGroupSize);
   const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
   const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow);
-  const int layersPerSubmit =
-    static_cast<int>(std::max<std::int64_t>(1, LightSweepVoxelsPerSubmit / (static_cast<std::int64_t>(dims[0]) * dims[2])));
-  for (int top = layers - 1; top >= 0; top -= layersPerSubmit)
+  const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * dims[2];
+  for (int top = layers - 1; top >= 0;)
   {
+    const int layersPerSubmit = static_cast<int>(std::clamp<std::int64_t>(this->SweepPacer.items() / layerVoxels, 1, layers));
+    const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
       if (top == layers - 1)
       {
@@ -63,8 +64,10 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
           static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
       }
     });
-    const int done = layers - std::max(0, top - layersPerSubmit + 1);
-    if (!progress.report(0.2 * done / layers))
+    const int swept = std::min(layersPerSubmit, top + 1);
+    this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
+    top -= swept;
+    if (!progress.report(0.2 * (layers - 1 - top) / layers))
     {
       return false;
     }
@@ -76,15 +79,19 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
   const std::size_t voxels = this->Volume->Shape.voxelCount();
-  for (std::size_t first = 0; first < voxels; first += LightSlabVoxels)
+  for (std::size_t first = 0; first < voxels;)
   {
-    const auto count = static_cast<std::int32_t>(std::min<std::size_t>(LightSlabVoxels, voxels - first));
+    const auto count = static_cast<std::int32_t>(
+      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(this->SlabPacer.items(), 1 << 30)), voxels - first));
     const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
+    const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
       this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow)
         .dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     });
-    if (!progress.report(0.2 * static_cast<double>(first + static_cast<std::size_t>(count)) / voxels))
+    this->SlabPacer.measured(count, secondsSince(start));
+    first += static_cast<std::size_t>(count);
+    if (!progress.report(0.2 * static_cast<double>(first) / voxels))
     {
       return false;
     }
@@ -247,46 +254,75 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2
   block.writeSpectrum = spectrum ? 1 : 0;
   this->Buffers->Parameters->upload(&block, sizeof(block));
   ComputePipeline& march = this->marchPipeline(setup);
-  const int tilesX = (rect[2] + MarchTileSize - 1) / MarchTileSize;
-  const int tilesY = (rect[3] + MarchTileSize - 1) / MarchTileSize;
-  const int rowsPerSubmit = static_cast<int>(
-    std::max<std::int64_t>(1, MarchPixelsPerSubmit / (static_cast<std::int64_t>(tilesX) * MarchTileSize * MarchTileSize)));
-  for (int firstRow = 0; firstRow < tilesY; firstRow += rowsPerSubmit)
+  // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are
+  // independent: no barrier between them), as many rows per submit as the
+  // pacer's pixels allow.
+  const int groupsX = (rect[2] + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide;
+  const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
+  const std::int64_t bandPixels = static_cast<std::int64_t>(groupsX) * gpu::MarchGroupSide * MarchTileSize;
+  for (int firstRow = 0; firstRow < rect[3];)
   {
-    const int endRow = std::min(tilesY, firstRow + rowsPerSubmit);
+    const int rows = static_cast<int>(std::min<std::int64_t>(
+      std::max<std::int64_t>(1, this->MarchPacer.items() / bandPixels) * MarchTileSize, rect[3] - firstRow));
+    const bool last = firstRow + rows == rect[3];
+    const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      for (int ty = firstRow; ty < endRow; ++ty)
+      for (int column = 0; column < groupsX; column += maxGroupsX) // one dispatch but beyond the device's count
       {
-        for (int tx = 0; tx < tilesX; ++tx)
-        {
-          const gpu::MarchTile tile{ gpu::ivec2(tx * MarchTileSize, ty * MarchTileSize) };
-          march.dispatch(commands, tile, MarchTileSize / gpu::MarchGroupSide, MarchTileSize / gpu::MarchGroupSide);
-        }
+        march.dispatch(commands, gpu::MarchTile{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow) },
+          static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column)),
+          static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
       }
-      if (endRow == tilesY)
+      if (last)
       {
-        this->recordHighlightPass(commands, rect); // after the last rows, in the same submit
+        this->recordHighlightSelect(commands, rect); // the march recorded every mirror ray
       }
     });
-    if (!progress.report(from + (to - from) * static_cast<double>(endRow) / tilesY))
+    this->MarchPacer.measured(static_cast<std::int64_t>(rows) * groupsX * gpu::MarchGroupSide, secondsSince(start));
+    firstRow += rows;
+    if (!progress.report(from + (to - from) * 0.9 * firstRow / rect[3]))
+    {
+      return false;
+    }
+  }
+  return this->shadeHighlight(progress, from + (to - from) * 0.9) && progress.report(to);
+}
+
+// The highlight's select over the rectangle the march wrote (it recorded
+// the mirror rays): the queue emptied, every pixel selects.
+void RenderSession::recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect)
+{
+  const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
+  this->Buffers->HighlightQueue->recordClear(commands);
+  this->highlightPass(gpu::HighlightSelect)
+    .dispatch(commands, gpu::HighlightWork{ 0, 0 },
+      static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+}
+
+// The highlight's shade over the queued few, in submits the pacer sizes: a
+// pixel near the light's image takes up to 64 x 64 sub-rays, so the shade's
+// cost is not the image's.
+bool RenderSession::shadeHighlight(Progress& progress, double at)
+{
+  const HostReadback queue(*this->Context, { { this->Buffers->HighlightQueue.get(), sizeof(gpu::DispatchQueue) } });
+  const auto queued = static_cast<std::int64_t>(queue.view<gpu::DispatchQueue>(0)->count);
+  for (std::int64_t first = 0; first < queued;)
+  {
+    const std::int64_t count = std::min(queued - first, this->HighlightPacer.items());
+    const auto start = Clock::now();
+    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+      this->highlightPass(gpu::HighlightShade)
+        .dispatch(commands, gpu::HighlightWork{ static_cast<std::int32_t>(first), static_cast<std::int32_t>(count) },
+          static_cast<std::uint32_t>((count + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
+    });
+    this->HighlightPacer.measured(count, secondsSince(start));
+    first += count;
+    if (!progress.report(at))
     {
       return false;
     }
   }
   return true;
-}
-
-// The highlight over the rectangle the march wrote (it recorded the mirror
-// rays): the queue emptied, every pixel selects, the queued few are shaded
-// (indirect).
-void RenderSession::recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect)
-{
-  const std::int64_t pixels = static_cast<std::int64_t>(rect[2]) * rect[3];
-  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
-  this->Buffers->HighlightQueue->recordClear(commands);
-  this->highlightPass(gpu::HighlightSelect)
-    .dispatch(commands, unused, static_cast<std::uint32_t>((pixels + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
-  this->highlightPass(gpu::HighlightShade).dispatchIndirect(commands, unused, *this->Buffers->HighlightQueue, 0);
 }
 
 // A highlight pass's mode for the volume's field reads (made on first use).

@@ -13,6 +13,7 @@
 #include "OpalRenderImage.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderVolume.h"
+#include "OpalSubmitPacer.h"
 #include "OpalVolumeGeometry.h"
 #include "OpalVulkanContext.h"
 
@@ -158,7 +159,8 @@ private:
   void runShadowTable(const FrameSetup& setup);
   bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
     bool spectrum, Progress& progress, double from, double to);
-  void recordHighlightPass(VkCommandBuffer commands, const std::array<int, 4>& rect);
+  void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
+  bool shadeHighlight(Progress& progress, double at);
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
@@ -191,6 +193,12 @@ private:
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
+  // Each pass's work per submit, from its last submit's cost (docs/design.md
+  // §3.7); until measured, what took a fraction of a second on lavapipe.
+  SubmitPacer MarchPacer{ 1 << 17 };    // pixels
+  SubmitPacer SweepPacer{ 1 << 20 };    // voxels, in whole layers
+  SubmitPacer SlabPacer{ 1 << 18 };     // voxels marched to the light
+  SubmitPacer HighlightPacer{ 1 << 12 }; // queued pixels shaded
   int CompletedFrames = 0;
   int AbandonedFrames = 0;
 };

@@ -23,12 +23,7 @@ namespace opal
 namespace sessiondetail
 {
 constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
-// Work per submit: each submit costs a wait for the device, and none may run
-// long enough to trip a GPU's watchdog.
-constexpr int MarchTileSize = 64;                  // pixels per tile side: one dispatch each
-constexpr std::int64_t MarchPixelsPerSubmit = 1 << 17;
-constexpr int LightSlabVoxels = 1 << 18;           // voxels per light-pass submit (per-voxel march)
-constexpr std::int64_t LightSweepVoxelsPerSubmit = 1 << 20;
+constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8),
 // the light field's pair and a place in the light pass's entry queue; with
 // absorption also its two coefficients and their light field's pair.
@@ -38,7 +33,8 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
-static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes);
+static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
+  sizeof(gpu::HighlightWork) <= PushConstantBytes);
 
 using Clock = std::chrono::steady_clock;
 inline double secondsSince(Clock::time_point start)
