@@ -21,10 +21,6 @@ std::string allowedNumbers(const CLI::App* app, const std::string& what)
   }
   const CLI::Option* option = app->get_option_no_throw(what.substr(prefix.size(), equals - prefix.size()));
   const std::string type = option ? option->get_type_name() : "";
-  if (type.rfind("UINT", 0) == 0)
-  {
-    return ": a whole number from 0 to 18446744073709551615";
-  }
   if (type.rfind("INT", 0) == 0)
   {
     return ": a whole number from -2147483648 to 2147483647";

@@ -256,7 +256,7 @@ VulkanContext& RenderSession::context()
 {
   if (!this->Context)
   {
-    throw VulkanError("the render session was released at the process's exit", VK_ERROR_DEVICE_LOST);
+    throw VulkanError("the render session was released at the process's exit", VK_ERROR_INITIALIZATION_FAILED);
   }
   return *this->Context;
 }

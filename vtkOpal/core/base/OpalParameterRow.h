@@ -102,7 +102,7 @@ constexpr bool holds()
 {
   if constexpr (std::is_same_v<VtkType, int>)
   {
-    return std::is_integral_v<Element> || std::is_enum_v<Element>; // Seed: a uint32 VTK holds as int
+    return std::is_integral_v<Element> || std::is_enum_v<Element>; // enumerations as their int; ranges bound the rest
   }
   return std::is_same_v<Element, VtkType>;
 }
