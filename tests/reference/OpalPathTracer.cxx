@@ -121,56 +121,26 @@ double sampleVariance(const std::vector<double>& values, std::size_t begin, std:
   return squares / static_cast<double>(count - 1);
 }
 
-// The standard error of the mean of one sample per stratum. The i.i.d.
-// formula would overstate it many times over (stratifying removes most of the
-// variance of a smooth integrand), and the exact stratified formula needs two
-// samples per stratum; so adjacent strata are collapsed into pairs (a final
-// three when N is odd) whose sample variance stands in for their strata's.
-// Var(mean) = sum over groups of (g/N)^2 s_g^2 / g. Conservative in
-// expectation: it also counts the variation across a pair that the finer
-// strata remove.
-double stratifiedStandardError(const std::vector<double>& values)
-{
-  const std::size_t n = values.size();
-  double sum = 0;
-  for (std::size_t begin = 0; begin < n;)
-  {
-    const std::size_t count = n - begin == 3 ? 3 : 2;
-    sum += static_cast<double>(count) * sampleVariance(values, begin, count);
-    begin += count;
-  }
-  return std::sqrt(sum) / static_cast<double>(n);
-}
-
 struct Estimate
 {
   double Mean = 0;
   double StandardError = 0;
 };
 
-// Single scattering along the ray o + t d over `span`, for one mu_s. The
-// scattering distance is drawn by free-flight sampling truncated to the span,
-// p(t) = mu exp(-mu (t - t0)) / W with W = 1 - exp(-mu (t1 - t0)); dividing
-// the integrand by p leaves W/(4 pi) E(x) exp(-tau_light): the view
-// transmittance and mu_s cancel. u is stratified over the N samples.
-Estimate estimateRay(const Medium& medium, const dvec3& o, const dvec3& d, const Interval& span,
-  double mu, std::vector<double>& contributions, std::mt19937_64& random)
+// One single-scattering sample along the ray o + t d over `span`, for one
+// mu_s, from u in [0, 1). The scattering distance is drawn by free-flight
+// sampling truncated to the span, p(t) = mu exp(-mu (t - t0)) / W with
+// W = 1 - exp(-mu (t1 - t0)); dividing the integrand by p leaves
+// W/(4 pi) E(x) exp(-tau_light): the view transmittance and mu_s cancel.
+double scatteringSample(const Medium& medium, const dvec3& o, const dvec3& d, const Interval& span, double mu, double u)
 {
   const double w = -std::expm1(-mu * (span.Far - span.Near));
   if (!(w > 0))
   {
-    return {}; // no scattering at all (mu_s = 0)
+    return 0; // no scattering at all (mu_s = 0)
   }
-  const std::size_t n = contributions.size();
-  double sum = 0;
-  for (std::size_t k = 0; k < n; ++k)
-  {
-    const double u = (static_cast<double>(k) + uniform01(random)) / static_cast<double>(n);
-    const double t = span.Near - std::log1p(-u * w) / mu;
-    contributions[k] = w / (4 * Pi) * attenuatedIrradiance(medium, o + t * d, mu);
-    sum += contributions[k];
-  }
-  return { sum / static_cast<double>(n), stratifiedStandardError(contributions) };
+  const double t = span.Near - std::log1p(-u * w) / mu;
+  return w / (4 * Pi) * attenuatedIrradiance(medium, o + t * d, mu);
 }
 
 struct Camera
@@ -203,13 +173,31 @@ Camera makeCamera(const View& view)
   return camera;
 }
 
-// The unit direction through the centre of pixel (px, py), rows top to bottom.
-dvec3 rayDirection(const Camera& camera, int px, int py)
+// The unit direction through image point (x, y), in pixels from the top
+// left corner of the image (a pixel's centre is at + 0.5), rows top to bottom.
+dvec3 rayDirection(const Camera& camera, double x, double y)
 {
-  const double nx = 2 * (px + 0.5) / camera.Width - 1;
-  const double ny = 1 - 2 * (py + 0.5) / camera.Height;
+  const double nx = 2 * x / camera.Width - 1;
+  const double ny = 1 - 2 * y / camera.Height;
   return glm::normalize(camera.Forward + nx * camera.TanHalf * camera.Aspect * camera.Right +
     ny * camera.TanHalf * camera.Up);
+}
+
+// The image point of sample k of n over pixel (px, py): the pixel is split
+// into g x g equal cells, g = floor(sqrt(n)); sample k < g^2 lies uniformly
+// in cell k, the rest uniformly anywhere in the pixel. Every cell holds one
+// sample and each sample is uniform over its region, so the mean over the n
+// samples of any function is an unbiased estimate of its mean over the
+// pixel's area (a box filter), and the cells make it a stratified one.
+glm::dvec2 pixelPoint(int px, int py, int k, int n, std::mt19937_64& random)
+{
+  const int g = static_cast<int>(std::sqrt(static_cast<double>(n)) + 1e-9);
+  const double jx = uniform01(random), jy = uniform01(random);
+  if (k >= g * g)
+  {
+    return { px + jx, py + jy };
+  }
+  return { px + (k % g + jx) / g, py + (k / g + jy) / g };
 }
 
 Medium makeMedium(const Scene& scene)
@@ -511,18 +499,28 @@ double tracePath(const Medium& medium, const HalfEllipsoidBody& body, const Tran
   return radiance;
 }
 
-// The mean of independent paths and its standard error.
+// The pixel's paths for one wavelength, each from its own point of the
+// pixel's area (pixelPoint): the mean of their radiances (0 for a path whose
+// ray misses the medium) and its standard error, the i.i.d. formula (which
+// the area's stratification makes conservative). Adds to `hits` the paths
+// whose ray met the medium.
 Estimate estimatePixel(const Medium& medium, const HalfEllipsoidBody& body, const Transport& transport,
-  const EyeEntry& entry, int maxOrder, std::vector<double>& radiances, std::mt19937_64& random)
+  const Camera& camera, int px, int py, int maxOrder, std::vector<double>& radiances, int& hits,
+  std::mt19937_64& random)
 {
+  const int n = static_cast<int>(radiances.size());
   double sum = 0;
-  for (double& radiance : radiances)
+  for (int k = 0; k < n; ++k)
   {
-    radiance = tracePath(medium, body, transport, entry, maxOrder, random);
+    const glm::dvec2 point = pixelPoint(px, py, k, n, random);
+    const EyeEntry entry = enterMedium(
+      body, medium.Axes, camera.Eye, rayDirection(camera, point.x, point.y), transport.RefractiveIndex);
+    hits += entry.Hit ? 1 : 0;
+    double& radiance = radiances[static_cast<std::size_t>(k)];
+    radiance = entry.Hit && transport.Albedo > 0 ? tracePath(medium, body, transport, entry, maxOrder, random) : 0;
     sum += radiance;
   }
-  const std::size_t n = radiances.size();
-  return { sum / static_cast<double>(n), std::sqrt(sampleVariance(radiances, 0, n) / static_cast<double>(n)) };
+  return { sum / n, std::sqrt(sampleVariance(radiances, 0, radiances.size()) / n) };
 }
 
 // mu_t and the albedo per wavelength; a wavelength that does not scatter has
@@ -627,7 +625,91 @@ Image blankImage(const View& view, const std::vector<double>& wavelengths)
   image.Radiance.assign(pixels * wavelengths.size(), 0);
   image.StandardError.assign(pixels * wavelengths.size(), 0);
   image.Hit.assign(pixels, 0);
+  image.Coverage.assign(pixels, 0);
   return image;
+}
+
+// The integers 0 .. n-1 in a random order (Fisher-Yates on uniform01, so
+// that a seed means the same order on every standard library).
+std::vector<int> shuffled(int n, std::mt19937_64& random)
+{
+  std::vector<int> order(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i)
+  {
+    order[static_cast<std::size_t>(i)] = i;
+  }
+  for (int i = n - 1; i > 0; --i)
+  {
+    const auto j = static_cast<std::size_t>(uniform01(random) * (i + 1));
+    std::swap(order[static_cast<std::size_t>(i)], order[j]);
+  }
+  return order;
+}
+
+// One replicate of a trace() pixel: n rays through stratified points of the
+// pixel's area (pixelPoint), each with one scattering distance whose stratum
+// of [0, 1) is shuffled against the area's cells, so that the two
+// stratifications are independent (a Latin hypercube: each pair is uniform
+// over area x distance, the estimate unbiased). A ray that misses the medium
+// contributes 0. Adds each wavelength's mean over the n rays to `means` and
+// returns how many rays met the medium.
+int singleScatteringReplicate(const Camera& camera, const Medium& medium, const std::vector<double>& mu, int px,
+  int py, int n, std::vector<double>& means, std::mt19937_64& random)
+{
+  const std::vector<int> strata = shuffled(n, random);
+  int hits = 0;
+  for (int k = 0; k < n; ++k)
+  {
+    const glm::dvec2 point = pixelPoint(px, py, k, n, random);
+    const dvec3 d = rayDirection(camera, point.x, point.y);
+    const double u = (strata[static_cast<std::size_t>(k)] + uniform01(random)) / n;
+    // Only what lies in front of the eye: t >= 0.
+    const Interval span = intersect(mediumInterval(camera.Eye, d, medium.Axes), Interval{ 0, Infinity });
+    if (span.empty())
+    {
+      continue;
+    }
+    ++hits;
+    for (std::size_t w = 0; w < mu.size(); ++w)
+    {
+      means[w] += scatteringSample(medium, camera.Eye, d, span, mu[w], u) / n;
+    }
+  }
+  return hits;
+}
+
+// A trace() pixel: R independent replicates (8; 2 below 16 samples) of
+// floor(samplesPerPixel / R) rays each. Radiance is the mean of their means;
+// its standard error comes from their spread, which stays honest however
+// much variance the stratification removes within each.
+void traceSinglePixel(const Camera& camera, const Medium& medium, const std::vector<double>& mu, int px, int py,
+  int samplesPerPixel, std::mt19937_64& random, Image& image)
+{
+  const int replicates = samplesPerPixel < 16 ? 2 : 8, n = samplesPerPixel / replicates;
+  const auto pixel = static_cast<std::size_t>(py * camera.Width + px);
+  std::vector<std::vector<double>> means(mu.size(), std::vector<double>(static_cast<std::size_t>(replicates), 0.0));
+  std::vector<double> replicate(mu.size());
+  int hits = 0;
+  for (int r = 0; r < replicates; ++r)
+  {
+    std::fill(replicate.begin(), replicate.end(), 0.0);
+    hits += singleScatteringReplicate(camera, medium, mu, px, py, n, replicate, random);
+    for (std::size_t w = 0; w < mu.size(); ++w)
+    {
+      means[w][static_cast<std::size_t>(r)] = replicate[w];
+    }
+  }
+  for (std::size_t w = 0; w < mu.size(); ++w)
+  {
+    double mean = 0;
+    for (const double m : means[w])
+    {
+      mean += m / replicates;
+    }
+    image.Radiance[pixel * mu.size() + w] = mean;
+    image.StandardError[pixel * mu.size() + w] = std::sqrt(sampleVariance(means[w], 0, means[w].size()) / replicates);
+  }
+  image.Coverage[pixel] = static_cast<double>(hits) / (replicates * n);
 }
 } // namespace
 
@@ -646,23 +728,15 @@ Image trace(const Scene& scene, const View& view, const std::vector<double>& wav
   const Medium medium = makeMedium(scene);
   const std::vector<double> mu = scatteringPerWavelength(scene, wavelengths);
   Image image = blankImage(view, wavelengths);
-  std::mt19937_64 random(seed);
-  std::vector<double> contributions(static_cast<std::size_t>(samplesPerPixel));
   for (int py = 0; py < view.Height; ++py)
   {
     for (int px = 0; px < view.Width; ++px)
     {
-      const dvec3 d = rayDirection(camera, px, py);
-      // Only what lies in front of the eye: t >= 0.
-      const Interval span = intersect(mediumInterval(camera.Eye, d, medium.Axes), Interval{ 0, Infinity });
       const auto pixel = static_cast<std::size_t>(py * view.Width + px);
-      image.Hit[pixel] = span.empty() ? 0 : 1;
-      for (std::size_t w = 0; w < mu.size() && !span.empty(); ++w)
-      {
-        const Estimate e = estimateRay(medium, camera.Eye, d, span, mu[w], contributions, random);
-        image.Radiance[pixel * mu.size() + w] = e.Mean;
-        image.StandardError[pixel * mu.size() + w] = e.StandardError;
-      }
+      const dvec3 centre = rayDirection(camera, px + 0.5, py + 0.5);
+      image.Hit[pixel] = intersect(mediumInterval(camera.Eye, centre, medium.Axes), Interval{ 0, Infinity }).empty() ? 0 : 1;
+      std::mt19937_64 random(mix(seed ^ mix(pixel)));
+      traceSinglePixel(camera, medium, mu, px, py, samplesPerPixel, random, image);
     }
   }
   return image;
@@ -686,23 +760,30 @@ Image traceAllOrders(const Scene& scene, const View& view, const std::vector<dou
   {
     for (int px = 0; px < view.Width; ++px)
     {
-      const EyeEntry entry =
-        enterMedium(body, medium.Axes, camera.Eye, rayDirection(camera, px, py), scene.RefractiveIndex);
       const auto pixel = static_cast<std::size_t>(py * view.Width + px);
-      image.Hit[pixel] = entry.Hit ? 1 : 0;
+      image.Hit[pixel] = enterMedium(body, medium.Axes, camera.Eye, rayDirection(camera, px + 0.5, py + 0.5),
+                           scene.RefractiveIndex).Hit ? 1 : 0;
       std::mt19937_64 random(mix(seed ^ mix(pixel)));
-      for (std::size_t w = 0; w < transports.size() && entry.Hit; ++w)
+      int hits = 0;
+      for (std::size_t w = 0; w < transports.size(); ++w)
       {
-        if (transports[w].Albedo > 0)
-        {
-          const Estimate e = estimatePixel(medium, body, transports[w], entry, maxOrder, radiances, random);
-          image.Radiance[pixel * transports.size() + w] = e.Mean;
-          image.StandardError[pixel * transports.size() + w] = e.StandardError;
-        }
+        const Estimate e =
+          estimatePixel(medium, body, transports[w], camera, px, py, maxOrder, radiances, hits, random);
+        image.Radiance[pixel * transports.size() + w] = e.Mean;
+        image.StandardError[pixel * transports.size() + w] = e.StandardError;
       }
+      image.Coverage[pixel] = transports.empty()
+        ? 0.0
+        : hits / (static_cast<double>(samplesPerPixel) * static_cast<double>(transports.size()));
     }
   }
   return image;
+}
+
+std::array<double, 3> viewDirection(const View& view, double x, double y)
+{
+  const dvec3 d = rayDirection(makeCamera(view), x, y);
+  return { d.x, d.y, d.z };
 }
 
 SlabResult traceSlab(double tau, double albedo, double refractiveIndex, std::int64_t photons, std::uint64_t seed)

@@ -14,9 +14,14 @@
 // - an isotropic point light, its strength chosen so that its unattenuated
 //   irradiance at the apex (0, b, 0) is 1.
 //
+// Both tracers estimate each pixel's AREA mean (a box filter): every path
+// starts on its own ray through a point drawn uniformly, stratified, over the
+// pixel, and a ray that misses the medium contributes 0, so a pixel the
+// silhouette crosses holds the covered share of its light.
+//
 // trace(): single scattering behind an index-matched boundary, no absorption
-// (no refraction, no Fresnel, no surface reflection). A pixel's radiance is
-// the integral over the part of its view ray inside the medium of
+// (no refraction, no Fresnel, no surface reflection). A ray's radiance is
+// the integral over its part inside the medium of
 // mu_s/(4 pi) E(x) exp(-tau_light(x)) exp(-tau_view(x)) dt.
 //
 // traceAllOrders(): every order of scattering ("the milky body as light really
@@ -61,7 +66,7 @@ struct Scene
   double AbsorptionExponent = 0;    // k in mu_a(lambda) = mu_a(550) (550/lambda)^k
 };
 
-// The camera of the product: pixel-centre rays, rows top to bottom.
+// The camera of the product (its view angle, aspect and pixel grid), rows top to bottom.
 struct View
 {
   int Width = 64, Height = 48;
@@ -74,20 +79,33 @@ struct Image
   std::vector<double> Wavelengths;   // nm, as passed to trace()
   std::vector<double> Radiance;      // [pixel * Wavelengths.size() + w], pixel = py * Width + px
   std::vector<double> StandardError; // of each Radiance value, same layout
-  std::vector<std::uint8_t> Hit;     // per pixel: 1 where the view ray meets the medium
+  std::vector<std::uint8_t> Hit;     // per pixel: 1 where the ray through its centre meets the medium
+  std::vector<double> Coverage;      // per pixel: the share of its paths whose ray met the medium (an
+                                     // estimate of the covered share of its area: 0 or 1 away from the
+                                     // silhouette, between at it)
 };
 
-// Traces `samplesPerPixel` (>= 2) stratified samples per pixel and wavelength;
-// the same seed gives the same image. Throws std::invalid_argument on a
-// degenerate scene, view or sample count, or on a scene with refraction or
-// absorption (which it does not model).
+// The unit direction from the eye through image point (x, y), in pixels from
+// the image's top left corner (a pixel's centre at + 0.5).
+std::array<double, 3> viewDirection(const View& view, double x, double y);
+
+// Traces `samplesPerPixel` (>= 2) samples per pixel, each a ray through the
+// pixel and a scattering distance on it, the same for every wavelength: 8
+// independent replicates (2 below 16 samples) of floor(samplesPerPixel / 8)
+// samples, each stratified over area and distance (a Latin hypercube).
+// Radiance is the mean; StandardError comes from the replicates' spread.
+// Each pixel has its own random stream drawn from the seed, so the same seed
+// gives the same image. Throws std::invalid_argument on a degenerate scene,
+// view or sample count, or on a scene with refraction or absorption (which it
+// does not model).
 Image trace(const Scene& scene, const View& view, const std::vector<double>& wavelengths,
   int samplesPerPixel, std::uint64_t seed);
 
 // Every order of scattering (docs: "the milky body as light really crosses it").
-// `samplesPerPixel` (>= 2) independent paths per pixel and wavelength:
-// Radiance is their mean, StandardError their sample standard deviation over
-// sqrt(samplesPerPixel). Each pixel has its own random stream drawn from the
+// `samplesPerPixel` (>= 2) paths per pixel and wavelength, each from its own
+// point of the pixel's area (stratified): Radiance is their mean,
+// StandardError their sample standard deviation over sqrt(samplesPerPixel)
+// (conservative: the stratification's gain is not counted). Each pixel has its own random stream drawn from the
 // seed, so the same seed gives the same image. maxOrder > 0 ends every path
 // after that many scattering vertices (1: single scattering). Throws
 // std::invalid_argument on a degenerate scene or view, an eye inside the
