@@ -72,7 +72,12 @@ OPAL_CONSTANT int ScatteredLightBinding = 20;
 // the passes compiled with OPAL_VOLUME_ADDRESSES read every per-voxel field
 // through its device address (docs/design.md §3.7); else a placeholder.
 OPAL_CONSTANT int VolumeAddressesBinding = 21; // one VolumeAddresses
-OPAL_CONSTANT int BindingCount = 22;
+// The pixels whose footprint an edge crosses (docs/design.md §3.4): queued by
+// the march's edge select, marched again with PixelSamples^2 sub-rays.
+OPAL_CONSTANT int EdgeQueueBinding = 22;        // one DispatchQueue, its count
+OPAL_CONSTANT int EdgePixelsBinding = 23;       // uint per pixel: the queued pixels
+OPAL_CONSTANT int PixelSumsBinding = 24;        // PixelSum per queued pixel: its sub-rays' sums so far
+OPAL_CONSTANT int BindingCount = 25;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -114,6 +119,7 @@ struct OPAL_ALIGNED RenderParameterBlock
   float lightRadiance;                // the light disc's radiance for irradiance 1 at the apex
   int lightFalloffAtEntry;            // 1: the paper's eq. 6, 1/r^2 stops at L_in
   int specularSamples;                // sub-rays per pixel axis for the highlight
+  int pixelSamples;                   // sub-rays per pixel axis where an edge crosses a pixel (1: none)
   int domainCount;
   int braggOrders;                    // orders k = 1..braggOrders
   float absorptionExponent;           // p of the coloured absorption, mu_a(lambda) = mu_a(550) (550/lambda)^p
@@ -210,12 +216,28 @@ struct OPAL_ALIGNED PixelMirror
   int valid;
 };
 
-// The view march's Bragg result per pixel.
+// A pixel's rays summed by the view march (docs/design.md §3.4): their XYZ,
+// the nearest surface (0: none met yet), the brightest diffraction's
+// wavelength, luminance Y and domain (-1: none), and how many met the opal.
+// The refine of an edge pixel marches one sub-ray per dispatch and keeps
+// these between them.
+struct OPAL_ALIGNED PixelSum
+{
+  OPAL_ALIGNED vec3 xyz;
+  float depth;
+  float dominantLambda;
+  float dominantY;
+  int dominantDomain;
+  int hits;
+};
+
+// The view march's Bragg result per pixel, and what its edge select compares.
 struct PixelBragg
 {
   float dominantWavelength;           // nm of the brightest diffraction, 0 if none
-  float dominantLuminance;            // its luminance Y
-  int hit;                            // 1 where the ray meets the opal
+  int dominantDomain;                 // the domain it comes from, -1 if none
+  float coverage;                     // the share of the pixel's rays that meet the opal (one ray: 1 or 0)
+  int firstDomain;                    // the first domain the centre ray's refracted ray crosses, -1 if none
 };
 
 // The light pass's modes, one pipeline each (LightPassModeConstant).
@@ -262,11 +284,27 @@ struct LightPassWork
 // Invocations per workgroup of the light pass.
 OPAL_CONSTANT int LightPassGroupSize = 256;
 
-// Push constants of the view march: the first pixel, in the rendered
-// rectangle, of the band of rows this dispatch covers.
-struct MarchTile
+// The view march's modes (docs/design.md §3.4), chosen per dispatch by its
+// push constants: one pipeline holds them all, so the march's code is built once.
+OPAL_CONSTANT int MarchPixels = 0;      // one ray through each pixel's centre of a band
+OPAL_CONSTANT int MarchRing = 1;        // the same for the ring of pixels around the rectangle
+OPAL_CONSTANT int MarchSelectEdges = 2; // every pixel: queue those whose footprint crosses an edge
+OPAL_CONSTANT int MarchRefineEdges = 3; // the queued pixels: the mean of PixelSamples^2 sub-rays
+// Pixels of the ring around a rectangle of width x height (MarchRing).
+#define MARCH_RING_PIXELS(width, height) (2 * ((width) + 2) + 2 * (height))
+
+// Push constants of the view march: its mode; with MarchPixels the first
+// pixel, in the rendered rectangle, of the band of rows this dispatch covers
+// (MarchSelectEdges: of the columns); with MarchRefineEdges the queued
+// pixels [first, first + count) this dispatch refines by their sub-ray
+// `subRay` (of PixelSamples^2, row by row).
+struct MarchWork
 {
   ivec2 origin;
+  int mode;
+  int first;
+  int count;
+  int subRay;
 };
 
 // Push constants of the highlight's shade pass: the queued pixels
@@ -313,7 +351,7 @@ OPAL_CONSTANT int MarchConstantCount = 10;
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 12,
+    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 16 && sizeof(PixelSum) == 32,
   "std140/std430 sizes of the contract's structs");
 static_assert(offsetof(LightFieldPair, voxel) == 0 && offsetof(LightFieldPair, nextVoxel) == 8 &&
     sizeof(LightFieldPair) == sizeof(LightFieldPairAsVec4),

@@ -47,10 +47,17 @@ void main()
   {
     return;
   }
-  bool hit = pixelBragg[index].hit != 0;
+  // A pixel the outline crosses holds the opal's light over the share
+  // `coverage` of its area (docs/design.md §3.4), the background over the
+  // rest: its radiance adds the background's share; its display is the mean
+  // of what the two parts would display (the opal's part tone-mapped at its
+  // own brightness, the linear XYZ over the coverage).
+  float coverage = pixelBragg[index].coverage;
   vec3 linear = XYZ_TO_SRGB * pixelColour[index].xyz;
-  vec3 display = hit ? huePreservingToneMap(linear * P.exposure) : clamp(P.background, 0.0, 1.0);
-  vec3 radiance = hit ? linear : P.background;
+  vec3 background = clamp(P.background, 0.0, 1.0);
+  vec3 opal = coverage > 0.0 ? huePreservingToneMap(linear * (P.exposure / coverage)) : vec3(0.0);
+  vec3 display = coverage * opal + (1.0 - coverage) * background;
+  vec3 radiance = linear + (1.0 - coverage) * P.background;
   for (int c = 0; c < 3; ++c) pixelRadiance[3 * index + c] = radiance[c];
   uvec3 bytes = uvec3(round(255.0 * vec3(srgbTransfer(display.r), srgbTransfer(display.g),
     srgbTransfer(display.b))));

@@ -120,7 +120,7 @@ float pixelHighlight(vec2 pixel, float tFrom, vec2 reach)
 vec2 reachOfLight(ivec2 local, int pixelIndex, bool onlyRecorded)
 {
   PixelMirror centre = pixelMirror[pixelIndex];
-  if (pixelBragg[pixelIndex].hit == 0 || centre.valid == 0)
+  if (pixelBragg[pixelIndex].coverage == 0.0 || centre.valid == 0)
   {
     return vec2(-1.0, 0.0);
   }

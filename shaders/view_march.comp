@@ -74,16 +74,24 @@ layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer Scatter
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
 const int SHADOW_ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
-// Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where the ray misses).
-layout(std430, set = 0, binding = PixelColourBinding) writeonly buffer PixelColourImage { PixelColour pixelColour[]; };
-// Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, 1 if the opal is hit.
-layout(std430, set = 0, binding = PixelBraggBinding) writeonly buffer PixelBraggImage { PixelBragg pixelBragg[]; };
-// Per pixel, WAVELENGTHS spectral radiances (only if P.writeSpectrum != 0).
-layout(std430, set = 0, binding = PixelSpectrumBinding) writeonly buffer PixelSpectrum { float pixelSpectrum[]; };
+// Per pixel of the rendered rectangle: X, Y, Z, depth (mm, 0 where every ray misses).
+// Read by the edge select.
+layout(std430, set = 0, binding = PixelColourBinding) buffer PixelColourImage { PixelColour pixelColour[]; };
+// Per pixel: dominant Bragg wavelength (nm, 0 if none), its luminance Y, the
+// share of its rays that meet the opal, the first domain its centre ray crosses.
+layout(std430, set = 0, binding = PixelBraggBinding) buffer PixelBraggImage { PixelBragg pixelBragg[]; };
+// Per pixel, WAVELENGTHS spectral radiances (only if P.writeSpectrum != 0);
+// the refine adds its sub-rays' into them.
+layout(std430, set = 0, binding = PixelSpectrumBinding) buffer PixelSpectrum { float pixelSpectrum[]; };
 // Per pixel: where its mirror ray passes the light, for the highlight pass.
 layout(std430, set = 0, binding = PixelMirrorBinding) writeonly buffer PixelMirrorImage { PixelMirror pixelMirror[]; };
+// The pixels an edge crosses, queued by MarchSelectEdges for MarchRefineEdges.
+layout(std430, set = 0, binding = EdgeQueueBinding) buffer EdgeQueue { DispatchQueue edgeQueue; }; // its count
+layout(std430, set = 0, binding = EdgePixelsBinding) buffer EdgePixels { uint edgePixels[]; };
+// A queued pixel's sub-rays summed so far, between the refine's dispatches.
+layout(std430, set = 0, binding = PixelSumsBinding) buffer PixelSums { PixelSum pixelSums[]; };
 
-layout(push_constant) uniform MarchPush { MarchTile tile; };
+layout(push_constant) uniform MarchPush { MarchWork marchWork; };
 
 float radiance[WAVELENGTHS];
 // The body's scattering on the nodes s_k = s_first + k s_step, divided by s:
@@ -179,10 +187,15 @@ LightSample lightAt(vec3 p)
   return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
 }
 
-// What the march gathers per pixel besides the radiance: the brightest
-// diffraction's wavelength and luminance.
+// What the march gathers per ray besides the radiance: the brightest
+// diffraction's wavelength, luminance and domain, and the first domain the
+// refracted ray crosses (the domains are what the edge select compares);
+// the crossing being evaluated.
 float dominantLambda;
 float dominantY;
+int dominantDomain;
+int firstCrossedDomain;
+int crossedDomain;
 
 // What the light passes of the last Bragg shadow evaluated for this pixel
 // (passShadow; padded to the shadow table's whole rows), and that shadow's
@@ -233,6 +246,7 @@ void reflectFamily(CoupledWaveFamily family, float weight, float tauLight, vec3 
   {
     dominantY = contributionY;
     dominantLambda = family.braggWavelength;
+    dominantDomain = crossedDomain;
   }
 }
 
@@ -310,6 +324,7 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
     {
       dominantY = contributionY;
       dominantLambda = lambdaB;
+      dominantDomain = crossedDomain;
     }
   }
   if (ENERGY_CONSERVATION) dimBehind(lattice, towardEye, 0.0);
@@ -604,6 +619,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
         // (docs/design.md §2.10): the depths at the segment's midpoint.
         crossingPoint[count] = origin + (state.t + 0.5 * segment) * inward;
         crossingDomain[count] = domain;
+        if (firstCrossedDomain < 0) firstCrossedDomain = domain;
         crossingDepth[count] = state.tauView + 0.5 * segment * vec3(mus, absorption);
         if (COUPLED_WAVE) crossingLength[count] = 0.0;
         crossingShadow[count] = shadow;
@@ -666,6 +682,7 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
     if (ENERGY_CONSERVATION) flushScattering(state);
     for (int c = 0; c < count; ++c)
     {
+      crossedDomain = crossingDomain[c];
       if (COUPLED_WAVE)
       {
         reflectAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingLength[c],
@@ -679,56 +696,9 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
   }
 }
 
-// Spectral radiance: the light's normalised D65 scales every term; the view
-// ray carries 1 - F out of the opal (the highlight pass adds the mirrored light).
-void writePixel(int pixelIndex, float transmitted, float tHit)
+// Empties what the march gathers along one ray.
+void resetRay()
 {
-  if (!EXACT_SCATTERING && nodesToLogs(scatterNodes))
-  {
-    for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
-  }
-  flushScatteredLight();
-  vec3 xyz = vec3(0.0);
-  for (int l = 0; l < WAVELENGTHS; ++l)
-  {
-    float value = transmitted * radiance[l] * bins[l].illuminant;
-    xyz += value * bins[l].colourMatching * bins[l].width;
-    if (P.writeSpectrum != 0) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = value;
-  }
-  pixelColour[pixelIndex] = PixelColour(xyz, tHit);
-  pixelBragg[pixelIndex] = PixelBragg(dominantLambda, dominantY * transmitted, 1);
-}
-
-void writeMiss(int pixelIndex)
-{
-  pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
-  pixelBragg[pixelIndex] = PixelBragg(0.0, 0.0, 0);
-  pixelMirror[pixelIndex] = PixelMirror(vec3(0.0), 0);
-  if (P.writeSpectrum != 0)
-  {
-    for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
-  }
-}
-
-void main()
-{
-  ivec2 local = ivec2(gl_GlobalInvocationID.xy) + tile.origin; // within the rectangle
-  if (local.x >= P.rectSize.x || local.y >= P.rectSize.y)
-  {
-    return;
-  }
-  int pixelIndex = local.x + P.rectSize.x * local.y;
-  vec2 pixel = vec2(P.rectOrigin + local) + 0.5;
-  vec3 eye = P.eye;
-  vec3 direction = primaryDirection(pixel);
-  float mu = P.refractiveIndex;
-  vec2 box = gridBoxHits(eye, direction);
-  float tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y, 0.05 * P.smallestSpacing) : -1.0;
-  if (tHit < 0.0)
-  {
-    writeMiss(pixelIndex);
-    return;
-  }
   for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] = 0.0;
   if (ENERGY_CONSERVATION)
   {
@@ -756,17 +726,223 @@ void main()
   }
   dominantLambda = 0.0;
   dominantY = 0.0;
+  dominantDomain = -1;
+  firstCrossedDomain = -1;
+}
 
+// The pixels the march writes: the rectangle's, then (for the edge select)
+// the ring of pixels around it, row y = -1, row y = height, column x = -1,
+// column x = width. The index of pixel `local` (in the rectangle's
+// coordinates) among them.
+int storedPixel(ivec2 local)
+{
+  ivec2 size = P.rectSize;
+  if (all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, size))) return local.x + size.x * local.y;
+  int ring = size.x * size.y;
+  if (local.y < 0) return ring + local.x + 1;
+  if (local.y >= size.y) return ring + size.x + 2 + local.x + 1;
+  return ring + 2 * (size.x + 2) + (local.x < 0 ? 0 : size.y) + local.y;
+}
+
+// The ring's pixel `item` (storedPixel's inverse); false beyond the ring.
+bool ringPixel(int item, out ivec2 local)
+{
+  ivec2 size = P.rectSize;
+  int row = size.x + 2;
+  if (item < 2 * row)
+  {
+    local = ivec2(item % row - 1, item < row ? -1 : size.y);
+    return true;
+  }
+  item -= 2 * row;
+  local = ivec2(item < size.y ? -1 : size.x, item % size.y);
+  return item < 2 * size.y;
+}
+
+// Marches the primary ray through `pixel` (image coordinates): false where it
+// misses the opal; else its distance to the surface and the share 1 - F of
+// the light it carries out. With `mirror` >= 0 it records at that pixel where
+// its mirror image passes the light (for the highlight pass).
+bool marchRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
+{
+  vec3 eye = P.eye;
+  vec3 direction = primaryDirection(pixel);
+  vec2 box = gridBoxHits(eye, direction);
+  tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y, 0.05 * P.smallestSpacing) : -1.0;
+  transmitted = 0.0;
+  if (tHit < 0.0) return false;
+  resetRay();
   // P_in: Fresnel reflection of the light and refraction of the view ray (paper §6.1).
   vec3 entry = eye + tHit * direction;
   vec3 normal = surfaceNormal(entry);
   float cosI = clamp(-dot(direction, normal), 0.0, 1.0);
-  float transmitted = 1.0 - fresnelReflectance(cosI, mu);
-  float cosMirror;
-  vec4 mirror = mirrorPointNearLight(entry, direction, normal, cosMirror);
-  pixelMirror[pixelIndex] = PixelMirror(mirror.xyz, int(mirror.w));
+  float mu = P.refractiveIndex;
+  transmitted = 1.0 - fresnelReflectance(cosI, mu);
+  if (mirror >= 0)
+  {
+    float cosMirror;
+    vec4 near = mirrorPointNearLight(entry, direction, normal, cosMirror);
+    pixelMirror[mirror] = PixelMirror(near.xyz, int(near.w));
+  }
   vec3 inward = refract(direction, normal, 1.0 / mu);
   vec3 origin = entry - 1e-4 * P.smallestSpacing * normal;
   marchInside(origin, inward, traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y));
-  writePixel(pixelIndex, transmitted, tHit);
+  return true;
+}
+
+// Adds a marched ray, `weight` of the pixel. Spectral radiance: the light's
+// normalised D65 scales every term; the view ray carries 1 - F out of the
+// opal (the highlight pass adds the mirrored light). The pixel's first ray
+// to meet the opal writes its spectrum (where it keeps one), the others add to it.
+void addRay(int pixelIndex, bool spectrum, float transmitted, float weight, float tHit, inout PixelSum sum)
+{
+  if (!EXACT_SCATTERING && nodesToLogs(scatterNodes))
+  {
+    for (int l = 0; l < WAVELENGTHS; ++l) radiance[l] += scatterAt(scatterNodes, l);
+  }
+  flushScatteredLight();
+  float scale = transmitted * weight;
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    float value = scale * radiance[l] * bins[l].illuminant;
+    sum.xyz += value * bins[l].colourMatching * bins[l].width;
+    if (spectrum)
+    {
+      int at = pixelIndex * WAVELENGTHS + l;
+      pixelSpectrum[at] = sum.hits == 0 ? value : pixelSpectrum[at] + value;
+    }
+  }
+  sum.depth = sum.hits == 0 ? tHit : min(sum.depth, tHit);
+  if (dominantY * transmitted > sum.dominantY)
+  {
+    sum.dominantY = dominantY * transmitted;
+    sum.dominantLambda = dominantLambda;
+    sum.dominantDomain = dominantDomain;
+  }
+  ++sum.hits;
+}
+
+void writeMiss(int pixelIndex, bool spectrum, bool centre)
+{
+  pixelColour[pixelIndex] = PixelColour(vec3(0.0), 0.0);
+  pixelBragg[pixelIndex] = PixelBragg(0.0, -1, 0.0, -1);
+  if (centre) pixelMirror[pixelIndex] = PixelMirror(vec3(0.0), 0);
+  if (spectrum)
+  {
+    for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] = 0.0;
+  }
+}
+
+// Writes the pixel from its rays' sums, n x n of them (n = 1: its centre
+// ray; docs/design.md §3.4): XYZ and spectrum the area's mean (a missed
+// sub-ray adds nothing), depth the nearest, the dominant wavelength (and
+// its domain) the brightest ray's, coverage the share that meets the opal,
+// and the first domain crossed: the centre ray's (`firstDomain` >= -2 keeps
+// the pixel's).
+void writePixel(int pixelIndex, bool spectrum, PixelSum sum, int n, int firstDomain)
+{
+  if (sum.hits == 0)
+  {
+    writeMiss(pixelIndex, spectrum, n == 1);
+    return;
+  }
+  if (firstDomain < -1) firstDomain = pixelBragg[pixelIndex].firstDomain;
+  pixelColour[pixelIndex] = PixelColour(sum.xyz, sum.depth);
+  pixelBragg[pixelIndex] =
+    PixelBragg(sum.dominantLambda, sum.dominantDomain, float(sum.hits) / float(n * n), firstDomain);
+}
+
+// Neighbours whose surfaces lie farther apart in depth than this many times
+// their spacing across the view mark a slope steeper than ~76 degrees, where
+// a pixel's rays meet the surface at a stretch of depths and the body's
+// chord changes fast: refined like an edge.
+const float EDGE_SLOPE = 4.0;
+
+// Whether an edge lies between the centre rays of the stored pixels a and b,
+// `spacing` apart across the view at their depth: one meets the opal and the
+// other not (the outline), or they cross a different first domain or draw
+// their brightest diffraction from a different one, or the surface between
+// them is steep.
+bool edgeBetween(int a, int b, float pixelAngle)
+{
+  PixelBragg p = pixelBragg[a], q = pixelBragg[b];
+  if ((p.coverage > 0.0) != (q.coverage > 0.0)) return true;
+  if (p.coverage == 0.0) return false;
+  float depthA = pixelColour[a].depth, depthB = pixelColour[b].depth;
+  return p.firstDomain != q.firstDomain || p.dominantDomain != q.dominantDomain ||
+    abs(depthA - depthB) > EDGE_SLOPE * pixelAngle * max(depthA, depthB);
+}
+
+// Queues the pixel `local` of the rectangle where an edge lies between its
+// centre ray and one of its eight neighbours' (the ring's beyond the
+// rectangle, so that a piece of the image selects as the whole image does).
+void selectEdge(ivec2 local)
+{
+  int pixelIndex = storedPixel(local);
+  float pixelAngle = 2.0 * P.tanHalfViewAngle / float(P.imageHeight);
+  for (int k = 0; k < 9; ++k)
+  {
+    ivec2 offset = ivec2(k % 3, k / 3) - 1;
+    if (k != 4 && edgeBetween(pixelIndex, storedPixel(local + offset), pixelAngle * length(vec2(offset))))
+    {
+      edgePixels[atomicAdd(edgeQueue.count, 1u)] = uint(pixelIndex);
+      return;
+    }
+  }
+}
+
+// This invocation's item among the dispatch's, for the 1-D passes over a
+// queue or the ring.
+int marchItem()
+{
+  uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  return int(group * uint(MarchGroupSide * MarchGroupSide) + gl_LocalInvocationIndex);
+}
+
+// One call of marchRay for every mode: the march's code is then built once.
+// MarchPixels and MarchRing march a pixel's centre ray; MarchRefineEdges one
+// sub-ray of a queued pixel per dispatch (lavapipe ends all of an
+// invocation's loops once they have run 65535 iterations together: n x n
+// whole marches in one invocation would reach it), its sums kept between.
+void main()
+{
+  ivec2 local;
+  int mode = marchWork.mode, item = 0, n = 1, subRay = 0;
+  if (mode == MarchRefineEdges)
+  {
+    item = marchWork.first + marchItem();
+    if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue.count)) return;
+    int queued = int(edgePixels[item]);
+    local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
+    n = P.pixelSamples;
+    subRay = marchWork.subRay;
+  }
+  else if (mode == MarchRing)
+  {
+    if (!ringPixel(marchItem(), local)) return;
+  }
+  else
+  {
+    local = ivec2(gl_GlobalInvocationID.xy) + marchWork.origin; // within the rectangle
+    if (local.x >= P.rectSize.x || local.y >= P.rectSize.y) return;
+    if (mode == MarchSelectEdges)
+    {
+      selectEdge(local);
+      return;
+    }
+  }
+  int pixelIndex = storedPixel(local);
+  bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
+  PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0);
+  if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
+  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRay % n, subRay / n) + 0.5) / float(n);
+  float tHit, transmitted;
+  bool hit = marchRay(at, centre ? pixelIndex : -1, tHit, transmitted);
+  if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(n * n), tHit, sum);
+  if (subRay + 1 < n * n)
+  {
+    pixelSums[item] = sum;
+    return;
+  }
+  writePixel(pixelIndex, spectrum, sum, n, centre ? (hit ? firstCrossedDomain : -1) : -2);
 }

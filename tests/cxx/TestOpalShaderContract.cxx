@@ -55,6 +55,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("P.", RenderParameterBlock, lightRadiance),
     OPAL_FIELD("P.", RenderParameterBlock, lightFalloffAtEntry),
     OPAL_FIELD("P.", RenderParameterBlock, specularSamples),
+    OPAL_FIELD("P.", RenderParameterBlock, pixelSamples),
     OPAL_FIELD("P.", RenderParameterBlock, domainCount),
     OPAL_FIELD("P.", RenderParameterBlock, braggOrders),
     OPAL_FIELD("P.", RenderParameterBlock, absorptionExponent),
@@ -89,12 +90,23 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("pixelMirror[0].", PixelMirror, nearLight),
     OPAL_FIELD("pixelMirror[0].", PixelMirror, valid),
     OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantWavelength),
-    OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantLuminance),
-    OPAL_FIELD("pixelBragg[0].", PixelBragg, hit),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, dominantDomain),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, coverage),
+    OPAL_FIELD("pixelBragg[0].", PixelBragg, firstDomain),
     OPAL_FIELD("work.", LightPassWork, first),
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
-    OPAL_FIELD("tile.", MarchTile, origin),
+    OPAL_FIELD("marchWork.", MarchWork, origin),
+    OPAL_FIELD("marchWork.", MarchWork, mode),
+    OPAL_FIELD("marchWork.", MarchWork, first),
+    OPAL_FIELD("marchWork.", MarchWork, count),
+    OPAL_FIELD("marchWork.", MarchWork, subRay),
+    OPAL_FIELD("pixelSums[0].", PixelSum, xyz),
+    OPAL_FIELD("pixelSums[0].", PixelSum, depth),
+    OPAL_FIELD("pixelSums[0].", PixelSum, dominantLambda),
+    OPAL_FIELD("pixelSums[0].", PixelSum, dominantY),
+    OPAL_FIELD("pixelSums[0].", PixelSum, dominantDomain),
+    OPAL_FIELD("pixelSums[0].", PixelSum, hits),
     OPAL_FIELD("highlightWork.", HighlightWork, first),
     OPAL_FIELD("highlightWork.", HighlightWork, count),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, voxelCells),
@@ -112,12 +124,13 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 
 // Prefixes of the contract's structs in the shaders' reflection.
 const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "domains[0].", "pixelColour[0].",
-  "pixelBragg[0].", "pixelMirror[0].", "work.", "tile.", "highlightWork.", "volumeAddresses." };
+  "pixelBragg[0].", "pixelMirror[0].", "pixelSums[0].", "work.", "marchWork.", "highlightWork.", "volumeAddresses." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
   { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
-  { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) } };
+  { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) },
+  { "pixelSums[0].", sizeof(PixelSum) } };
 
 // The reflection of a pass as built: `options` "" or, for the passes that
 // read per-voxel fields by address, "--target-env vulkan1.2 -DOPAL_VOLUME_ADDRESSES".

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <vector>
 
 namespace opal
@@ -175,7 +176,7 @@ void RenderSession::runShadowTable(const FrameSetup& setup)
   }
   const ComputePipeline& pass = this->shadowTablePass(
     setup.Block.wavelengthCount, setup.Parameters.BraggModel == BraggModelKind::CoupledWave);
-  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  const gpu::MarchWork unused{};
   this->Context->submitAndWait([&](VkCommandBuffer commands) {
     pass.dispatch(commands, unused, static_cast<std::uint32_t>((domains + gpu::ShadowTableGroupSize - 1) / gpu::ShadowTableGroupSize));
   });
@@ -241,51 +242,111 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   return *march;
 }
 
-// March a rectangle of an image of the given size, in tiles (one submit
-// each, so no frame trips a device timeout), reporting progress in [from, to].
-bool RenderSession::marchRegion(const FrameSetup& setup, const std::array<int, 2>& size,
-  const std::array<int, 4>& rect, bool spectrum, Progress& progress, double from, double to)
+// March a rectangle of an image (docs/design.md §3.4) in bands of rows, one
+// submit each (so no frame trips a device timeout); then, with PixelSamples
+// above 1, refine the pixels an edge crosses; then the highlight. Progress
+// in [from, to].
+bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& target, Progress& progress, double from, double to)
 {
+  const std::array<int, 4>& rect = target.Rect;
   gpu::RenderParameterBlock block = setup.Block;
-  block.imageWidth = size[0];
-  block.imageHeight = size[1];
+  block.imageWidth = target.Size[0];
+  block.imageHeight = target.Size[1];
   block.rectOrigin = gpu::ivec2(rect[0], rect[1]);
   block.rectSize = gpu::ivec2(rect[2], rect[3]);
-  block.writeSpectrum = spectrum ? 1 : 0;
+  block.writeSpectrum = target.Spectrum ? 1 : 0;
+  block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
-  ComputePipeline& march = this->marchPipeline(setup);
+  const ComputePipeline& march = this->marchPipeline(setup);
+  const bool refine = target.PixelSamples > 1;
   // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are
   // independent: no barrier between them), as many rows per submit as the
   // pacer's pixels allow.
-  const int groupsX = (rect[2] + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide;
-  const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
-  const std::int64_t bandPixels = static_cast<std::int64_t>(groupsX) * gpu::MarchGroupSide * MarchTileSize;
+  const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
   for (int firstRow = 0; firstRow < rect[3];)
   {
     const int rows = static_cast<int>(std::min<std::int64_t>(
-      std::max<std::int64_t>(1, this->MarchPacer.items() / bandPixels) * MarchTileSize, rect[3] - firstRow));
+      std::max<std::int64_t>(1, this->MarchPacer.items() / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
     const bool last = firstRow + rows == rect[3];
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      for (int column = 0; column < groupsX; column += maxGroupsX) // one dispatch but beyond the device's count
+      if (last && refine) // emptied before the march, whose pipeline reads it
       {
-        march.dispatch(commands, gpu::MarchTile{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow) },
-          static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column)),
-          static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
+        this->Buffers->EdgeQueue->recordClear(commands);
+      }
+      recordMarchRows(commands, march, gpu::MarchPixels, rect[2], firstRow, rows);
+      if (last && refine) // every pixel's centre ray is marched: the ring's too, then the select
+      {
+        recordMarchRing(commands, march, rect);
+        recordMarchRows(commands, march, gpu::MarchSelectEdges, rect[2], 0, rect[3]);
       }
       if (last)
       {
         this->recordHighlightSelect(commands, rect); // the march recorded every mirror ray
       }
     });
-    this->MarchPacer.measured(static_cast<std::int64_t>(rows) * groupsX * gpu::MarchGroupSide, secondsSince(start));
+    this->MarchPacer.measured(static_cast<std::int64_t>(rows) * rowPixels, secondsSince(start));
     firstRow += rows;
-    if (!progress.report(from + (to - from) * 0.9 * firstRow / rect[3]))
+    if (!progress.report(from + (to - from) * 0.8 * firstRow / rect[3]))
     {
       return false;
     }
   }
-  return this->shadeHighlight(progress, from + (to - from) * 0.9) && progress.report(to);
+  const double refined = from + (to - from) * 0.9;
+  return (!refine || this->refineEdges(march, target.PixelSamples, progress, refined)) &&
+    this->shadeHighlight(progress, refined) &&
+    progress.report(to);
+}
+
+// The march's workgroups across `width` pixels.
+int RenderSession::marchGroups(int width)
+{
+  return (width + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide;
+}
+
+// Records the march in `mode` over `rows` rows of the rectangle from
+// `firstRow`, its whole width: one dispatch, in columns only beyond the
+// device's group count.
+void RenderSession::recordMarchRows(
+  VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const
+{
+  const int groupsX = marchGroups(width);
+  const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
+  for (int column = 0; column < groupsX; column += maxGroupsX)
+  {
+    march.dispatch(commands, gpu::MarchWork{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0 },
+      static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column)),
+      static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
+  }
+}
+
+// The march's centre rays of the ring of pixels around the rectangle (the
+// edge select's neighbours beyond it), in one dispatch.
+void RenderSession::recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect)
+{
+  constexpr int groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
+  const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
+  march.dispatch(commands, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0 },
+    static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
+}
+
+// The pixels the edge select queued, each the mean of PixelSamples^2
+// sub-rays, one dispatch per sub-ray (docs/design.md §3.4), in submits the
+// pacer sizes.
+bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at)
+{
+  const std::int64_t queued = queuedCount(*this->Buffers->EdgeQueue);
+  return this->drainQueue(queued, this->RefinePacer, progress, at,
+    [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
+      constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
+      for (int subRay = 0; subRay < pixelSamples * pixelSamples; ++subRay)
+      {
+        march.dispatch(commands,
+          gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
+            static_cast<std::int32_t>(count), subRay },
+          static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
+      }
+    });
 }
 
 // The highlight's select over the rectangle the march wrote (it recorded
@@ -304,18 +365,33 @@ void RenderSession::recordHighlightSelect(VkCommandBuffer commands, const std::a
 // cost is not the image's.
 bool RenderSession::shadeHighlight(Progress& progress, double at)
 {
-  const HostReadback queue(*this->Context, { { this->Buffers->HighlightQueue.get(), sizeof(gpu::DispatchQueue) } });
-  const auto queued = static_cast<std::int64_t>(queue.view<gpu::DispatchQueue>(0)->count);
-  for (std::int64_t first = 0; first < queued;)
-  {
-    const std::int64_t count = std::min(queued - first, this->HighlightPacer.items());
-    const auto start = Clock::now();
-    this->Context->submitAndWait([&](VkCommandBuffer commands) {
+  const std::int64_t queued = queuedCount(*this->Buffers->HighlightQueue);
+  return this->drainQueue(queued, this->HighlightPacer, progress, at,
+    [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
       this->highlightPass(gpu::HighlightShade)
         .dispatch(commands, gpu::HighlightWork{ static_cast<std::int32_t>(first), static_cast<std::int32_t>(count) },
           static_cast<std::uint32_t>((count + gpu::HighlightGroupSize - 1) / gpu::HighlightGroupSize));
     });
-    this->HighlightPacer.measured(count, secondsSince(start));
+}
+
+// How many items a pass queued in the DispatchQueue `header`.
+std::int64_t RenderSession::queuedCount(const VulkanBuffer& header) const
+{
+  const HostReadback queue(*this->Context, { { &header, sizeof(gpu::DispatchQueue) } });
+  return static_cast<std::int64_t>(queue.view<gpu::DispatchQueue>(0)->count);
+}
+
+// Runs `queued` items in submits of the pacer's size, `record` recording the
+// dispatch of items [first, first + count); false once the caller aborts.
+bool RenderSession::drainQueue(std::int64_t queued, SubmitPacer& pacer, Progress& progress, double at,
+  const std::function<void(VkCommandBuffer, std::int64_t, std::int64_t)>& record)
+{
+  for (std::int64_t first = 0; first < queued;)
+  {
+    const std::int64_t count = std::min(queued - first, pacer.items());
+    const auto start = Clock::now();
+    this->Context->submitAndWait([&](VkCommandBuffer commands) { record(commands, first, count); });
+    pacer.measured(count, secondsSince(start));
     first += count;
     if (!progress.report(at))
     {
@@ -346,7 +422,8 @@ ComputePipeline& RenderSession::highlightPass(int mode)
 bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress, double& exposure)
 {
   const std::array<int, 2>& size = setup.Thumbnail;
-  if (!this->marchRegion(setup, size, { 0, 0, size[0], size[1] }, false, progress, 0.2, 0.25))
+  // One ray per pixel: the thumbnail's median needs no edges.
+  if (!this->marchRegion(setup, MarchTarget{ size, { 0, 0, size[0], size[1] }, false, 1 }, progress, 0.2, 0.25))
   {
     return false;
   }
@@ -358,7 +435,7 @@ bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress,
   std::vector<float> luminance;
   for (std::size_t i = 0; i < pixels; ++i)
   {
-    if (bragg[i].hit != 0 && colour[i].xyz.y > 0)
+    if (bragg[i].coverage > 0 && colour[i].xyz.y > 0)
     {
       luminance.push_back(colour[i].xyz.y);
     }
@@ -378,7 +455,7 @@ void RenderSession::runColourPass(const FrameSetup& setup, double exposure)
 {
   gpu::RenderParameterBlock* block = this->Buffers->Parameters->as<gpu::RenderParameterBlock>();
   block->exposure = static_cast<float>(exposure);
-  const gpu::MarchTile unused{ gpu::ivec2(0, 0) };
+  const gpu::MarchWork unused{};
   this->Context->submitAndWait([&](VkCommandBuffer commands) {
     this->ColourPass->dispatch(commands, unused,
       static_cast<std::uint32_t>((setup.Pixels + gpu::ColourGroupSize - 1) / gpu::ColourGroupSize));

@@ -243,6 +243,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
   this->Buffers->HighlightQueue = std::make_unique<VulkanBuffer>(
     *this->Context, sizeof(gpu::DispatchQueue), "highlight queue header", BufferPlacement::DeviceLocal);
+  this->Buffers->EdgeQueue = std::make_unique<VulkanBuffer>(
+    *this->Context, sizeof(gpu::DispatchQueue), "edge queue header", BufferPlacement::DeviceLocal);
   sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
@@ -462,8 +464,9 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
     return frame;
   }
   frame.Ran.March = true;
-  if (!this->marchRegion(setup, setup.Parameters.ImageSize, setup.Region, setup.Parameters.WriteSpectrum,
-        progress, 0.25, 0.95))
+  const MarchTarget image{ setup.Parameters.ImageSize, setup.Region, setup.Parameters.WriteSpectrum,
+    setup.Parameters.PixelSamples };
+  if (!this->marchRegion(setup, image, progress, 0.25, 0.95))
   {
     return frame;
   }
@@ -519,7 +522,9 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   setup.Region = renderedRegion(p);
   setup.Thumbnail = exposureThumbnailSize(p);
   setup.Pixels = static_cast<std::size_t>(setup.Region[2]) * static_cast<std::size_t>(setup.Region[3]);
-  setup.PixelCapacity = std::max(setup.Pixels,
+  // The image's pixels and the ring around them the edge select reads
+  // (docs/design.md §3.4), or the exposure thumbnail's, whichever is more.
+  setup.PixelCapacity = std::max(setup.Pixels + static_cast<std::size_t>(MARCH_RING_PIXELS(setup.Region[2], setup.Region[3])),
     static_cast<std::size_t>(setup.Thumbnail[0]) * static_cast<std::size_t>(setup.Thumbnail[1]));
   setup.Bins = sampleWavelengths(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
 
@@ -552,6 +557,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.lightRadiance = static_cast<float>(apexDistanceSquared / (Pi * p.LightRadius * p.LightRadius));
   block.lightFalloffAtEntry = p.LightFalloffAtEntry ? 1 : 0;
   block.specularSamples = p.SpecularSamples;
+  block.pixelSamples = p.PixelSamples;
   block.domainCount = static_cast<int>(shape.Domains.size());
   block.braggOrders = p.BraggOrders;
   block.maxGroupsX = static_cast<int>(std::min<std::uint32_t>(
@@ -572,7 +578,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
     (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0) +
       (setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
-      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4) + pixels * (3 * 4 + 4) +
+      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4 + 4 + sizeof(gpu::PixelSum)) +
+    pixels * (3 * 4 + 4) +
     spectrumBytes;
   const std::uint64_t deviceBytes = volumeBytes + imageBytes;
   if (deviceBytes > this->Context->memoryBudget())
@@ -607,6 +614,8 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.PixelBragg.reset();
     b.PixelMirror.reset();
     b.HighlightPixels.reset();
+    b.EdgePixels.reset();
+    b.PixelSums.reset();
     b.PixelRadiance.reset();
     b.PixelRGB8.reset();
     // Device-local: mapped where that memory is host-visible (lavapipe,
@@ -615,6 +624,8 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.PixelBragg = deviceLocalBuffer(context, n * sizeof(gpu::PixelBragg), "Bragg image");
     b.PixelMirror = deviceLocalBuffer(context, n * sizeof(gpu::PixelMirror), "mirror image");
     b.HighlightPixels = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "highlight queue");
+    b.EdgePixels = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "edge queue");
+    b.PixelSums = deviceLocalBuffer(context, n * sizeof(gpu::PixelSum), "edge pixels' sums");
     b.PixelRadiance = deviceLocalBuffer(context, n * 3 * sizeof(float), "Radiance image");
     b.PixelRGB8 = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "RGB image");
     b.PixelCapacity = n;
@@ -708,6 +719,9 @@ void RenderSession::bindBuffers()
   buffers[gpu::PixelMirrorBinding] = b.PixelMirror.get();
   buffers[gpu::HighlightQueueBinding] = b.HighlightQueue.get();
   buffers[gpu::HighlightPixelsBinding] = b.HighlightPixels.get();
+  buffers[gpu::EdgeQueueBinding] = b.EdgeQueue.get();
+  buffers[gpu::EdgePixelsBinding] = b.EdgePixels.get();
+  buffers[gpu::PixelSumsBinding] = b.PixelSums.get();
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();

@@ -157,10 +157,27 @@ private:
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);
-  bool marchRegion(const FrameSetup& setup, const std::array<int, 2>& size, const std::array<int, 4>& rect,
-    bool spectrum, Progress& progress, double from, double to);
+  // What a march covers: a rectangle (x, y, width, height) of an image of
+  // `Size`, whether it fills the spectrum and the sub-rays per axis of its
+  // edge pixels (1: none refined).
+  struct MarchTarget
+  {
+    std::array<int, 2> Size;
+    std::array<int, 4> Rect;
+    bool Spectrum;
+    int PixelSamples;
+  };
+  bool marchRegion(const FrameSetup& setup, const MarchTarget& target, Progress& progress, double from, double to);
+  static int marchGroups(int width);
+  void recordMarchRows(
+    VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const;
+  static void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect);
+  bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);
+  std::int64_t queuedCount(const VulkanBuffer& header) const;
+  bool drainQueue(std::int64_t queued, SubmitPacer& pacer, Progress& progress, double at,
+    const std::function<void(VkCommandBuffer, std::int64_t, std::int64_t)>& record);
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
@@ -199,6 +216,7 @@ private:
   SubmitPacer SweepPacer{ 1 << 20 };    // voxels, in whole layers
   SubmitPacer SlabPacer{ 1 << 18 };     // voxels marched to the light
   SubmitPacer HighlightPacer{ 1 << 12 }; // queued pixels shaded
+  SubmitPacer RefinePacer{ 1 << 12 };    // queued edge pixels refined (PixelSamples^2 rays each)
   int CompletedFrames = 0;
   int AbandonedFrames = 0;
 };

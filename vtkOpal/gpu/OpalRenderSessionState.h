@@ -22,7 +22,7 @@ namespace opal
 
 namespace sessiondetail
 {
-constexpr std::uint32_t PushConstantBytes = 16;   // the largest push-constant struct of the contract
+constexpr std::uint32_t PushConstantBytes = 32;   // the largest push-constant struct of the contract
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8),
 // the light field's pair and a place in the light pass's entry queue; with
@@ -33,7 +33,7 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
-static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchTile) <= PushConstantBytes &&
+static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);
 
 using Clock = std::chrono::steady_clock;
@@ -95,6 +95,8 @@ struct RenderSession::FrameBuffers
   std::unique_ptr<VulkanBuffer> Parameters, WavelengthTable;
   std::unique_ptr<VulkanBuffer> PixelColour, PixelBragg, PixelMirror, PixelSpectrum, PixelRadiance, PixelRGB8;
   std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
+  std::unique_ptr<VulkanBuffer> EdgeQueue, EdgePixels;           // the pixels an edge crosses
+  std::unique_ptr<VulkanBuffer> PixelSums;                       // and their sub-rays' sums
   // What each domain passes of the light (the Bragg shadow table, docs/design.md
   // §7.2), device-local; one float where no frame conserved energy yet.
   std::unique_ptr<VulkanBuffer> ShadowTable;

@@ -60,6 +60,8 @@
   X(Background, double, 3, 0, 1, "", "--background", 0, "Background colour, sRGB in [0, 1]")               \
   X(StepSize, double, 1, 0, OPAL_UNBOUNDED, "", "--step-size", 0, "Longest march sub-step in mm (0: one voxel)") \
   X(SpecularSamples, int, 1, 1, 16, "", "--specular-samples", 0, "Sub-rays per pixel axis for the highlight") \
+  X(PixelSamples, int, 1, 1, 16, "", "--pixel-samples", 0,                                                  \
+    "Sub-rays per pixel axis where the stone's outline or a domain's edge crosses a pixel (1: one ray)")    \
   X(SpectralNodes, int, 1, 0, 64, "", "--spectral-nodes", 0,                                               \
     "Nodes of the body's scattering spectrum, 4-64 (0: evaluate every wavelength)")                        \
   X(LightFalloffAtEntry, bool, 1, 0, 1, "", "--light-falloff-at-entry", 0,                                 \
@@ -67,6 +69,6 @@
   X(WriteSpectrum, bool, 1, 0, 1, "", "", 0,                                                               \
     "Adds the Spectrum array, one value per wavelength per pixel (the CLI: by its outputs)")               \
   X(Quality, int, 1, 0, 1, "final preview", "--quality", 0,                                                \
-    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight")      \
+    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight, 1 ray per pixel") \
   X(Illuminant, int, 1, 0, 1, "D65 none", "--illuminant", 0,                                               \
     "The light's spectrum: D65 (luminance 1), or none (unit spectral irradiance)")

@@ -47,6 +47,7 @@ RenderParameters withQuality(const RenderParameters& p)
   q.WavelengthStep = std::max(p.WavelengthStep, 20.0);
   q.SpectralNodes = p.SpectralNodes == 0 ? 0 : 8;
   q.SpecularSamples = std::min(p.SpecularSamples, 2);
+  q.PixelSamples = 1;
   return q;
 }
 

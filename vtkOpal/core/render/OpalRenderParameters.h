@@ -23,8 +23,8 @@ enum class LightSpectrum : int
 };
 
 // Final renders the parameters as they are; Preview, for interaction, renders
-// half the width and height, 20 nm wavelength steps, 8 spectral nodes and a
-// 2 x 2 highlight (withQuality), marches PreviewStepScale x the step and reads
+// half the width and height, 20 nm wavelength steps, 8 spectral nodes, a
+// 2 x 2 highlight and one ray per pixel (withQuality), marches PreviewStepScale x the step and reads
 // the light field per voxel, not trilinearly (docs/design.md §3.4).
 enum class RenderQuality : int
 {
@@ -96,6 +96,8 @@ struct RenderParameters
   std::array<double, 3> Background{ 0.0, 0.0, 0.0 };   // sRGB in [0, 1]
   double StepSize = 0.0;                               // mm, longest march sub-step; 0: one voxel
   int SpecularSamples = 4;                             // per pixel axis, for the highlight
+  int PixelSamples = 4;                                // per pixel axis, where an edge crosses a pixel
+                                                       // (docs/design.md §3.4); 1: one ray per pixel
   int SpectralNodes = 16;                              // nodes of the body's scattering spectrum; 0: every
                                                        // wavelength (docs/design.md §3.4)
   bool LightFalloffAtEntry = false;                    // the paper's eq. 6: 1/r^2 stops at L_in
@@ -128,7 +130,7 @@ std::string validate(const RenderParameters& parameters);
 // The parameters a frame renders with (Quality Final, the settings the
 // quality implies): the same for Final; for Preview the image and its region
 // halved (rounded up), WavelengthStep at least 20 nm, SpectralNodes 8 (0
-// stays 0) and SpecularSamples at most 2.
+// stays 0), SpecularSamples at most 2 and PixelSamples 1 (one ray per pixel).
 RenderParameters withQuality(const RenderParameters& parameters);
 
 // True if crossings keep 1 - R of the light: EnergyConservation, or the coupled-wave model.
