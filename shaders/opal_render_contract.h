@@ -220,7 +220,9 @@ struct OPAL_ALIGNED PixelMirror
 // the nearest surface (0: none met yet), the brightest diffraction's
 // wavelength, luminance Y and domain (-1: none), and how many met the opal.
 // The refine of an edge pixel marches one sub-ray per dispatch and keeps
-// these between them.
+// these between them, and what its first PixelSamples sub-rays saw: the
+// first's first and brightest domains (-2: it missed) and whether all of
+// them saw the same (then they stand for the pixel).
 struct OPAL_ALIGNED PixelSum
 {
   OPAL_ALIGNED vec3 xyz;
@@ -229,6 +231,9 @@ struct OPAL_ALIGNED PixelSum
   float dominantY;
   int dominantDomain;
   int hits;
+  int firstDomainSeen;
+  int brightestDomainSeen;
+  int alike;
 };
 
 // The view march's Bragg result per pixel, and what its edge select compares.
@@ -351,7 +356,7 @@ OPAL_CONSTANT int MarchConstantCount = 10;
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 16 && sizeof(PixelSum) == 32,
+    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 16 && sizeof(PixelSum) == 48,
   "std140/std430 sizes of the contract's structs");
 static_assert(offsetof(LightFieldPair, voxel) == 0 && offsetof(LightFieldPair, nextVoxel) == 8 &&
     sizeof(LightFieldPair) == sizeof(LightFieldPairAsVec4),

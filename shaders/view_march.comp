@@ -833,23 +833,65 @@ void writeMiss(int pixelIndex, bool spectrum, bool centre)
   }
 }
 
-// Writes the pixel from its rays' sums, n x n of them (n = 1: its centre
-// ray; docs/design.md §3.4): XYZ and spectrum the area's mean (a missed
-// sub-ray adds nothing), depth the nearest, the dominant wavelength (and
-// its domain) the brightest ray's, coverage the share that meets the opal,
-// and the first domain crossed: the centre ray's (`firstDomain` >= -2 keeps
-// the pixel's).
-void writePixel(int pixelIndex, bool spectrum, PixelSum sum, int n, int firstDomain)
+// Writes the pixel from the sums of its `rays` rays (1: its centre ray;
+// docs/design.md §3.4): XYZ and spectrum the area's mean (a missed sub-ray
+// adds nothing), depth the nearest, the dominant wavelength (and its domain)
+// the brightest ray's, coverage the share that meets the opal, and the first
+// domain crossed: the centre ray's (`firstDomain` >= -2 keeps the pixel's).
+void writePixel(int pixelIndex, bool spectrum, PixelSum sum, int rays, bool centre, int firstDomain)
 {
   if (sum.hits == 0)
   {
-    writeMiss(pixelIndex, spectrum, n == 1);
+    writeMiss(pixelIndex, spectrum, centre);
     return;
   }
   if (firstDomain < -1) firstDomain = pixelBragg[pixelIndex].firstDomain;
   pixelColour[pixelIndex] = PixelColour(sum.xyz, sum.depth);
   pixelBragg[pixelIndex] =
-    PixelBragg(sum.dominantLambda, sum.dominantDomain, float(sum.hits) / float(n * n), firstDomain);
+    PixelBragg(sum.dominantLambda, sum.dominantDomain, float(sum.hits) / float(rays), firstDomain);
+}
+
+// The row of first-stage sub-ray t < n on a pixel's n x n grid: one per
+// column and row, spread ((2t + t / (n/2)) mod n for even n, 2t mod n for odd).
+int firstStageRow(int t, int n)
+{
+  return n % 2 == 0 ? (2 * t + t / max(n / 2, 1)) % n : (2 * t) % n;
+}
+
+// The cell of sub-ray t on a pixel's n x n grid (docs/design.md §3.4): the
+// first n one per column and row, the others row by row.
+ivec2 subRayCell(int t, int n)
+{
+  if (t < n) return ivec2(t, firstStageRow(t, n));
+  int k = t - n, y = k / (n - 1), x = k % (n - 1);
+  int taken = 0; // the column of row y's first-stage sub-ray
+  for (int c = 0; c < n; ++c)
+  {
+    if (firstStageRow(c, n) == y) taken = c;
+  }
+  return ivec2(x < taken ? x : x + 1, y);
+}
+
+// Notes what the first-stage sub-ray t saw: whether it met the opal, its
+// first and brightest domains.
+void noteFirstStage(inout PixelSum sum, bool hit, int t)
+{
+  int first = hit ? firstCrossedDomain : -2, brightest = hit ? dominantDomain : -2;
+  if (t == 0)
+  {
+    sum.firstDomainSeen = first;
+    sum.brightestDomainSeen = brightest;
+    return;
+  }
+  sum.alike = sum.alike != 0 && first == sum.firstDomainSeen && brightest == sum.brightestDomainSeen ? 1 : 0;
+}
+
+// The first stage's n sub-rays, weighted 1/n, become n of n x n: 1/n^2.
+void reweighFirstStage(int pixelIndex, bool spectrum, int n, inout PixelSum sum)
+{
+  sum.xyz /= float(n);
+  if (!spectrum || sum.hits == 0) return;
+  for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] /= float(n);
 }
 
 // Neighbours whose surfaces lie farther apart in depth than this many times
@@ -903,7 +945,10 @@ int marchItem()
 // MarchPixels and MarchRing march a pixel's centre ray; MarchRefineEdges one
 // sub-ray of a queued pixel per dispatch (lavapipe ends all of an
 // invocation's loops once they have run 65535 iterations together: n x n
-// whole marches in one invocation would reach it), its sums kept between.
+// whole marches in one invocation would reach it), its sums kept between:
+// first n sub-rays, one per row and column, which stand for the pixel where
+// they all see the same (meeting the opal or not, the same first and
+// brightest domains), then the rest of the n x n grid.
 void main()
 {
   ivec2 local;
@@ -933,16 +978,17 @@ void main()
   }
   int pixelIndex = storedPixel(local);
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
-  PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0);
+  PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
-  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRay % n, subRay / n) + 0.5) / float(n);
+  if (subRay >= n && sum.alike != 0) return; // the first stage stood for the pixel
+  if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
+  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
   float tHit, transmitted;
   bool hit = marchRay(at, centre ? pixelIndex : -1, tHit, transmitted);
-  if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(n * n), tHit, sum);
-  if (subRay + 1 < n * n)
-  {
-    pixelSums[item] = sum;
-    return;
-  }
-  writePixel(pixelIndex, spectrum, sum, n, centre ? (hit ? firstCrossedDomain : -1) : -2);
+  if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(subRay < n ? n : n * n), tHit, sum);
+  if (!centre && subRay < n) noteFirstStage(sum, hit, subRay);
+  bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);
+  if (!centre) pixelSums[item] = sum;
+  if (!settled) return;
+  writePixel(pixelIndex, spectrum, sum, subRay + 1, centre, centre ? (hit ? firstCrossedDomain : -1) : -2);
 }

@@ -6,10 +6,10 @@
 // opal pixel of so small an image is an edge pixel; index-matched: no
 // highlight, whose own sampling TestOpalReferenceOracle holds), 96 x 72
 // pixels against 384 x 288:
-// - a refined pixel (one that differs from the one-ray render) is its block's
-//   mean in XYZ, Spectrum and Radiance (the background's share by the missed
-//   sub-rays), its Depth the block's nearest, its dominant wavelength one of
-//   the block's;
+// - a refined pixel (one that differs from the one-ray render) is the mean of
+//   its block, or of the block's first-stage cells where those stood for it,
+//   in XYZ, Spectrum and Radiance (the background's share by the missed
+//   sub-rays), its Depth their nearest, its dominant wavelength one of theirs;
 // - every other pixel is its own centre ray, and no edge the select compares
 //   crosses it: it is near its block's mean;
 // - the image's mean is the finer image's, where one ray per pixel is not;
@@ -20,6 +20,7 @@
 #include "OpalVolumeBuild.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -41,84 +42,113 @@ opal::RenderParameters view(int scale, int pixelSamples)
   return p;
 }
 
-// The mean over pixel (x, y)'s block of the finer image of `components` values per pixel.
-double blockMean(const std::vector<float>& fine, int components, int component, int x, int y)
+// Cells (i, j) of a pixel's Samples x Samples block: the finer image's pixels its sub-rays are.
+using Cells = std::vector<std::array<int, 2>>;
+
+// Every cell, or the refine's first stage, which stands for the pixel where
+// its sub-rays all see the same: one per column i and row (2i + i / 2) mod 4
+// (docs/design.md §3.4).
+Cells blockCells(bool firstStage)
 {
-  double sum = 0;
-  for (int j = 0; j < Samples; ++j)
-    for (int i = 0; i < Samples; ++i)
-    {
-      const auto p = static_cast<std::size_t>((Samples * y + j) * Width * Samples + Samples * x + i);
-      sum += fine[p * static_cast<std::size_t>(components) + static_cast<std::size_t>(component)];
-    }
-  return sum / (Samples * Samples);
+  Cells cells;
+  for (int i = 0; i < Samples; ++i)
+    for (int j = 0; j < Samples; ++j)
+      if (!firstStage || j == (2 * i + i / (Samples / 2)) % Samples)
+        cells.push_back({ i, j });
+  return cells;
 }
 
-// The largest |difference| of a pixel's values from its block's mean, over
-// the scale `reference` (the image's brightest value of the kind).
+std::size_t finePixel(int x, int y, const std::array<int, 2>& cell)
+{
+  return static_cast<std::size_t>((Samples * y + cell[1]) * Width * Samples + Samples * x + cell[0]);
+}
+
+// The largest |difference| of pixel (x, y)'s values from the mean over the
+// cells of its block, over `reference` (the image's brightest value of the kind).
 double blockDifference(const std::vector<float>& coarse, const std::vector<float>& fine, int components, int x, int y,
-  double reference)
+  const Cells& cells, double reference)
 {
   double worst = 0;
   const auto p = static_cast<std::size_t>(y * Width + x);
-  for (int c = 0; c < components; ++c)
+  const auto n = static_cast<std::size_t>(components);
+  for (std::size_t c = 0; c < n; ++c)
   {
-    const double value = coarse[p * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)];
-    worst = std::max(worst, std::fabs(value - blockMean(fine, components, c, x, y)) / reference);
+    double mean = 0;
+    for (const auto& cell : cells)
+      mean += fine[finePixel(x, y, cell) * n + c] / static_cast<double>(cells.size());
+    worst = std::max(worst, std::fabs(coarse[p * n + c] - mean) / reference);
   }
   return worst;
 }
 
 struct BlockChecks
 {
-  int Refined = 0, RefinedOff = 0, DepthOff = 0, DominantOff = 0, Others = 0, OthersOff = 0;
+  int Refined = 0, FirstStage = 0, RefinedOff = 0, DepthOff = 0, DominantOff = 0, Others = 0, OthersOff = 0;
   double WorstRefined = 0, WorstOther = 0;
 };
 
-// Pixel (x, y)'s Depth against its block's nearest, its dominant wavelength against the block's.
-void checkNearestAndDominant(const opal::RenderImage& coarse, const opal::RenderImage& fine, int x, int y, BlockChecks& c)
+// Pixel (x, y)'s Depth against the nearest of its cells, its dominant wavelength against theirs.
+void checkNearestAndDominant(
+  const opal::RenderImage& coarse, const opal::RenderImage& fine, int x, int y, const Cells& cells, BlockChecks& c)
 {
   const auto p = static_cast<std::size_t>(y * Width + x);
   double nearest = 0;
   bool dominantFound = coarse.DominantBraggWavelength[p] == 0;
-  for (int j = 0; j < Samples; ++j)
-    for (int i = 0; i < Samples; ++i)
-    {
-      const auto q = static_cast<std::size_t>((Samples * y + j) * Width * Samples + Samples * x + i);
-      if (fine.Depth[q] > 0)
-        nearest = nearest > 0 ? std::min<double>(nearest, fine.Depth[q]) : fine.Depth[q];
-      dominantFound = dominantFound || std::fabs(fine.DominantBraggWavelength[q] - coarse.DominantBraggWavelength[p]) < 0.01;
-    }
+  for (const auto& cell : cells)
+  {
+    const std::size_t q = finePixel(x, y, cell);
+    if (fine.Depth[q] > 0)
+      nearest = nearest > 0 ? std::min<double>(nearest, fine.Depth[q]) : fine.Depth[q];
+    dominantFound = dominantFound || std::fabs(fine.DominantBraggWavelength[q] - coarse.DominantBraggWavelength[p]) < 0.01;
+  }
   c.DepthOff += std::fabs(coarse.Depth[p] - nearest) > 1e-4 * std::max(nearest, 1.0);
   c.DominantOff += !dominantFound;
 }
 
-BlockChecks compareBlocks(const opal::RenderImage& area, const opal::RenderImage& centres, const opal::RenderImage& fine)
+// A refined pixel against the cells it stands for: the whole block, or the first stage's.
+void checkRefined(const opal::RenderImage& area, const opal::RenderImage& fine, int x, int y, BlockChecks& c)
 {
-  const int bins = static_cast<int>(area.Wavelengths.size());
   const double brightY = *std::max_element(fine.XYZ.begin(), fine.XYZ.end());
   const double brightBin = *std::max_element(fine.Spectrum.begin(), fine.Spectrum.end());
+  const int bins = static_cast<int>(area.Wavelengths.size());
+  double best = 1e30;
+  bool firstStage = false;
+  for (bool stage : { false, true })
+  {
+    const Cells cells = blockCells(stage);
+    const double d = std::max({ blockDifference(area.XYZ, fine.XYZ, 3, x, y, cells, brightY),
+      blockDifference(area.Radiance, fine.Radiance, 3, x, y, cells, brightY),
+      blockDifference(area.Spectrum, fine.Spectrum, bins, x, y, cells, brightBin) });
+    firstStage = d < best ? stage : firstStage;
+    best = std::min(best, d);
+  }
+  ++c.Refined;
+  c.FirstStage += firstStage;
+  c.WorstRefined = std::max(c.WorstRefined, best);
+  c.RefinedOff += best > 1e-4;
+  checkNearestAndDominant(area, fine, x, y, blockCells(firstStage), c);
+}
+
+BlockChecks compareBlocks(const opal::RenderImage& area, const opal::RenderImage& centres, const opal::RenderImage& fine)
+{
+  const double brightY = *std::max_element(fine.XYZ.begin(), fine.XYZ.end());
+  const Cells block = blockCells(false);
   BlockChecks c;
   for (int y = 0; y < Height; ++y)
     for (int x = 0; x < Width; ++x)
     {
       const auto p = static_cast<std::size_t>(y * Width + x);
-      const bool refined = !std::equal(area.XYZ.begin() + 3 * p, area.XYZ.begin() + 3 * p + 3, centres.XYZ.begin() + 3 * p);
-      const double colour = std::max(blockDifference(area.XYZ, fine.XYZ, 3, x, y, brightY),
-        blockDifference(area.Radiance, fine.Radiance, 3, x, y, brightY));
-      if (!refined) // a single bin of a pixel left with one ray moves with the Bragg band across it: colour only
+      if (!std::equal(area.XYZ.begin() + 3 * p, area.XYZ.begin() + 3 * p + 3, centres.XYZ.begin() + 3 * p))
       {
-        const double d = colour;
-        c.WorstOther = std::max(c.WorstOther, d);
-        c.Others += centres.Depth[p] > 0;
-        c.OthersOff += d > 0.02;
+        checkRefined(area, fine, x, y, c);
         continue;
       }
-      const double d = std::max(colour, blockDifference(area.Spectrum, fine.Spectrum, bins, x, y, brightBin));
-      ++c.Refined;
-      c.WorstRefined = std::max(c.WorstRefined, d);
-      c.RefinedOff += d > 1e-4;
-      checkNearestAndDominant(area, fine, x, y, c);
+      // A single bin of a pixel left with one ray moves with the Bragg band across it: colour only.
+      const double d = std::max(blockDifference(area.XYZ, fine.XYZ, 3, x, y, block, brightY),
+        blockDifference(area.Radiance, fine.Radiance, 3, x, y, block, brightY));
+      c.WorstOther = std::max(c.WorstOther, d);
+      c.Others += centres.Depth[p] > 0;
+      c.OthersOff += d > 0.02;
     }
   return c;
 }
@@ -138,7 +168,8 @@ void checkAreaMeans(opaltest::SceneRenderer& renderer, const opal::RenderVolume&
   const opal::RenderImage fine = renderer.render(volume, view(Samples, 1));
   const BlockChecks c = compareBlocks(area, centres, fine);
   const double fineY = meanY(fine), areaMean = meanY(area) / fineY - 1, centreMean = meanY(centres) / fineY - 1;
-  std::cout << c.Refined << " of " << Width * Height << " pixels refined; refined against their blocks: worst "
+  std::cout << c.Refined << " of " << Width * Height << " pixels refined (" << c.FirstStage
+            << " by the first stage); refined against their cells: worst "
             << c.WorstRefined << " of the brightest Y (" << c.RefinedOff << " beyond 1e-4), depth " << c.DepthOff
             << " and dominant wavelength " << c.DominantOff << " off; the others: worst " << c.WorstOther << ", "
             << c.OthersOff << " of " << c.Others << " beyond 0.02"
