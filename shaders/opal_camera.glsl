@@ -21,16 +21,19 @@ vec4 mirrorPointNearLight(vec3 hit, vec3 d, vec3 normal, out float cosI)
   return vec4(hit + along * mirrored, 1.0);
 }
 
-// The same for the primary ray through `pixel`, traced from tFrom; w = 0 if
-// the ray misses the opal.
-vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI)
+// The same for the primary ray through `pixel`, traced from tFrom, and the
+// mirror image's direction; w = 0 if the ray misses the opal.
+vec4 mirrorRayNearLight(vec2 pixel, vec3 eye, float tFrom, out float cosI, out vec3 mirrored)
 {
   vec3 d = primaryDirection(pixel);
   vec2 box = gridBoxHits(eye, d);
   cosI = 0.0;
+  mirrored = vec3(0.0);
   if (box.x > box.y) return vec4(0.0);
   float t = traceSurfaceEntry(eye, d, max(box.x, tFrom), box.y, 0.05 * P.smallestSpacing);
   if (t < 0.0) return vec4(0.0);
   vec3 hit = eye + t * d;
-  return mirrorPointNearLight(hit, d, surfaceNormal(hit), cosI);
+  vec3 normal = surfaceNormal(hit);
+  mirrored = reflect(d, normal);
+  return mirrorPointNearLight(hit, d, normal, cosI);
 }
