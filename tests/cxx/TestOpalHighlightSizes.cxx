@@ -1,7 +1,7 @@
 // The highlight at every image size (docs/design.md §3.4, item 2): the light's
 // mirror image in the stone is far smaller than a pixel (0.5 mm light 52 mm
-// above the apex of a dome of 8 mm and 12.5 mm radii: an image ~0.04 mm
-// across on the stone, 0.14-1.8 mm pixels here), and at the paper's set-up
+// above the apex of a dome of 8 mm and 12.5 mm radii: an image ~0.1 mm
+// across on the stone, 0.22-1.8 mm pixels here), and at the paper's set-up
 // (light = eye above the apex) it falls on the corner of the four centre
 // pixels at even image sizes. Its share of the image must not depend on how
 // the pixels cut it. The body is dark (no domains, a scattering volume
