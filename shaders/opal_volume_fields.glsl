@@ -46,13 +46,18 @@ float voxelSurfaceDistance(int index)
   return SURFACE_DISTANCE_AT(index).x;
 }
 
-// SurfaceDistance trilinear over voxel centres, clamped.
+// SurfaceDistance trilinear over voxel centres; within half a cell beyond
+// the outermost centres (up to the grid's box) the outermost cells'
+// interpolant continues linearly. Clamped there, the field's value at the
+// lowest centres plus the distance to them cut a chamfer half a cell high
+// under the rim, where the dome meets the base y = 0: the silhouette's
+// pixels came out 1-2% dark (docs/design.md §3.3).
 float trilinearSurfaceDistance(vec3 position)
 {
-  vec3 g = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(0.0), vec3(P.gridDimensions - 1));
+  vec3 g = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(-0.5), vec3(P.gridDimensions) - 0.5);
   ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
   ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
-  vec3 f = clamp(g - vec3(c0), 0.0, 1.0);
+  vec3 f = g - vec3(c0);
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
   vec2 p00 = SURFACE_DISTANCE_AT(c0.x + c0.y * sy + c0.z * sz);
   vec2 p10 = SURFACE_DISTANCE_AT(c0.x + c1.y * sy + c0.z * sz);
@@ -62,12 +67,13 @@ float trilinearSurfaceDistance(vec3 position)
     mix(mix(p01.x, p01.y, f.x), mix(p11.x, p11.y, f.x), f.y), f.z);
 }
 
-// SurfaceDistance, continued linearly beyond the outermost voxel centres (the
-// opal touches the grid's top and sides; a clamped field there would flatten
-// the surface's gradient and hide the apex).
+// SurfaceDistance, continued beyond the grid's box by the distance to it
+// (the opal touches the grid's top and sides; a clamped field there would
+// flatten the surface's gradient and hide the apex).
 float surfaceDistance(vec3 p)
 {
-  vec3 nearest = clamp(p, P.gridOrigin, P.gridOrigin + vec3(P.gridDimensions - 1) * P.gridSpacing);
+  vec3 lo = P.gridOrigin - 0.5 * P.gridSpacing;
+  vec3 nearest = clamp(p, lo, lo + vec3(P.gridDimensions) * P.gridSpacing);
   return trilinearSurfaceDistance(nearest) + distance(p, nearest);
 }
 

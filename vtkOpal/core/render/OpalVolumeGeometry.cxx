@@ -38,10 +38,13 @@ double VolumeGeometry::nearestSurfaceDistance(const glm::dvec3& p) const
 
 double VolumeGeometry::surfaceDistance(const glm::dvec3& p) const
 {
-  const glm::dvec3 g = glm::clamp((p - this->Origin) / this->Spacing, glm::dvec3(0.0), glm::dvec3(this->Dimensions - 1));
+  // As the shaders' trilinearSurfaceDistance: up to the grid's box (half a
+  // cell beyond the outermost centres) the outermost cells continue linearly.
+  const glm::dvec3 g =
+    glm::clamp((p - this->Origin) / this->Spacing, glm::dvec3(-0.5), glm::dvec3(this->Dimensions) - 0.5);
   const glm::ivec3 c0 = glm::clamp(glm::ivec3(glm::floor(g)), glm::ivec3(0), glm::max(this->Dimensions - 2, glm::ivec3(0)));
   const glm::ivec3 c1 = glm::min(c0 + 1, this->Dimensions - 1);
-  const glm::dvec3 f = glm::clamp(g - glm::dvec3(c0), 0.0, 1.0);
+  const glm::dvec3 f = g - glm::dvec3(c0);
   const auto along = [&](int j, int k) {
     return glm::mix(this->distanceAt(c0.x, j, k), this->distanceAt(c1.x, j, k), f.x);
   };

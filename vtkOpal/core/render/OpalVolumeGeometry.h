@@ -20,8 +20,9 @@ public:
   // Nearest-voxel SurfaceDistance at a model-frame point; +inf outside the grid.
   double nearestSurfaceDistance(const glm::dvec3& p) const;
 
-  // SurfaceDistance interpolated trilinearly over the voxel centres (clamped
-  // to the grid), the surface being its zero as the march reads it.
+  // SurfaceDistance interpolated trilinearly over the voxel centres,
+  // continued linearly to the grid's box (clamped beyond), the surface being
+  // its zero as the march reads it.
   double surfaceDistance(const glm::dvec3& p) const;
 
   // The outward unit normal there: the normalised central-difference
