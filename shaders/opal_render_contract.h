@@ -74,8 +74,8 @@ OPAL_CONSTANT int ScatteredLightBinding = 20;
 OPAL_CONSTANT int VolumeAddressesBinding = 21; // one VolumeAddresses
 // The pixels whose footprint an edge crosses (docs/design.md §3.4): queued by
 // the march's edge select, marched again with PixelSamples^2 sub-rays.
-OPAL_CONSTANT int EdgeQueueBinding = 22;        // one DispatchQueue, its count
-OPAL_CONSTANT int EdgePixelsBinding = 23;       // uint per pixel: the queued pixels
+OPAL_CONSTANT int EdgeQueueBinding = 22;        // two DispatchQueues, their counts: the select's, the second stage's
+OPAL_CONSTANT int EdgePixelsBinding = 23;       // two uints per pixel: the queued pixels, then the second stage's
 OPAL_CONSTANT int PixelSumsBinding = 24;        // PixelSum per queued pixel: its sub-rays' sums so far
 OPAL_CONSTANT int BindingCount = 25;
 

@@ -86,7 +86,10 @@ layout(std430, set = 0, binding = PixelSpectrumBinding) buffer PixelSpectrum { f
 // Per pixel: where its mirror ray passes the light, for the highlight pass.
 layout(std430, set = 0, binding = PixelMirrorBinding) writeonly buffer PixelMirrorImage { PixelMirror pixelMirror[]; };
 // The pixels an edge crosses, queued by MarchSelectEdges for MarchRefineEdges.
-layout(std430, set = 0, binding = EdgeQueueBinding) buffer EdgeQueue { DispatchQueue edgeQueue; }; // its count
+// [0]: the pixels the select queued, the first `rectangle's pixels` entries
+// of edgePixels; [1]: those the refine's first stage leaves open, by their
+// place in [0], the entries after.
+layout(std430, set = 0, binding = EdgeQueueBinding) buffer EdgeQueue { DispatchQueue edgeQueue[2]; }; // counts
 layout(std430, set = 0, binding = EdgePixelsBinding) buffer EdgePixels { uint edgePixels[]; };
 // A queued pixel's sub-rays summed so far, between the refine's dispatches.
 layout(std430, set = 0, binding = PixelSumsBinding) buffer PixelSums { PixelSum pixelSums[]; };
@@ -927,7 +930,7 @@ void selectEdge(ivec2 local)
     ivec2 offset = ivec2(k % 3, k / 3) - 1;
     if (k != 4 && edgeBetween(pixelIndex, storedPixel(local + offset), pixelAngle * length(vec2(offset))))
     {
-      edgePixels[atomicAdd(edgeQueue.count, 1u)] = uint(pixelIndex);
+      edgePixels[atomicAdd(edgeQueue[0].count, 1u)] = uint(pixelIndex);
       return;
     }
   }
@@ -948,19 +951,22 @@ int marchItem()
 // whole marches in one invocation would reach it), its sums kept between:
 // first n sub-rays, one per row and column, which stand for the pixel where
 // they all see the same (meeting the opal or not, the same first and
-// brightest domains), then the rest of the n x n grid.
+// brightest domains), then for the others, queued anew so that the second
+// stage's dispatches cover only them, the rest of the n x n grid.
 void main()
 {
   ivec2 local;
   int mode = marchWork.mode, item = 0, n = 1, subRay = 0;
   if (mode == MarchRefineEdges)
   {
-    item = marchWork.first + marchItem();
-    if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue.count)) return;
-    int queued = int(edgePixels[item]);
-    local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
     n = P.pixelSamples;
     subRay = marchWork.subRay;
+    int stage = subRay < n ? 0 : 1, rectPixels = P.rectSize.x * P.rectSize.y;
+    item = marchWork.first + marchItem();
+    if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue[stage].count)) return;
+    if (stage == 1) item = int(edgePixels[rectPixels + item]);
+    int queued = int(edgePixels[item]);
+    local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
   }
   else if (mode == MarchRing)
   {
@@ -980,7 +986,6 @@ void main()
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
-  if (subRay >= n && sum.alike != 0) return; // the first stage stood for the pixel
   if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
   vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
   float tHit, transmitted;
@@ -989,6 +994,10 @@ void main()
   if (!centre && subRay < n) noteFirstStage(sum, hit, subRay);
   bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);
   if (!centre) pixelSums[item] = sum;
+  if (!settled && subRay + 1 == n)
+  {
+    edgePixels[P.rectSize.x * P.rectSize.y + int(atomicAdd(edgeQueue[1].count, 1u))] = uint(item);
+  }
   if (!settled) return;
   writePixel(pixelIndex, spectrum, sum, subRay + 1, centre, centre ? (hit ? firstCrossedDomain : -1) : -2);
 }

@@ -332,21 +332,26 @@ void RenderSession::recordMarchRing(VkCommandBuffer commands, const ComputePipel
 
 // The pixels the edge select queued, each the mean of PixelSamples^2
 // sub-rays, one dispatch per sub-ray (docs/design.md §3.4), in submits the
-// pacer sizes.
+// pacers size: the first stage's PixelSamples sub-rays for every queued
+// pixel, then the rest for those the first stage queued again.
 bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at)
 {
-  const std::int64_t queued = queuedCount(*this->Buffers->EdgeQueue);
-  return this->drainQueue(queued, this->RefinePacer, progress, at,
-    [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
-      constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
-      for (int subRay = 0; subRay < pixelSamples * pixelSamples; ++subRay)
-      {
-        march.dispatch(commands,
-          gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
-            static_cast<std::int32_t>(count), subRay },
-          static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
-      }
-    });
+  const int n = pixelSamples;
+  const auto stage = [&](int queue, int fromRay, int toRay, SubmitPacer& pacer) {
+    const std::int64_t queued = queuedCount(*this->Buffers->EdgeQueue, queue);
+    return this->drainQueue(queued, pacer, progress, at,
+      [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
+        constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
+        for (int subRay = fromRay; subRay < toRay; ++subRay)
+        {
+          march.dispatch(commands,
+            gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
+              static_cast<std::int32_t>(count), subRay },
+            static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
+        }
+      });
+  };
+  return stage(0, 0, n, this->RefinePacer) && stage(1, n, n * n, this->RefineRestPacer);
 }
 
 // The highlight's select over the rectangle the march wrote (it recorded
@@ -365,7 +370,7 @@ void RenderSession::recordHighlightSelect(VkCommandBuffer commands, const std::a
 // cost is not the image's.
 bool RenderSession::shadeHighlight(Progress& progress, double at)
 {
-  const std::int64_t queued = queuedCount(*this->Buffers->HighlightQueue);
+  const std::int64_t queued = queuedCount(*this->Buffers->HighlightQueue, 0);
   return this->drainQueue(queued, this->HighlightPacer, progress, at,
     [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
       this->highlightPass(gpu::HighlightShade)
@@ -374,11 +379,12 @@ bool RenderSession::shadeHighlight(Progress& progress, double at)
     });
 }
 
-// How many items a pass queued in the DispatchQueue `header`.
-std::int64_t RenderSession::queuedCount(const VulkanBuffer& header) const
+// How many items a pass queued in the DispatchQueue `index` of the array `headers`.
+std::int64_t RenderSession::queuedCount(const VulkanBuffer& headers, int index) const
 {
-  const HostReadback queue(*this->Context, { { &header, sizeof(gpu::DispatchQueue) } });
-  return static_cast<std::int64_t>(queue.view<gpu::DispatchQueue>(0)->count);
+  const auto bytes = static_cast<std::uint64_t>(index + 1) * sizeof(gpu::DispatchQueue);
+  const HostReadback queue(*this->Context, { { &headers, bytes } });
+  return static_cast<std::int64_t>(queue.view<gpu::DispatchQueue>(0)[index].count);
 }
 
 // Runs `queued` items in submits of the pacer's size, `record` recording the

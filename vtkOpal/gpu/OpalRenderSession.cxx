@@ -244,7 +244,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   this->Buffers->HighlightQueue = std::make_unique<VulkanBuffer>(
     *this->Context, sizeof(gpu::DispatchQueue), "highlight queue header", BufferPlacement::DeviceLocal);
   this->Buffers->EdgeQueue = std::make_unique<VulkanBuffer>(
-    *this->Context, sizeof(gpu::DispatchQueue), "edge queue header", BufferPlacement::DeviceLocal);
+    *this->Context, 2 * sizeof(gpu::DispatchQueue), "edge queue headers", BufferPlacement::DeviceLocal);
   sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
@@ -578,7 +578,7 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
     (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0) +
       (setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
-      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4 + 4 + sizeof(gpu::PixelSum)) +
+      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum)) +
     pixels * (3 * 4 + 4) +
     spectrumBytes;
   const std::uint64_t deviceBytes = volumeBytes + imageBytes;
@@ -624,7 +624,7 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     b.PixelBragg = deviceLocalBuffer(context, n * sizeof(gpu::PixelBragg), "Bragg image");
     b.PixelMirror = deviceLocalBuffer(context, n * sizeof(gpu::PixelMirror), "mirror image");
     b.HighlightPixels = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "highlight queue");
-    b.EdgePixels = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "edge queue");
+    b.EdgePixels = deviceLocalBuffer(context, 2 * n * sizeof(std::uint32_t), "edge queues");
     b.PixelSums = deviceLocalBuffer(context, n * sizeof(gpu::PixelSum), "edge pixels' sums");
     b.PixelRadiance = deviceLocalBuffer(context, n * 3 * sizeof(float), "Radiance image");
     b.PixelRGB8 = deviceLocalBuffer(context, n * sizeof(std::uint32_t), "RGB image");

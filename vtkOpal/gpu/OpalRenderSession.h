@@ -175,7 +175,7 @@ private:
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);
-  std::int64_t queuedCount(const VulkanBuffer& header) const;
+  std::int64_t queuedCount(const VulkanBuffer& headers, int index) const;
   bool drainQueue(std::int64_t queued, SubmitPacer& pacer, Progress& progress, double at,
     const std::function<void(VkCommandBuffer, std::int64_t, std::int64_t)>& record);
   bool measureExposure(const FrameSetup& setup, Progress& progress, double& exposure);
@@ -216,7 +216,8 @@ private:
   SubmitPacer SweepPacer{ 1 << 20 };    // voxels, in whole layers
   SubmitPacer SlabPacer{ 1 << 18 };     // voxels marched to the light
   SubmitPacer HighlightPacer{ 1 << 12 }; // queued pixels shaded
-  SubmitPacer RefinePacer{ 1 << 12 };    // queued edge pixels refined (PixelSamples^2 rays each)
+  SubmitPacer RefinePacer{ 1 << 14 };     // queued edge pixels, their first stage (PixelSamples rays each)
+  SubmitPacer RefineRestPacer{ 1 << 12 }; // and their second (PixelSamples^2 - PixelSamples rays)
   int CompletedFrames = 0;
   int AbandonedFrames = 0;
 };
