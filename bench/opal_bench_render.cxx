@@ -4,7 +4,8 @@
 // frame (pipeline creation and, with a cold Mesa shader cache, the LLVM
 // compile), then the medians of warm frames (7, each with a light pass),
 // camera-only re-renders (7, no upload, no light pass) and preview frames (9),
-// each with its median CPU time; then the whole opal-render process (median
+// each with its median CPU time; the Bragg models, anti-aliasing and every
+// order against the paper's frame; then the whole opal-render process (median
 // of 5) with Mesa's shader cache warm and disabled. Usage: opal-bench-render [WIDTH HEIGHT]
 #include "OpalRenderSession.h"
 #include "OpalPresets.h"
@@ -229,6 +230,34 @@ void benchScatteringOrders(opal::RenderSession& session, opal::RenderParameters 
     median(camera[0]),
     median(camera[1]) / median(camera[0]), 100.0 * (1.0 - light[0] / light[1]));
 }
+// Anti-aliased frames (PixelSamples 4, docs/design.md §3.4 item 8) against
+// one ray per pixel: frames with a new light and camera-only frames,
+// alternating, medians of 5 after a pair that builds the pipelines.
+void benchPixelArea(opal::RenderSession& session, opal::RenderParameters p)
+{
+  std::vector<double> lit[2], camera[2];
+  opal::RenderFrame frame;
+  for (int run = 0; run < 12; ++run)
+  {
+    const int area = run % 2;
+    p.PixelSamples = area ? 4 : 1;
+    p.LightPosition[0] = 1e-3 * (run / 2 + 1);
+    p.EyePosition[0] = 0.0;
+    const double litSeconds = secondsOf(session, p, frame);
+    p.EyePosition[0] = 3.0;
+    const double cameraSeconds = secondsOf(session, p, frame);
+    if (run >= 2)
+    {
+      lit[area].push_back(litSeconds);
+      camera[area].push_back(cameraSeconds);
+    }
+  }
+  std::printf("  PixelSamples 4 against 1 (alternating, medians of 5): frame with a new light %.3f s against "
+              "%.3f s (x%.2f), camera-only %.3f s against %.3f s (x%.2f)\n",
+    median(lit[1]), median(lit[0]), median(lit[1]) / median(lit[0]), median(camera[1]), median(camera[0]),
+    median(camera[1]) / median(camera[0]));
+}
+
 // WIDTH or HEIGHT: the whole word in digits, at least 1 (atoi took "1x" as 1
 // and "x" as 0); exits with a message otherwise.
 int pixels(const char* word)
@@ -273,6 +302,7 @@ int main(int argc, char** argv)
   benchFrames("preview, camera only", session, p, 9, false, moveEye);
   p.Quality = opal::RenderQuality::Final;
   p.EyePosition = { 0.0, 60.0, 0.0 };
+  benchPixelArea(session, p);
   benchBraggModels(session, p);
   benchScatteringOrders(session, p, opal::presetIndexByName("fig12"), "fig12");
   benchScatteringOrders(session, p, opal::presetIndexByName("white-opal"), "white-opal");
