@@ -1,10 +1,11 @@
-// The Vulkan render against the converged reference (tests/reference: the
-// paper's algorithm, sharing only the CIE tables, in its converged mode: the
-// light's optical depth exact, the view path refined until the image stops
-// changing), per pixel in linear radiance (CIE XYZ), on a 0.2 mm opal: light
-// above, low and to the side; scattering and diffraction alone; silhouette
-// pixels up to 75 degrees incidence; the highlight at the default light
-// radius in a view where it covers many pixels; and the paper's grainy field.
+// The Vulkan render (its default frame: edges anti-aliased) against the
+// converged reference (tests/reference: the paper's algorithm, sharing only
+// the CIE tables, in its converged mode: the light's optical depth exact,
+// the view path refined until the image stops changing, each pixel's area
+// mean), per pixel in linear radiance (CIE XYZ), on a 0.2 mm opal: light
+// above, low and to the side; scattering and diffraction alone; every pixel,
+// the silhouette's included; the highlight at the default light radius in a
+// view where it covers many pixels; and the paper's grainy field.
 #include "OpalReferenceRenderer.h"
 #include "OpalReferenceScene.h"
 #include "OpalRenderScenes.h"
@@ -31,16 +32,29 @@
 namespace
 {
 constexpr int ImageWidth = 64, ImageHeight = 48;
-// Pixels compared: where the primary ray meets the surface at up to 75 degrees.
-const double SilhouetteCosine = std::cos(75.0 * 3.14159265358979 / 180.0);
+
+// Pixels the converged reference split (an edge crosses them: the
+// silhouette, a domain's boundary, a steep change) are held to the local
+// full-pixel brightness (the brightest Y of their 3 x 3 reference pixels):
+// the product's default render resolves an edge with 4 x 4 sub-rays, so a
+// straight edge can leave half a row of them (1/8 of the pixel) on the
+// wrong side; the reference's own split to 1/8 of a pixel differs from one
+// to 1/16 by up to 6.3% of such a pixel (fig15, light above; 95% of the
+// split pixels within 3%). Hence 1/8 + 1/16.
+constexpr double EdgeTolerance = 0.19;
+// Their sum against the reference's: the sub-rays' errors of opposite sign
+// cancel over a silhouette; the reference's own, summed, is 0.44%.
+constexpr double EdgeSumTolerance = 0.02;
 
 struct Comparison
 {
-  double Percentile95 = 0; // of the per-pixel worst XYZ component's relative difference
+  double Percentile95 = 0; // of the unsplit pixels' worst XYZ component's relative difference
   double Worst = 0;
   double MeanAbsolute = 0;
-  double MeanSigned = 0;   // (sum of XYZ - sum of reference XYZ) / sum of reference XYZ over the opal
-  int Pixels = 0, HighlightPixels = 0, DomainPixels = 0, DominantMismatches = 0;
+  double MeanSigned = 0;   // (sum of XYZ - sum of reference XYZ) / sum of reference XYZ over the image
+  double EdgeWorst = 0;    // the split pixels' worst |difference| over the local full-pixel Y
+  double EdgeSum = 0;      // their summed XYZ against the reference's, relative
+  int Pixels = 0, EdgePixels = 0, HighlightPixels = 0, DomainPixels = 0, DominantMismatches = 0;
 };
 
 // The point of the Vulkan image at pixel (x, y) of the reference's top-down rows.
@@ -51,8 +65,7 @@ vtkIdType imageId(std::size_t p)
 }
 
 // The worst relative difference of a pixel's XYZ components, each against
-// the reference's value or, where darker, 5% of the mean luminance (a dark
-// pixel's relative difference says little).
+// the reference's value or, where darker, `floor`.
 double pixelDifference(vtkDataArray* xyz, const opalreference::Image& reference, std::size_t p, double floor)
 {
   double worst = 0;
@@ -64,31 +77,72 @@ double pixelDifference(vtkDataArray* xyz, const opalreference::Image& reference,
   return worst;
 }
 
-Comparison comparePixels(vtkImageData* image, const opalreference::Image& reference)
+// The brightest reference Y among pixel p and its 8 neighbours.
+double localFullY(const opalreference::Image& reference, std::size_t p)
+{
+  const int x = static_cast<int>(p % ImageWidth), y = static_cast<int>(p / ImageWidth);
+  double brightest = 0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+    {
+      const int nx = std::clamp(x + dx, 0, ImageWidth - 1), ny = std::clamp(y + dy, 0, ImageHeight - 1);
+      brightest = std::max(brightest, reference.XYZ[3 * static_cast<std::size_t>(ny * ImageWidth + nx) + 1]);
+    }
+  return brightest;
+}
+
+// The dominant wavelengths of the unsplit pixels (the reference's is its
+// centre ray's; where an edge crosses a pixel, the product's sub-rays may
+// see another crossing) and the image's sums.
+void compareTotals(vtkImageData* image, const opalreference::Image& reference, Comparison& result)
 {
   vtkDataArray* xyz = image->GetPointData()->GetArray("XYZ");
   vtkDataArray* dominant = image->GetPointData()->GetArray("DominantBraggWavelength");
-  double meanY = 0, sum = 0, referenceSum = 0;
-  for (std::size_t p = 0; p < reference.Hit.size(); ++p)
-    meanY += reference.XYZ[3 * p + 1] / static_cast<double>(reference.Hit.size());
-  Comparison result;
-  std::vector<double> differences;
+  double sum = 0, referenceSum = 0, edge = 0, referenceEdge = 0;
   for (std::size_t p = 0; p < reference.Hit.size(); ++p)
   {
     for (int c = 0; c < 3; ++c)
     {
-      sum += xyz->GetComponent(imageId(p), c);
-      referenceSum += reference.XYZ[3 * p + static_cast<std::size_t>(c)];
+      const double a = xyz->GetComponent(imageId(p), c), b = reference.XYZ[3 * p + static_cast<std::size_t>(c)];
+      sum += a;
+      referenceSum += b;
+      edge += reference.Refined[p] ? a : 0.0;
+      referenceEdge += reference.Refined[p] ? b : 0.0;
     }
-    if (reference.Dominant[p] > 0 || dominant->GetComponent(imageId(p), 0) > 0)
+    const double lambda = dominant->GetComponent(imageId(p), 0);
+    if (reference.Dominant[p] > 0 || lambda > 0)
     {
       ++result.DomainPixels;
-      result.DominantMismatches += std::fabs(reference.Dominant[p] - dominant->GetComponent(imageId(p), 0)) > 0.01;
+      result.DominantMismatches += !reference.Refined[p] && std::fabs(reference.Dominant[p] - lambda) > 0.01;
     }
-    if (!reference.Hit[p] || reference.CosIncidence[p] < SilhouetteCosine)
-      continue;
+  }
+  result.MeanSigned = referenceSum > 0 ? (sum - referenceSum) / referenceSum : 0.0;
+  result.EdgeSum = referenceEdge > 0 ? edge / referenceEdge - 1 : 0.0;
+}
+
+// Every pixel, the silhouette's included, as pixel-area means: the unsplit
+// ones relative to themselves (or 5% of the mean luminance, where darker:
+// a dark pixel's relative difference says little), the split ones to their
+// local full-pixel brightness.
+Comparison comparePixels(vtkImageData* image, const opalreference::Image& reference)
+{
+  vtkDataArray* xyz = image->GetPointData()->GetArray("XYZ");
+  double meanY = 0;
+  for (std::size_t p = 0; p < reference.Hit.size(); ++p)
+    meanY += reference.XYZ[3 * p + 1] / static_cast<double>(reference.Hit.size());
+  Comparison result;
+  compareTotals(image, reference, result);
+  std::vector<double> differences;
+  for (std::size_t p = 0; p < reference.Hit.size(); ++p)
+  {
     result.HighlightPixels += reference.Highlight[p] > 0;
-    differences.push_back(pixelDifference(xyz, reference, p, 0.05 * meanY));
+    if (reference.Refined[p])
+    {
+      ++result.EdgePixels;
+      result.EdgeWorst = std::max(result.EdgeWorst, pixelDifference(xyz, reference, p, std::max(localFullY(reference, p), 0.05 * meanY)));
+    }
+    else if (reference.Hit[p])
+      differences.push_back(pixelDifference(xyz, reference, p, 0.05 * meanY));
   }
   std::sort(differences.begin(), differences.end());
   result.Pixels = static_cast<int>(differences.size());
@@ -99,7 +153,6 @@ Comparison comparePixels(vtkImageData* image, const opalreference::Image& refere
     for (double d : differences)
       result.MeanAbsolute += d / static_cast<double>(differences.size());
   }
-  result.MeanSigned = referenceSum > 0 ? (sum - referenceSum) / referenceSum : 0.0;
   return result;
 }
 
@@ -137,21 +190,26 @@ Comparison compare(vtkImageData* volume, const Case& c, const std::string& cie)
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const Comparison r = comparePixels(render->GetOutput(), reference);
   std::cout << c.What << " (reference converged at " << reference.ViewSubsteps << " view sub-steps, " << seconds
-            << " s): " << r.Pixels
-            << " pixels, " << r.HighlightPixels << " with highlight; 95th percentile " << 100 * r.Percentile95
-            << "%, worst " << 100 * r.Worst << "%, mean |difference| " << 100 * r.MeanAbsolute << "%, mean "
-            << 100 * r.MeanSigned << "%; " << r.DomainPixels << " domain pixels, " << r.DominantMismatches
-            << " dominant-wavelength mismatches" << std::endl;
+            << " s): " << r.Pixels << " unsplit pixels, " << r.HighlightPixels << " with highlight; 95th percentile "
+            << 100 * r.Percentile95 << "%, worst " << 100 * r.Worst << "%, mean |difference| " << 100 * r.MeanAbsolute
+            << "%, mean " << 100 * r.MeanSigned << "%; " << r.EdgePixels << " split (edge) pixels: worst "
+            << 100 * r.EdgeWorst << "% of the local full pixel, their sum " << 100 * r.EdgeSum << "%; "
+            << r.DomainPixels << " domain pixels, " << r.DominantMismatches << " dominant-wavelength mismatches"
+            << std::endl;
   return r;
 }
 
-// The goals of docs/design.md §5: 95% of opal pixels within 2%, the worst
-// within 5%, the mean radiance within 0.5%; dominant wavelengths equal.
+// The goals of docs/design.md §5: 95% of the unsplit opal pixels within 2%,
+// the worst within 5%, the mean radiance within 0.5%; the split (edge)
+// pixels as EdgeTolerance and EdgeSumTolerance; dominant wavelengths equal.
 void checkAgreement(const Comparison& r, const std::string& what)
 {
   OPAL_CHECK(r.Pixels > 100, what + ": the opal covers the image");
   OPAL_CHECK(r.Percentile95 < 0.02, what + ": 95% of the pixels within 2% of the converged reference");
-  OPAL_CHECK(r.Worst < 0.05, what + ": every pixel within 5% of the converged reference");
+  OPAL_CHECK(r.Worst < 0.05, what + ": every unsplit pixel within 5% of the converged reference");
+  OPAL_CHECK(r.EdgeWorst < EdgeTolerance, what + ": every edge pixel within " + std::to_string(EdgeTolerance) +
+      " of its local full pixel");
+  OPAL_CHECK(std::fabs(r.EdgeSum) < EdgeSumTolerance, what + ": the edge pixels' sum within 2%");
   OPAL_CHECK(std::fabs(r.MeanSigned) < 0.005, what + ": the mean radiance within 0.5%");
   OPAL_CHECK(r.DominantMismatches == 0, what + ": dominant Bragg wavelengths agree");
 }

@@ -193,7 +193,11 @@ public:
     return this->Scattering[v] > 0 || (this->absorbs() && this->Absorption[v] > 0);
   }
 
-  // Trilinear SurfaceDistance between voxel centres, continued linearly beyond them.
+  // Trilinear SurfaceDistance between voxel centres; from the outermost
+  // centres to the grid's box (half a cell) the outermost cells' interpolant
+  // continued linearly, beyond the box the distance to it added. (Clamping at
+  // the outermost centres instead cut a chamfer under the rim where the dome
+  // meets the base y = 0: docs/design.md §3.3.)
   double distance(const dvec3& p) const
   {
     double g[3];
@@ -201,11 +205,11 @@ public:
     dvec3 nearest(0.0);
     for (int a = 0; a < 3; ++a)
     {
-      const double lo = this->S.Origin[a];
-      const double hi = lo + (this->S.Dimensions[a] - 1) * this->S.Spacing[a];
+      const double lo = this->S.Origin[a] - 0.5 * this->S.Spacing[a];
+      const double hi = lo + this->S.Dimensions[a] * this->S.Spacing[a];
       nearest[a] = std::min(std::max(p[a], lo), hi);
-      g[a] = (nearest[a] - lo) / this->S.Spacing[a];
-      c0[a] = std::min(static_cast<int>(std::floor(g[a])), std::max(this->S.Dimensions[a] - 2, 0));
+      g[a] = (nearest[a] - this->S.Origin[a]) / this->S.Spacing[a];
+      c0[a] = std::max(std::min(static_cast<int>(std::floor(g[a])), this->S.Dimensions[a] - 2), 0);
       c1[a] = std::min(c0[a] + 1, this->S.Dimensions[a] - 1);
       g[a] -= c0[a];
     }
@@ -733,8 +737,9 @@ double diffracted(const Setup& s, const Sample& sample, const Band& band, double
 // Every wavelength separately (the paper's cost): the body's single
 // scattering (eq. 8, phase 1/(4 pi), T_V at each sample's middle) and the
 // domains' diffraction, extinction mu_s + mu_a on both paths (tauView: at
-// this wavelength); the pixel's XYZ and its dominant Bragg wavelength.
-PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, double transmitted, double highlight, double lightRadiance)
+// this wavelength); the ray's XYZ (transmitted: the 1 - F it carries in)
+// and its dominant Bragg wavelength.
+PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, double transmitted)
 {
   PixelResult pixel;
   std::vector<double> crossingY, crossingLambda;
@@ -770,7 +775,7 @@ PixelResult shadePixel(const Setup& s, const std::vector<Sample>& samples, doubl
       }
       tauView += (mus + mua) * sample.Length;
     }
-    const double total = (transmitted * radiance + highlight * lightRadiance) * band.D65;
+    const double total = transmitted * radiance * band.D65;
     pixel.XYZ[0] += total * band.X * band.Width;
     pixel.XYZ[1] += total * band.Y * band.Width;
     pixel.XYZ[2] += total * band.Z * band.Width;
@@ -795,58 +800,245 @@ double viewExit(const Volume& volume, const dvec3& origin, const dvec3& inward)
   return tBox;
 }
 
-// One render with `substeps` body samples per voxel segment.
-Image renderOnce(const Setup& s, const std::vector<double>& highlight)
+// A ray through image point (x, y), in pixels from the top left: whether it
+// meets the opal, its cosine of incidence, the first domain its refracted ray
+// crosses (-1: none) and, if shaded, its body's XYZ and dominant Bragg
+// wavelength (the highlight apart: a pixel's is integrated on its own).
+struct RaySample
+{
+  bool Hit = false;
+  int FirstDomain = -1;
+  double CosIncidence = 0;
+  PixelResult Body;
+};
+
+RaySample traceRay(const Setup& s, const Camera& camera, double x, double y, int substeps, bool shade)
+{
+  RaySample ray;
+  const Volume& volume = s.V;
+  const View& view = s.ViewSettings;
+  const dvec3 d = camera.direction(x, y);
+  const double tHit = volume.entry(camera.Eye, d);
+  if (tHit < 0)
+    return ray;
+  ray.Hit = true;
+  const dvec3 hit = camera.Eye + tHit * d;
+  const dvec3 n = volume.normal(hit);
+  ray.CosIncidence = -glm::dot(d, n);
+  // The refracted ray, from just inside the surface to where it leaves.
+  const dvec3 inward = glm::refract(d, n, 1.0 / view.RefractiveIndex);
+  const dvec3 origin = hit - 1e-4 * volume.minSpacing() * n;
+  std::vector<Sample> samples =
+    viewSamples(volume, viewSegments(volume, origin, inward, viewExit(volume, origin, inward)), origin, inward, substeps);
+  const auto domain = std::find_if(samples.begin(), samples.end(), [](const Sample& a) { return a.Domain >= 0; });
+  ray.FirstDomain = domain == samples.end() ? -1 : domain->Domain;
+  if (!shade)
+    return ray;
+  if (view.Converged)
+    for (Sample& sample : samples)
+      lightExact(volume, sample.Middle, s.Light, s.ApexDistance2, view.RefractiveIndex, sample.Tau, sample.TauAbsorption,
+        sample.G);
+  ray.Body = shadePixel(s, samples, 1 - fresnel(ray.CosIncidence, view.RefractiveIndex));
+  return ray;
+}
+
+// The XYZ of a pixel's highlight (its share times F, the light's radiance, D65).
+std::array<double, 3> highlightXYZ(const Setup& s, double highlight)
 {
   const View& view = s.ViewSettings;
-  const Volume& volume = s.V;
-  const Camera camera(view);
   const double lightRadiance = s.ApexDistance2 / (Pi * view.LightRadius * view.LightRadius);
-  Image image;
+  std::array<double, 3> xyz{};
+  for (const Band& band : s.Bands)
+  {
+    const double total = highlight * lightRadiance * band.D65 * band.Width;
+    xyz[0] += total * band.X;
+    xyz[1] += total * band.Y;
+    xyz[2] += total * band.Z;
+  }
+  return xyz;
+}
+
+// One render of the pixels' centre rays with s.Substeps body samples per
+// voxel segment, and each centre ray's first domain.
+struct CentreRender
+{
+  Image Picture;
+  std::vector<int> FirstDomain;
+};
+
+CentreRender renderOnce(const Setup& s, const std::vector<double>& highlight)
+{
+  const View& view = s.ViewSettings;
+  const Camera camera(view);
+  CentreRender render;
+  Image& image = render.Picture;
   const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
   image.XYZ.assign(3 * pixels, 0.0);
   image.Dominant.assign(pixels, 0.0);
   image.Hit.assign(pixels, 0);
   image.CosIncidence.assign(pixels, 0.0);
   image.Highlight = highlight;
+  image.Refined.assign(pixels, 0);
   image.ViewSubsteps = s.Substeps;
+  render.FirstDomain.assign(pixels, -1);
   forEachPixel(pixels, [&](std::size_t pixel) {
-    const dvec3 d = camera.direction(static_cast<double>(pixel % view.Width) + 0.5, static_cast<double>(pixel / view.Width) + 0.5);
-    const double tHit = volume.entry(camera.Eye, d);
-    if (tHit < 0)
-      return;
-    image.Hit[pixel] = 1;
-    const dvec3 hit = camera.Eye + tHit * d;
-    const dvec3 n = volume.normal(hit);
-    image.CosIncidence[pixel] = -glm::dot(d, n);
-    const double transmitted = 1 - fresnel(-glm::dot(d, n), view.RefractiveIndex);
-    // The refracted ray, from just inside the surface to where it leaves.
-    const dvec3 inward = glm::refract(d, n, 1.0 / view.RefractiveIndex);
-    const dvec3 origin = hit - 1e-4 * volume.minSpacing() * n;
-    std::vector<Sample> samples =
-      viewSamples(volume, viewSegments(volume, origin, inward, viewExit(volume, origin, inward)), origin, inward, s.Substeps);
-    if (view.Converged)
-      for (Sample& sample : samples)
-        lightExact(volume, sample.Middle, s.Light, s.ApexDistance2, view.RefractiveIndex, sample.Tau, sample.TauAbsorption,
-          sample.G);
-    const PixelResult result = shadePixel(s, samples, transmitted, highlight[pixel], lightRadiance);
-    std::copy(result.XYZ.begin(), result.XYZ.end(), image.XYZ.begin() + static_cast<std::ptrdiff_t>(3 * pixel));
-    image.Dominant[pixel] = result.Dominant;
+    const RaySample ray = traceRay(s, camera, static_cast<double>(pixel % view.Width) + 0.5,
+      static_cast<double>(pixel / view.Width) + 0.5, s.Substeps, true);
+    const std::array<double, 3> shine = highlightXYZ(s, highlight[pixel]);
+    for (std::size_t c = 0; c < 3; ++c)
+      image.XYZ[3 * pixel + c] = ray.Body.XYZ[c] + shine[c];
+    image.Hit[pixel] = ray.Hit ? 1 : 0;
+    image.CosIncidence[pixel] = ray.CosIncidence;
+    image.Dominant[pixel] = ray.Body.Dominant;
+    render.FirstDomain[pixel] = ray.FirstDomain;
   });
-  return image;
+  return render;
+}
+
+// 5% of an image's mean luminance: below it a pixel's relative difference says little.
+double darkFloor(const Image& image)
+{
+  double meanY = 0;
+  for (std::size_t p = 0; p < image.Hit.size(); ++p)
+    meanY += image.XYZ[3 * p + 1] / static_cast<double>(image.Hit.size());
+  return 0.05 * meanY;
 }
 
 // The largest change of any pixel's XYZ component between two renders,
-// relative to the pixel (or 5% of the mean luminance, where darker).
+// relative to the pixel (or darkFloor, where darker).
 double largestChange(const Image& a, const Image& b)
 {
-  double meanY = 0;
-  for (std::size_t p = 0; p < b.Hit.size(); ++p)
-    meanY += b.XYZ[3 * p + 1] / static_cast<double>(b.Hit.size());
+  const double floor = darkFloor(b);
   double change = 0;
   for (std::size_t i = 0; i < b.XYZ.size(); ++i)
-    change = std::max(change, std::fabs(a.XYZ[i] - b.XYZ[i]) / std::max(std::fabs(b.XYZ[i]), 0.05 * meanY));
+    change = std::max(change, std::fabs(a.XYZ[i] - b.XYZ[i]) / std::max(std::fabs(b.XYZ[i]), floor));
   return change;
+}
+
+// --- The pixel's area (converged mode) ---
+
+// What the area pass shares: the setup, the substeps its rays take, the
+// tolerance's scale (darkFloor) and the camera.
+struct AreaSetup
+{
+  const Setup& S;
+  int Substeps;
+  double Floor;
+  Camera Eye;
+};
+
+// The rays of a square of the image: its four corners (top left, top right,
+// bottom left, bottom right) and its centre.
+struct SquareRays
+{
+  std::array<RaySample, 4> Corner;
+  RaySample Centre;
+};
+
+bool sameGeometry(const SquareRays& q)
+{
+  return std::all_of(q.Corner.begin(), q.Corner.end(), [&](const RaySample& r) {
+    return r.Hit == q.Centre.Hit && r.FirstDomain == q.Centre.FirstDomain;
+  });
+}
+
+// The square's mean by the five-point rule (2 centre + mean of corners) / 3,
+// exact for a quadratic, and whether the rule holds there: the square's rays
+// see the same surface and first domain, and the rule moves the centre's
+// value, weighted by the square's share of the pixel (`area`), by at most
+// RuleTrust tolerances of the pixel's scale, per XYZ component. The centre's
+// error is of order h^2 and the rule's h^4, so where the centre errs by a
+// few tolerances the rule errs by far less than one.
+constexpr double RuleTrust = 8;
+
+std::array<double, 3> fivePointMean(const SquareRays& q)
+{
+  std::array<double, 3> mean{};
+  for (std::size_t c = 0; c < 3; ++c)
+  {
+    double corners = 0;
+    for (const RaySample& r : q.Corner)
+      corners += 0.25 * r.Body.XYZ[c];
+    mean[c] = (2 * q.Centre.Body.XYZ[c] + corners) / 3;
+  }
+  return mean;
+}
+
+bool smoothSquare(const SquareRays& q, const std::array<double, 3>& mean, double area, double scale, double tolerance)
+{
+  if (!sameGeometry(q))
+    return false;
+  for (std::size_t c = 0; c < 3; ++c)
+    if (area * std::fabs(mean[c] - q.Centre.Body.XYZ[c]) > RuleTrust * tolerance * scale)
+      return false;
+  return true;
+}
+
+// The mean over the square [x, x + size]^2 with these rays: the five-point
+// rule where smooth or `depth` levels down, else the mean of its four
+// quarters (eight new rays: the edges' midpoints and the quarters' centres).
+std::array<double, 3> squareMean(const AreaSetup& a, double x, double y, double size, const SquareRays& q, int depth,
+  double scale)
+{
+  const std::array<double, 3> mean = fivePointMean(q);
+  if (depth == 0 || smoothSquare(q, mean, size * size, scale, a.S.ViewSettings.ConvergenceTolerance))
+    return mean;
+  const double h = 0.5 * size;
+  auto ray = [&](double u, double v) { return traceRay(a.S, a.Eye, x + u * size, y + v * size, a.Substeps, true); };
+  const RaySample top = ray(0.5, 0), left = ray(0, 0.5), right = ray(1, 0.5), bottom = ray(0.5, 1);
+  const std::array<SquareRays, 4> quarters{ SquareRays{ { q.Corner[0], top, left, q.Centre }, ray(0.25, 0.25) },
+    SquareRays{ { top, q.Corner[1], q.Centre, right }, ray(0.75, 0.25) },
+    SquareRays{ { left, q.Centre, q.Corner[2], bottom }, ray(0.25, 0.75) },
+    SquareRays{ { q.Centre, right, bottom, q.Corner[3] }, ray(0.75, 0.75) } };
+  std::array<double, 3> sum{};
+  for (std::size_t i = 0; i < 4; ++i)
+  {
+    const std::array<double, 3> part =
+      squareMean(a, x + h * static_cast<double>(i % 2), y + h * static_cast<double>(i / 2), h, quarters[i], depth - 1, scale);
+    for (std::size_t c = 0; c < 3; ++c)
+      sum[c] += 0.25 * part[c];
+  }
+  return sum;
+}
+
+// Converged mode: each pixel's mean over its area (a box filter), from its
+// corners' rays and its centre's at `coarse`'s substeps (one body sample per
+// voxel segment, which keeps the pass at ~15% of the render): where the
+// five-point rule holds (smoothSquare), the pixel is its converged centre
+// value plus the rule's correction; elsewhere (the silhouette, a domain's
+// edge, a steep change) the pixel is split adaptively (squareMean,
+// View::AreaDepth levels) and the centre's value corrected by the split's
+// mean less the centre. Both corrections are differences of rays at the
+// coarse substeps, whose quadrature error, common to both, cancels (fig15's
+// terminator: within 0.17% of the same pass at 4 substeps where a pixel's Y
+// exceeds 0.02, 1.2% at worst on the darkest); a missed ray contributes 0.
+void integratePixelAreas(const Setup& s, Image& image, const CentreRender& coarse)
+{
+  const View& view = s.ViewSettings;
+  const AreaSetup a{ s, coarse.Picture.ViewSubsteps, darkFloor(image), Camera(view) };
+  const auto width = static_cast<std::size_t>(view.Width), height = static_cast<std::size_t>(view.Height);
+  std::vector<RaySample> corners((width + 1) * (height + 1));
+  forEachPixel(corners.size(), [&](std::size_t i) {
+    corners[i] = traceRay(s, a.Eye, static_cast<double>(i % (width + 1)), static_cast<double>(i / (width + 1)), a.Substeps, true);
+  });
+  forEachPixel(width * height, [&](std::size_t pixel) {
+    const std::size_t x = pixel % width, y = pixel / width, c0 = y * (width + 1) + x;
+    SquareRays q{ { corners[c0], corners[c0 + 1], corners[c0 + width + 1], corners[c0 + width + 2] }, {} };
+    q.Centre.Hit = coarse.Picture.Hit[pixel] != 0;
+    q.Centre.FirstDomain = coarse.FirstDomain[pixel];
+    const std::array<double, 3> shine = highlightXYZ(s, image.Highlight[pixel]);
+    for (std::size_t c = 0; c < 3; ++c)
+      q.Centre.Body.XYZ[c] = coarse.Picture.XYZ[3 * pixel + c] - shine[c];
+    const double scale = std::max(q.Centre.Body.XYZ[1], a.Floor);
+    std::array<double, 3> mean = fivePointMean(q);
+    if (!smoothSquare(q, mean, 1.0, scale, view.ConvergenceTolerance))
+    {
+      mean = squareMean(a, static_cast<double>(x), static_cast<double>(y), 1.0, q, view.AreaDepth, scale);
+      image.Refined[pixel] = 1;
+    }
+    for (std::size_t c = 0; c < 3; ++c)
+      image.XYZ[3 * pixel + c] += mean[c] - q.Centre.Body.XYZ[c];
+  });
 }
 } // namespace
 
@@ -857,19 +1049,25 @@ Image render(const Scene& scene, const View& view, const std::string& cieDirecto
   const dvec3 light(view.Light[0], view.Light[1], view.Light[2]);
   Setup setup{ volume, view, bands, light, apexDistanceSquared(volume, light), 1 };
   const std::vector<double> highlight = highlights(volume, view);
-  Image image = renderOnce(setup, highlight);
-  // Converged mode: the body's samples doubled until no pixel changes.
-  for (setup.Substeps = 2; view.Converged; setup.Substeps *= 2)
+  // The renders so far, the latest last; the area pass takes the first's
+  // centre rays (one body sample per voxel segment).
+  std::vector<CentreRender> renders;
+  renders.push_back(renderOnce(setup, highlight));
+  if (!view.Converged)
+    return std::move(renders.back().Picture);
+  // The body's samples doubled until no pixel changes.
+  for (setup.Substeps = 2;; setup.Substeps *= 2)
   {
     if (setup.Substeps > view.MaxViewSubsteps)
       throw std::runtime_error("the reference did not converge within " + std::to_string(view.MaxViewSubsteps) + " view sub-steps");
-    Image refined = renderOnce(setup, highlight);
-    const double change = largestChange(image, refined);
-    image = std::move(refined);
-    if (change < view.ConvergenceTolerance)
-      break;
+    renders.push_back(renderOnce(setup, highlight));
+    const std::size_t last = renders.size() - 1;
+    if (largestChange(renders[last - 1].Picture, renders[last].Picture) < view.ConvergenceTolerance)
+    {
+      integratePixelAreas(setup, renders[last].Picture, renders.front());
+      return std::move(renders[last].Picture);
+    }
   }
-  return image;
 }
 
 } // namespace opalreference

@@ -16,7 +16,8 @@
 // towards the light in voxel-length steps with nearest-voxel coefficients,
 // for every wavelength) and converged (View::Converged: the light path's
 // optical depth exact, the view path refined until the image stops
-// changing), the oracle the product is held to.
+// changing, each pixel the mean over its area), the oracle the product is
+// held to.
 #pragma once
 
 #include <array>
@@ -57,20 +58,26 @@ struct View
   // path, the smooth surface found on it), the view path's body samples
   // doubled per voxel segment until no pixel changes by more than
   // ConvergenceTolerance, the highlight's coverage of each pixel by adaptive
-  // subdivision, ConvergedHighlightDepth levels (1/256 of a pixel) deep.
+  // subdivision, ConvergedHighlightDepth levels (1/256 of a pixel) deep, and
+  // each pixel the mean over its area (a box filter): split adaptively,
+  // AreaDepth levels deep, where its corners' and centre's rays see
+  // different surfaces or first domains or disagree beyond the tolerance
+  // (the literal mode traces the pixels' centres).
   bool Converged = false;
   double ConvergenceTolerance = 2e-3;
   int MaxViewSubsteps = 64;
   int ConvergedHighlightDepth = 8;
+  int AreaDepth = 3;
 };
 
 struct Image
 {
-  std::vector<double> XYZ;       // 3 per pixel, rows top to bottom
-  std::vector<double> Dominant;  // dominant Bragg wavelength per pixel (0: none)
-  std::vector<std::uint8_t> Hit; // 1 where the ray meets the opal
+  std::vector<double> XYZ;       // 3 per pixel, rows top to bottom (converged mode: the pixel's area mean)
+  std::vector<double> Dominant;  // dominant Bragg wavelength of the pixel's centre ray (0: none)
+  std::vector<std::uint8_t> Hit; // 1 where the pixel's centre ray meets the opal
   std::vector<double> CosIncidence; // cosine of the primary ray's incidence angle (0 where missed)
   std::vector<double> Highlight;    // the light's Fresnel highlight: the fraction of sub-rays, times F
+  std::vector<std::uint8_t> Refined; // converged mode: 1 where the pixel's area was split (an edge crosses it)
   int ViewSubsteps = 1;             // body samples per voxel segment (converged mode: where it converged)
 };
 
