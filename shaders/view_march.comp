@@ -908,15 +908,23 @@ const float EDGE_SLOPE = 4.0;
 // other not (the outline), or they cross a different first domain or draw
 // their brightest diffraction from a different one, or the surface between
 // them is steep.
-bool edgeBetween(int a, int b, float pixelAngle)
+const int NO_EDGE = 0, INNER_EDGE = 1, OUTLINE = 2;
+
+int edgeBetween(int a, int b, float pixelAngle)
 {
   PixelBragg p = pixelBragg[a], q = pixelBragg[b];
-  if ((p.coverage > 0.0) != (q.coverage > 0.0)) return true;
-  if (p.coverage == 0.0) return false;
+  if ((p.coverage > 0.0) != (q.coverage > 0.0)) return OUTLINE;
+  if (p.coverage == 0.0) return NO_EDGE;
   float depthA = pixelColour[a].depth, depthB = pixelColour[b].depth;
-  return p.firstDomain != q.firstDomain || p.dominantDomain != q.dominantDomain ||
+  bool inner = p.firstDomain != q.firstDomain || p.dominantDomain != q.dominantDomain ||
     abs(depthA - depthB) > EDGE_SLOPE * pixelAngle * max(depthA, depthB);
+  return inner ? INNER_EDGE : NO_EDGE;
 }
+
+// A queued pixel's entry: its index, and the top bit where the outline
+// crosses it (its coverage takes every sub-ray: a first stage that all met
+// the opal, or all missed it, misses the slivers the outline cuts).
+const uint OUTLINE_BIT = 0x80000000u;
 
 // Queues the pixel `local` of the rectangle where an edge lies between its
 // centre ray and one of its eight neighbours' (the ring's beyond the
@@ -925,14 +933,15 @@ void selectEdge(ivec2 local)
 {
   int pixelIndex = storedPixel(local);
   float pixelAngle = 2.0 * P.tanHalfViewAngle / float(P.imageHeight);
-  for (int k = 0; k < 9; ++k)
+  int edge = NO_EDGE;
+  for (int k = 0; k < 9 && edge != OUTLINE; ++k)
   {
     ivec2 offset = ivec2(k % 3, k / 3) - 1;
-    if (k != 4 && edgeBetween(pixelIndex, storedPixel(local + offset), pixelAngle * length(vec2(offset))))
-    {
-      edgePixels[atomicAdd(edgeQueue[0].count, 1u)] = uint(pixelIndex);
-      return;
-    }
+    if (k != 4) edge = max(edge, edgeBetween(pixelIndex, storedPixel(local + offset), pixelAngle * length(vec2(offset))));
+  }
+  if (edge != NO_EDGE)
+  {
+    edgePixels[atomicAdd(edgeQueue[0].count, 1u)] = uint(pixelIndex) | (edge == OUTLINE ? OUTLINE_BIT : 0u);
   }
 }
 
@@ -950,13 +959,14 @@ int marchItem()
 // invocation's loops once they have run 65535 iterations together: n x n
 // whole marches in one invocation would reach it), its sums kept between:
 // first n sub-rays, one per row and column, which stand for the pixel where
-// they all see the same (meeting the opal or not, the same first and
-// brightest domains), then for the others, queued anew so that the second
+// they all see the same (the same first and brightest domains; never where
+// the outline crosses it), then for the others, queued anew so that the second
 // stage's dispatches cover only them, the rest of the n x n grid.
 void main()
 {
   ivec2 local;
   int mode = marchWork.mode, item = 0, n = 1, subRay = 0;
+  bool outline = false;
   if (mode == MarchRefineEdges)
   {
     n = P.pixelSamples;
@@ -965,8 +975,10 @@ void main()
     item = marchWork.first + marchItem();
     if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue[stage].count)) return;
     if (stage == 1) item = int(edgePixels[rectPixels + item]);
-    int queued = int(edgePixels[item]);
+    uint entry = edgePixels[item];
+    int queued = int(entry & ~OUTLINE_BIT);
     local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
+    outline = (entry & OUTLINE_BIT) != 0u;
   }
   else if (mode == MarchRing)
   {
@@ -986,6 +998,7 @@ void main()
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
+  if (outline) sum.alike = 0;
   if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
   vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
   float tHit, transmitted;
