@@ -105,11 +105,17 @@ void checkNearestAndDominant(
   c.DominantOff += !dominantFound;
 }
 
-// A refined pixel against the cells it stands for: the whole block, or the first stage's.
-void checkRefined(const opal::RenderImage& area, const opal::RenderImage& fine, int x, int y, BlockChecks& c)
+// The finer image's brightest XYZ value and spectral bin: the scales of the differences.
+struct Brightest
 {
-  const double brightY = *std::max_element(fine.XYZ.begin(), fine.XYZ.end());
-  const double brightBin = *std::max_element(fine.Spectrum.begin(), fine.Spectrum.end());
+  double Y, Bin;
+};
+
+// A refined pixel against the cells it stands for: the whole block, or the first stage's.
+void checkRefined(
+  const opal::RenderImage& area, const opal::RenderImage& fine, int x, int y, const Brightest& bright, BlockChecks& c)
+{
+  const double brightY = bright.Y, brightBin = bright.Bin;
   const int bins = static_cast<int>(area.Wavelengths.size());
   double best = 1e30;
   bool firstStage = false;
@@ -131,7 +137,9 @@ void checkRefined(const opal::RenderImage& area, const opal::RenderImage& fine, 
 
 BlockChecks compareBlocks(const opal::RenderImage& area, const opal::RenderImage& centres, const opal::RenderImage& fine)
 {
-  const double brightY = *std::max_element(fine.XYZ.begin(), fine.XYZ.end());
+  const Brightest bright{ *std::max_element(fine.XYZ.begin(), fine.XYZ.end()),
+    *std::max_element(fine.Spectrum.begin(), fine.Spectrum.end()) };
+  const double brightY = bright.Y;
   const Cells block = blockCells(false);
   BlockChecks c;
   for (int y = 0; y < Height; ++y)
@@ -140,7 +148,7 @@ BlockChecks compareBlocks(const opal::RenderImage& area, const opal::RenderImage
       const auto p = static_cast<std::size_t>(y * Width + x);
       if (!std::equal(area.XYZ.begin() + 3 * p, area.XYZ.begin() + 3 * p + 3, centres.XYZ.begin() + 3 * p))
       {
-        checkRefined(area, fine, x, y, c);
+        checkRefined(area, fine, x, y, bright, c);
         continue;
       }
       // A single bin of a pixel left with one ray moves with the Bragg band across it: colour only.
