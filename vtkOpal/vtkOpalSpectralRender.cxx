@@ -324,6 +324,16 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
   return false;
 }
 
+bool vtkOpalSpectralRender::IsEyeInsideOpal()
+{
+  vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  // Only the volume uploaded: an input the render has not read yet is the render's to report on.
+  const bool uploaded = input && this->RenderSession && this->UploadedVolume == input &&
+    this->UploadedVolumeTime == input->GetMTime();
+  return uploaded &&
+    this->RenderSession->eyeInsideOpal(this->GetResolvedFrame(this->GetInputInformation(0, 0), input));
+}
+
 int vtkOpalSpectralRender::GetBackgroundFrameState() const
 {
   return this->RenderSession ? static_cast<int>(this->RenderSession->backgroundState()) : 0;

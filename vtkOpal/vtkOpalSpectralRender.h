@@ -126,6 +126,10 @@ public:
   /// the volume is uploaded here if the session lacks it. False, with an
   /// error, if the frame cannot start (bad settings, no input).
   bool StartBackgroundFrame(const opal::RenderParameters& parameters);
+  /// Whether EyePosition is inside the opal of the input (which a render
+  /// refuses), as the render would place it; false until the input's volume
+  /// is uploaded (by a render).
+  bool IsEyeInsideOpal();
   /// 0 none, 1 running, 2 finished (TakeBackgroundFrame gives it).
   int GetBackgroundFrameState() const;
   /// Fills `image` with the finished background frame as an update would fill

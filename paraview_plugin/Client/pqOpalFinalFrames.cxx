@@ -29,7 +29,7 @@ void pqOpalFinalFrames::startup()
   vtkOpalSpectralRepresentation::SetFinalFramesInBackground(true);
   // Polled, not signalled: the worker thread touches no Qt or VTK object.
   QObject::connect(&this->Poll, &QTimer::timeout, this, &pqOpalFinalFrames::renderViewsWithReadyFrames);
-  this->Poll.start(100);
+  this->Poll.start(50);
 }
 
 void pqOpalFinalFrames::shutdown()

@@ -1,5 +1,7 @@
 #include "vtkOpalSpectralImageActor.h"
 
+#include "OpalFrameBudget.h"
+#include "OpalRefinementPasses.h"
 #include "OpalRenderParameters.h"
 
 #include "vtkCamera.h"
@@ -22,6 +24,7 @@
 #include "vtk_glew.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -95,7 +98,11 @@ bool viewUpOf(vtkCamera* camera, double up[3])
 
 vtkStandardNewMacro(vtkOpalSpectralImageActor);
 
-vtkOpalSpectralImageActor::vtkOpalSpectralImageActor() = default;
+vtkOpalSpectralImageActor::vtkOpalSpectralImageActor()
+  : Budget(std::make_unique<opal::FrameBudget>())
+{
+}
+
 vtkOpalSpectralImageActor::~vtkOpalSpectralImageActor() = default;
 
 void vtkOpalSpectralImageActor::SetRender(vtkOpalSpectralRender* render)
@@ -125,17 +132,71 @@ int vtkOpalSpectralImageActor::RenderOpaqueGeometry(vtkViewport* viewport)
     return 0;
   }
   const bool interactive = window->GetDesiredUpdateRate() > 1.0;
+  const auto start = std::chrono::steady_clock::now();
   vtkImageData* image = this->UpdateFrame(renderer, interactive);
   if (!image)
   {
     return 0;
   }
-  if (image != this->UploadedImage || image->GetMTime() != this->UploadedTime)
+  const bool fresh = image != this->UploadedImage || image->GetMTime() != this->UploadedTime;
+  if (fresh)
   {
     this->UploadFrame(window, image);
   }
+  // The budget learns from previews rendered here, their upload included.
+  if (interactive && fresh && this->LastQuality == 1)
+  {
+    const std::chrono::duration<double> seconds = std::chrono::steady_clock::now() - start;
+    this->Budget->record(static_cast<double>(image->GetNumberOfPoints()), seconds.count());
+  }
   this->DrawFrame(window, renderer->GetActiveCamera(), renderer->GetTiledAspectRatio());
   return 1;
+}
+
+// An eye in the stone's box but outside the stone renders (the render
+// leaves the opal's surface to the rays); inside the stone nothing is drawn
+// and it is said once, until the eye leaves it. Before the first frame the
+// whole box is left out, silently: ParaView's default camera sits in it until
+// the view first frames the stone.
+bool vtkOpalSpectralImageActor::EyeInsideStone(const double eye[3])
+{
+  if (!insideBox(eye, this->StoneBounds))
+  {
+    this->SaidEyeInside = false;
+    return false;
+  }
+  if (this->LastQuality < 0)
+  {
+    return true;
+  }
+  if (!this->Render->IsEyeInsideOpal())
+  {
+    this->SaidEyeInside = false;
+    return false;
+  }
+  if (!this->SaidEyeInside)
+  {
+    vtkWarningMacro("The eye is inside the opal: Opal Spectral draws nothing until the camera leaves the stone.");
+    this->SaidEyeInside = true;
+  }
+  return true;
+}
+
+void vtkOpalSpectralImageActor::SetFrameBudget(double seconds)
+{
+  this->Budget->setBudget(seconds, opal::RenderParameters{}.PreviewScale);
+  this->Modified();
+}
+
+double vtkOpalSpectralImageActor::GetFrameBudget() const
+{
+  return this->Budget->budget();
+}
+
+void vtkOpalSpectralImageActor::ChoosePreviewScale()
+{
+  this->Render->SetPreviewScale(this->Budget->scaleFor(this->ViewPixels[0], this->ViewPixels[1]));
+  this->LastPreviewScale = this->Render->GetPreviewScale();
 }
 
 vtkImageData* vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool interactive)
@@ -145,6 +206,10 @@ vtkImageData* vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool
     return nullptr;
   }
   const double* eye = renderer->GetActiveCamera()->GetPosition();
+  if (this->EyeInsideStone(eye))
+  {
+    return nullptr;
+  }
   if (!interactive && this->StillQuality == 0 && this->DeferFinalFrames)
   {
     return this->DeferredFrame(eye);
@@ -158,6 +223,10 @@ vtkImageData* vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool
   }
   this->LastQuality = interactive ? 1 : this->StillQuality;
   this->Render->SetQuality(this->LastQuality);
+  if (interactive)
+  {
+    this->ChoosePreviewScale();
+  }
   return this->UpdatedOutput();
 }
 
@@ -173,10 +242,7 @@ bool vtkOpalSpectralImageActor::AimRender(vtkRenderer* renderer)
   height *= tileScale[1];
   vtkCamera* camera = renderer->GetActiveCamera();
   double up[3];
-  // Nothing to draw from an eye in the stone's box (the render refuses an
-  // eye inside the opal), e.g. the default camera before the view frames it.
-  if (width < 1 || height < 1 || this->Render->GetNumberOfInputConnections(0) < 1 ||
-    insideBox(camera->GetPosition(), this->StoneBounds) || !viewUpOf(camera, up))
+  if (width < 1 || height < 1 || this->Render->GetNumberOfInputConnections(0) < 1 || !viewUpOf(camera, up))
   {
     return false;
   }
@@ -186,6 +252,8 @@ bool vtkOpalSpectralImageActor::AimRender(vtkRenderer* renderer)
     this->WarnedParallel = true;
   }
   this->Render->SetImageSize(width, height);
+  this->ViewPixels[0] = width;
+  this->ViewPixels[1] = height;
   this->Render->SetEyePosition(camera->GetPosition());
   this->Render->SetFocalPoint(camera->GetFocalPoint());
   this->Render->SetViewUp(up);
@@ -206,8 +274,8 @@ bool vtkOpalSpectralImageActor::AimRender(vtkRenderer* renderer)
 
 // docs/design.md §5.2: the render filter keeps the preview's settings (as
 // while dragging), so their MTime names this camera, size, settings and
-// volume; the final frame of them renders on the worker once, and the first
-// render after it finished draws it.
+// volume; the refinement passes of them render on the worker once, one after
+// another, and the first render after each finished draws it.
 vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
 {
   if (this->Headlight && this->LastQuality < 0)
@@ -215,23 +283,17 @@ vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
     this->Render->SetLightPosition(eye);
   }
   this->Render->SetQuality(1);
-  vtkMTimeType key = this->Render->GetMTime();
-  if (key == this->StartedKey && this->Render->GetBackgroundFrameState() == 2 &&
-    this->Render->TakeBackgroundFrame(this->FinalFrame))
+  if (this->Render->GetMTime() == this->StartedKey)
   {
-    // Previews from here on keep this still frame's light, as after a waited-for one.
-    if (this->Headlight)
-    {
-      this->Render->SetLightPosition(eye);
-    }
-    key = this->FinalKey = this->StartedKey = this->Render->GetMTime();
+    this->TakeRefinement(eye);
   }
+  const vtkMTimeType key = this->Render->GetMTime();
   if (key == this->FinalKey)
   {
-    this->LastQuality = 0;
+    this->LastQuality = this->DrawnPass + 1 == this->Passes.size() ? 0 : 1;
     return this->FinalFrame;
   }
-  // Re-rendered only if the settings changed, which cancels a final frame of the old ones.
+  // Re-rendered only if the settings changed, which cancels a pass of the old ones.
   vtkImageData* preview = this->UpdatedOutput();
   if (!preview)
   {
@@ -246,11 +308,34 @@ vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
     {
       std::copy(eye, eye + 3, finalFrame.LightPosition.begin());
     }
-    // Once per key: a frame that failed (said in an error) is not retried until something changes.
+    this->Passes = opal::refinementPasses(this->Render->GetRenderParameters(), finalFrame);
+    // Once per key: a pass that failed (said in an error) is not retried until something changes.
     this->StartedKey = key;
-    this->Render->StartBackgroundFrame(finalFrame);
+    this->StartedPass = 0;
+    this->Render->StartBackgroundFrame(this->Passes.front());
   }
   return preview;
+}
+
+void vtkOpalSpectralImageActor::TakeRefinement(const double eye[3])
+{
+  if (this->Render->GetBackgroundFrameState() != 2 || !this->Render->TakeBackgroundFrame(this->FinalFrame))
+  {
+    return;
+  }
+  this->DrawnPass = this->StartedPass;
+  this->FinalKey = this->StartedKey;
+  if (this->StartedPass + 1 < this->Passes.size())
+  {
+    this->Render->StartBackgroundFrame(this->Passes[++this->StartedPass]);
+    return;
+  }
+  // Previews from here on keep this still frame's light, as after a waited-for one.
+  if (this->Headlight)
+  {
+    this->Render->SetLightPosition(eye);
+  }
+  this->FinalKey = this->StartedKey = this->Render->GetMTime();
 }
 
 vtkImageData* vtkOpalSpectralImageActor::UpdatedOutput()
@@ -275,7 +360,8 @@ vtkMTimeType vtkOpalSpectralImageActor::GetReadyFinalFrame()
 {
   const bool ready = this->Render && this->GetVisibility() && this->StartedKey == this->Render->GetMTime() &&
     this->Render->GetBackgroundFrameState() == 2;
-  return ready ? this->StartedKey : 0;
+  // Each pass its own id: the GUI renders the view once for each.
+  return ready ? this->StartedKey * 4 + this->StartedPass : 0;
 }
 
 void vtkOpalSpectralImageActor::CancelFinalFrame()

@@ -28,6 +28,7 @@
 #include "vtkSmartPointer.h"
 
 #include <memory>
+#include <vector>
 
 class vtkCamera;
 class vtkOpalSpectralRender;
@@ -35,6 +36,11 @@ class vtkOpenGLQuadHelper;
 class vtkOpenGLRenderWindow;
 class vtkRenderer;
 class vtkTextureObject;
+namespace opal
+{
+class FrameBudget;
+struct RenderParameters;
+}
 
 class VTKOPALREPRESENTATION_EXPORT vtkOpalSpectralImageActor : public vtkProp
 {
@@ -57,6 +63,17 @@ public:
   vtkSetClampMacro(StillQuality, int, 0, 1);
   vtkGetMacro(StillQuality, int);
   ///@}
+
+  ///@{
+  /// Seconds an interactive frame should take (default 0.1): each preview's
+  /// PreviewScale is chosen from the measured cost of the last ones. 0: the
+  /// render filter's PreviewScale as it is.
+  void SetFrameBudget(double seconds);
+  double GetFrameBudget() const;
+  ///@}
+
+  /// PreviewScale of the last preview drawn (0 before any).
+  vtkGetMacro(LastPreviewScale, int);
 
   ///@{
   /// Still final frames on a worker thread, drawn by a later render (the
@@ -95,8 +112,15 @@ private:
   vtkImageData* UpdateFrame(vtkRenderer* renderer, bool interactive);
   // The camera and the image size into the render filter; false if there is nothing to draw.
   bool AimRender(vtkRenderer* renderer);
-  // A still final frame not waited for: the preview now, the final one once finished.
+  // A still final frame not waited for: the preview now, then the refinement
+  // passes, each drawn once finished, the last the final frame.
   vtkImageData* DeferredFrame(const double eye[3]);
+  // True, said once, while the eye is inside the stone (nothing to draw).
+  bool EyeInsideStone(const double eye[3]);
+  // A finished refinement pass taken into FinalFrame, and the next one started.
+  void TakeRefinement(const double eye[3]);
+  // The preview's PreviewScale from the frame budget (interactive frames).
+  void ChoosePreviewScale();
   // The render filter's output brought up to date; null if it has no image.
   vtkImageData* UpdatedOutput();
   // The image and each pixel's distance along its ray, as textures.
@@ -114,6 +138,13 @@ private:
   std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   bool DeferFinalFrames = false;
   vtkNew<vtkImageData> FinalFrame; // the last final frame taken from the worker
+  std::unique_ptr<opal::FrameBudget> Budget;
+  int LastPreviewScale = 0;
+  int ViewPixels[2] = { 0, 0 }; // the frame's size in the view's pixels
+  // The passes of the held view (opal::refinementPasses), the one started, and the one FinalFrame holds.
+  std::vector<opal::RenderParameters> Passes;
+  std::size_t StartedPass = 0;
+  std::size_t DrawnPass = 0;
   // Ids of deferred final frames: the render filter's MTime with the preview's
   // settings (the same until the camera, the size, a setting or the volume changes).
   vtkMTimeType StartedKey = 0; // of the frame last started on the worker
@@ -125,6 +156,7 @@ private:
   vtkImageData* UploadedImage = nullptr; // the image the textures hold (identity only)
   vtkMTimeType UploadedTime = 0;         // and its MTime then
   bool WarnedParallel = false;
+  bool SaidEyeInside = false;
   double TanHalfViewAngle = 0; // of the frame's vertical view angle
   double FrameAspect = 1;      // width / height of the frame's image
 };

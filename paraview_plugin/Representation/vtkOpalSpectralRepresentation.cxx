@@ -83,7 +83,7 @@ namespace
 bool isFramesOwn(const std::string& name)
 {
   for (const char* own : { "ImageSize", "ImageRegion", "EyePosition", "FocalPoint", "ViewUp", "ViewAngle", "Quality",
-         "WriteSpectrum" })
+         "PreviewScale", "WriteSpectrum" })
   {
     if (name == own)
     {
@@ -251,6 +251,16 @@ void vtkOpalSpectralRepresentation::SetQuality(int quality)
   this->Actor->SetStillQuality(quality);
 }
 
+void vtkOpalSpectralRepresentation::SetFrameBudget(double seconds)
+{
+  this->Actor->SetFrameBudget(seconds);
+}
+
+int vtkOpalSpectralRepresentation::GetLastPreviewScale()
+{
+  return this->Actor->GetLastPreviewScale();
+}
+
 vtkOpalSpectralRender* vtkOpalSpectralRepresentation::GetRender()
 {
   return this->Render;
@@ -267,6 +277,7 @@ void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
   os << indent << "Quality: " << this->Actor->GetStillQuality() << "\n";
+  os << indent << "FrameBudget: " << this->Actor->GetFrameBudget() << "\n";
   os << indent << "Render:\n";
   this->Render->PrintSelf(os, indent.GetNextIndent());
 }

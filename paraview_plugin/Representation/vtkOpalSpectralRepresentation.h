@@ -59,6 +59,14 @@ public:
   /// Quality of still frames: 0 final (default), 1 preview. Dragging always previews.
   void SetQuality(int quality);
 
+  /// Seconds a frame should take while the view is dragged (default 0.1): the
+  /// previews' resolution follows the measured cost of the last ones. 0: half
+  /// the pixels each way, whatever they cost.
+  void SetFrameBudget(double seconds);
+
+  /// The last preview's PreviewScale (its pixels: 1/scale of the width and height), for tests.
+  int GetLastPreviewScale();
+
   /// Where the render's settings come from: an Opal Spectral Render whose
   /// properties (ParaView passes its SubProxy here and exposes that proxy's
   /// properties on the representation) are copied into the filter that

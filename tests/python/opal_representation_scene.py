@@ -17,6 +17,8 @@ what the view shows.
   behind the stone is hidden by it.
 - A screenshot twice the view's size (drawn by ParaView in 2 x 2 tiles)
   equals a screenshot of a view that size.
+- An eye inside the stone's box but outside the stone (above the dome's
+  flank) sees the stone; an eye inside the stone sees nothing of it.
 
 Prints "opal_representation_scene: passed" or the failed checks.
 Usage: pvbatch opal_representation_scene.py PLUGIN OUTPUT_DIR"""
@@ -188,6 +190,17 @@ whole = shot_at(big, big, "representation-whole.png")
 differing = numpy.mean(numpy.any(numpy.abs(tiled - whole) > 8, axis=1))
 check(differing < 0.01, f"a 2 x 2 tiled screenshot equals a view of its size ({100 * differing:.2f}% of pixels differ)")
 view.ViewSize = [width, height]
+# The box reaches over the dome's flanks: an eye there is outside the stone.
+bounds = volume.GetDataInformation().GetBounds()
+view.ViewSize = [width, height]
+view.CameraPosition = [0.9 * bounds[1], 0.9 * bounds[3], 0.5 * bounds[5]]
+view.CameraFocalPoint, view.CameraViewUp, view.CameraViewAngle = [0, 0, 0], [0, 0, -1], 60
+in_box = screenshot("representation-eye-in-box.png")
+check(numpy.mean(in_box.max(axis=2) > 20) > 0.2, f"an eye in the stone's box, outside the stone, sees it "
+      f"({100 * numpy.mean(in_box.max(axis=2) > 20):.0f}% of the view)")
+view.CameraPosition = [0, 0.2 * bounds[3], 0]
+inside = screenshot("representation-eye-inside.png")
+check(inside.max() <= 20, "an eye inside the stone sees nothing of it")
 # The verdict on stdout, for the test; the script ends normally (pvbatch
 # reports an X error when sys.exit ends it with a window open).
 print("opal_representation_scene:", "FAILED" if failures else "passed")

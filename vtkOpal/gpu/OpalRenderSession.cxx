@@ -497,6 +497,12 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   return frame;
 }
 
+bool RenderSession::eyeInsideOpal(const ResolvedFrame& frame) const
+{
+  return this->Volume && frame.Error.empty() &&
+    this->Volume->Medium.Geometry.nearestSurfaceDistance(cameraInModelFrame(frame.Parameters).Eye) <= 0;
+}
+
 // Frame set-up: validation, the camera and light in the model's frame, the
 // rectangles, the wavelength bins and the parameter block.
 RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) const

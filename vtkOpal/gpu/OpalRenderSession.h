@@ -90,6 +90,11 @@ public:
   // Renders a frame resolved by resolveFrame (what the VTK filter renders).
   RenderFrame render(const ResolvedFrame& frame, const RenderProgress& progress = nullptr);
 
+  // Whether the frame's eye is inside the opal (which render refuses); false
+  // without a volume. It reads only the host copy of the volume's surface,
+  // so it may run beside a background frame.
+  bool eyeInsideOpal(const ResolvedFrame& frame) const;
+
   // The frame ticket (docs/design.md §5.2): startFrame renders `frame` on the
   // session's own worker thread and returns; the caller polls
   // backgroundState() (and backgroundProgress()), takes the finished frame

@@ -69,6 +69,8 @@
   X(WriteSpectrum, bool, 1, 0, 1, "", "", 0,                                                               \
     "Adds the Spectrum array, one value per wavelength per pixel (the CLI: by its outputs)")               \
   X(Quality, int, 1, 0, 1, "final preview", "--quality", 0,                                                \
-    "final, or preview: half the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight, 1 ray per pixel") \
+    "final, or preview: 1/PreviewScale of the width and height, 20 nm steps, 8 spectral nodes, a 2 x 2 highlight, 1 ray per pixel") \
+  X(PreviewScale, int, 1, 1, 64, "", "--preview-scale", 0,                                                 \
+    "A preview's pixels: 1/PreviewScale of the width and of the height (the live view's frame budget sets it)") \
   X(Illuminant, int, 1, 0, 1, "D65 none", "--illuminant", 0,                                               \
     "The light's spectrum: D65 (luminance 1), or none (unit spectral irradiance)")

@@ -41,9 +41,11 @@ RenderParameters withQuality(const RenderParameters& p)
   {
     return q;
   }
-  auto half = [](int n) { return n > 0 ? (n + 1) / 2 : n; };
-  q.ImageSize = { half(p.ImageSize[0]), half(p.ImageSize[1]) };
-  q.ImageRegion = { p.ImageRegion[0] / 2, p.ImageRegion[1] / 2, half(p.ImageRegion[2]), half(p.ImageRegion[3]) };
+  const int scale = p.PreviewScale;
+  auto shrink = [scale](int n) { return n > 0 ? (n + scale - 1) / scale : n; };
+  q.ImageSize = { shrink(p.ImageSize[0]), shrink(p.ImageSize[1]) };
+  q.ImageRegion = { p.ImageRegion[0] / scale, p.ImageRegion[1] / scale, shrink(p.ImageRegion[2]),
+    shrink(p.ImageRegion[3]) };
   q.WavelengthStep = std::max(p.WavelengthStep, 20.0);
   q.SpectralNodes = p.SpectralNodes == 0 ? 0 : 8;
   q.SpecularSamples = std::min(p.SpecularSamples, 2);

@@ -23,7 +23,7 @@ enum class LightSpectrum : int
 };
 
 // Final renders the parameters as they are; Preview, for interaction, renders
-// half the width and height, 20 nm wavelength steps, 8 spectral nodes, a
+// 1/PreviewScale of the width and height, 20 nm wavelength steps, 8 spectral nodes, a
 // 2 x 2 highlight and one ray per pixel (withQuality), marches PreviewStepScale x the step and reads
 // the light field per voxel, not trilinearly (docs/design.md §3.4).
 enum class RenderQuality : int
@@ -112,6 +112,7 @@ struct RenderParameters
   int ScatteringPhotons = 1 << 14;                     // per spectral node of the every-order solve
   bool WriteSpectrum = false;                          // fill the Spectrum output
   RenderQuality Quality = RenderQuality::Final;
+  int PreviewScale = 2;                                // a preview's pixels: 1/PreviewScale each way
   LightSpectrum Illuminant = LightSpectrum::D65;
 };
 
@@ -129,7 +130,7 @@ std::string validate(const RenderParameters& parameters);
 
 // The parameters a frame renders with (Quality Final, the settings the
 // quality implies): the same for Final; for Preview the image and its region
-// halved (rounded up), WavelengthStep at least 20 nm, SpectralNodes 8 (0
+// divided by PreviewScale (sizes rounded up), WavelengthStep at least 20 nm, SpectralNodes 8 (0
 // stays 0), SpecularSamples at most 2 and PixelSamples 1 (one ray per pixel).
 RenderParameters withQuality(const RenderParameters& parameters);
 
