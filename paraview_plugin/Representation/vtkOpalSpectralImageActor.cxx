@@ -293,28 +293,45 @@ vtkImageData* vtkOpalSpectralImageActor::DeferredFrame(const double eye[3])
     this->LastQuality = this->DrawnPass + 1 == this->Passes.size() ? 0 : 1;
     return this->FinalFrame;
   }
-  // Re-rendered only if the settings changed, which cancels a pass of the old ones.
-  vtkImageData* preview = this->UpdatedOutput();
-  if (!preview)
+  // The first view renders even its preview on the worker: the device's
+  // volume, the pipelines and the first light field would hold the GUI for
+  // seconds. Otherwise the preview is re-rendered only if the settings
+  // changed, which cancels a pass of the old ones.
+  const bool firstView = this->LastQuality < 0;
+  vtkImageData* preview = firstView ? nullptr : this->UpdatedOutput();
+  if (!preview && !firstView)
   {
     return nullptr;
   }
-  this->LastQuality = 1;
   if (key != this->StartedKey)
   {
-    opal::RenderParameters finalFrame = this->Render->GetRenderParameters();
-    finalFrame.Quality = opal::RenderQuality::Final;
-    if (this->Headlight)
-    {
-      std::copy(eye, eye + 3, finalFrame.LightPosition.begin());
-    }
-    this->Passes = opal::refinementPasses(this->Render->GetRenderParameters(), finalFrame);
-    // Once per key: a pass that failed (said in an error) is not retried until something changes.
-    this->StartedKey = key;
-    this->StartedPass = 0;
-    this->Render->StartBackgroundFrame(this->Passes.front());
+    this->StartRefinement(key, eye, firstView);
+  }
+  if (preview)
+  {
+    this->LastQuality = 1;
   }
   return preview;
+}
+
+void vtkOpalSpectralImageActor::StartRefinement(vtkMTimeType key, const double eye[3], bool withPreview)
+{
+  const opal::RenderParameters preview = this->Render->GetRenderParameters();
+  opal::RenderParameters finalFrame = preview;
+  finalFrame.Quality = opal::RenderQuality::Final;
+  if (this->Headlight)
+  {
+    std::copy(eye, eye + 3, finalFrame.LightPosition.begin());
+  }
+  this->Passes = opal::refinementPasses(preview, finalFrame);
+  if (withPreview)
+  {
+    this->Passes.insert(this->Passes.begin(), preview);
+  }
+  // Once per key: a pass that failed (said in an error) is not retried until something changes.
+  this->StartedKey = key;
+  this->StartedPass = 0;
+  this->Render->StartBackgroundFrame(this->Passes.front());
 }
 
 void vtkOpalSpectralImageActor::TakeRefinement(const double eye[3])

@@ -117,6 +117,8 @@ private:
   vtkImageData* DeferredFrame(const double eye[3]);
   // True, said once, while the eye is inside the stone (nothing to draw).
   bool EyeInsideStone(const double eye[3]);
+  // The passes of this key started on the worker, the preview first if asked.
+  void StartRefinement(vtkMTimeType key, const double eye[3], bool withPreview);
   // A finished refinement pass taken into FinalFrame, and the next one started.
   void TakeRefinement(const double eye[3]);
   // The preview's PreviewScale from the frame budget (interactive frames).
