@@ -9,11 +9,21 @@
  * Bragg maps show the preset's view settings (vtkSMOpalViewpointFilterProxy),
  * and its "Opal Spectral" representations the preset's Bragg model and planes
  * (the kinds of opal, docs/design.md §2.11), when shown and when the preset changes.
+ * A render view that first shows its Volume output, holding no other data and
+ * with a camera no one has set, looks down on the stone from +y as the
+ * paper's figures do (the render's default eye, focal point and view up,
+ * docs/design.md §5.2): from the side the play of colour is hardly seen.
  */
 #pragma once
 
 #include "vtkOpalServerManagerModule.h" // for export macro
 #include "vtkSMSourceProxy.h"
+#include "vtkTimeStamp.h"
+#include "vtkWeakPointer.h"
+
+#include <vector>
+
+class vtkSMViewProxy;
 
 class VTKOPALSERVERMANAGER_EXPORT vtkSMOpalVolumeSourceProxy : public vtkSMSourceProxy
 {
@@ -37,5 +47,20 @@ private:
   void FillFromPreset();
   // Sets the preset's Bragg model and planes on a representation that has them.
   void FillRepresentation(vtkSMProxy* representation);
+  // Waits for the first update of a new representation of the Volume output:
+  // only then is it in its view.
+  void WatchFirstView(vtkSMProperty* property, vtkSMProxy* representation);
+  void OnRepresentationUpdated(vtkObject* caller, unsigned long event, void* data);
+  // Turns the view to look down on the stone, framing it, unless its camera
+  // was set since the representation was made or other data is shown there.
+  void LookDownOnStone(vtkSMViewProxy* view, vtkSMProxy* representation, vtkMTimeType shown);
+
+  struct Watch
+  {
+    vtkWeakPointer<vtkSMProxy> Representation;
+    unsigned long Observer;
+    vtkTimeStamp Shown;
+  };
+  std::vector<Watch> Watches;
   bool Filling = false;
 };

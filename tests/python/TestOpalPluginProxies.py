@@ -153,4 +153,26 @@ display = Show(render, image_view)
 check(display.MapScalars == 0 and list(display.ColorArrayName) == ["POINTS", "RGB"],
       f"the image is shown in its RGB colours, unmapped (MapScalars {display.MapScalars})")
 
+# The first view: a render view that first shows the Volume output looks down
+# on the stone from +y (the render's default eye, focal point and view up:
+# the paper's set-up, where the domains flash), the stone framed; a camera a
+# script set first is kept.
+above = CreateView("RenderView")
+above.ViewSize = [64, 48]
+# (Outline: Opal Spectral renders where the data are, which needs a display.)
+Show(OutputPort(volume, 0), above).Representation = "Outline"
+above.Update()  # the data reach the view (no display here: no render)
+direction = numpy.subtract(above.CameraPosition, above.CameraFocalPoint)
+check(numpy.allclose(direction / numpy.linalg.norm(direction), [0, 1, 0]) and
+      numpy.allclose(above.CameraViewUp, [0, 0, -1]) and numpy.allclose(above.CameraFocalPoint, [0, 4, 0]),
+      f"the first view looks down on the stone: eye {list(above.CameraPosition)}, "
+      f"focal point {list(above.CameraFocalPoint)}, up {list(above.CameraViewUp)}")
+placed = CreateView("RenderView")
+placed.ViewSize = [64, 48]
+Show(OutputPort(volume, 0), placed).Representation = "Outline"
+placed.CameraPosition, placed.CameraFocalPoint, placed.CameraViewUp = [0, 4, 60], [0, 4, 0], [0, 1, 0]
+placed.Update()
+check(list(placed.CameraPosition) == [0, 4, 60] and list(placed.CameraViewUp) == [0, 1, 0],
+      f"a camera set by a script before the first render is kept: {list(placed.CameraPosition)}")
+
 finish("TestOpalPluginProxies")
