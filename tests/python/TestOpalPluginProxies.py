@@ -153,6 +153,14 @@ display = Show(render, image_view)
 check(display.MapScalars == 0 and list(display.ColorArrayName) == ["POINTS", "RGB"],
       f"the image is shown in its RGB colours, unmapped (MapScalars {display.MapScalars})")
 
+# The Domains output waits until asked for: Apply shows it in no view (the
+# View hint "None"), with ParaView's own pipeline icon; Show still shows it.
+check(controller.GetPreferredViewType(volume.SMProxy, 1) == "None" and
+      controller.GetPipelineIcon(volume.SMProxy, 1) == "GEOMETRY",
+      "the Domains output is not shown on Apply and has ParaView's geometry icon")
+check(controller.ShowInPreferredView(volume.SMProxy, 1, CreateView("RenderView").SMProxy) is None,
+      "showing the volume's outputs where they belong leaves the Domains hidden")
+
 # The first view: a render view that first shows the Volume output looks down
 # on the stone from +y (the render's default eye, focal point and view up:
 # the paper's set-up, where the domains flash), the stone framed; a camera a
