@@ -5,11 +5,15 @@
 #include "vtkSMOpalPipelineWalk.h"
 
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVDataInformation.h"
+#include "vtkSMEnumerationDomain.h"
 #include "vtkSMProperty.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMPropertyLink.h"
 #include "vtkSMSessionProxyManager.h"
+#include "vtkSMTransferFunctionManager.h"
 #include "vtkNew.h"
 
 #include <cstring>
@@ -33,6 +37,37 @@ bool hasSharedProperties(vtkSMProxy* proxy)
     }
   }
   return true;
+}
+
+// The volume rendering of a Bragg map draws the domains only: BraggWavelength's
+// opacity 0 below the visible 380 nm (outside domains it is 0), 1 from there.
+// The Visible spectrum map never rescales, so neither does this; a function
+// the user has edited is kept.
+void hideOutsideDomains(vtkSMSessionProxyManager* proxyManager)
+{
+  vtkNew<vtkSMTransferFunctionManager> functions;
+  vtkSMProxy* opacity = functions->GetOpacityTransferFunction("BraggWavelength", proxyManager);
+  vtkSMProperty* points = opacity ? opacity->GetProperty("Points") : nullptr;
+  if (!points || !points->IsValueDefault())
+  {
+    return;
+  }
+  const double edges[] = { 0.0, 0.0, 0.5, 0.0, 379.9, 0.0, 0.5, 0.0, 380.0, 1.0, 0.5, 0.0, 780.0, 1.0, 0.5, 0.0 };
+  vtkSMPropertyHelper(points).Set(edges, 16);
+  opacity->UpdateVTKObjects();
+}
+
+// A domain is one voxel thick: sampled between voxels, its wavelength blends
+// with the 0 around it into the blues of short wavelengths it does not
+// diffract. The nearest voxel keeps each domain's own colour.
+void sampleNearest(vtkSMProxy* representation)
+{
+  vtkSMProperty* interpolation = representation->GetProperty("InterpolationType");
+  auto* entries = interpolation ? interpolation->FindDomain<vtkSMEnumerationDomain>() : nullptr;
+  if (entries && entries->HasEntryText("Nearest"))
+  {
+    vtkSMPropertyHelper(interpolation).Set(entries->GetEntryValueForText("Nearest"));
+  }
 }
 } // namespace
 
@@ -60,9 +95,29 @@ void vtkSMOpalViewpointFilterProxy::AddConsumer(vtkSMProperty* property, vtkSMPr
 {
   this->Superclass::AddConsumer(property, proxy);
   const char* group = proxy ? proxy->GetXMLGroup() : nullptr;
-  if (this->IsRender() && group && std::strcmp(group, "representations") == 0 && proxy->GetProperty("MapScalars"))
+  if (!group || std::strcmp(group, "representations") != 0 || this->GetSessionProxyManager()->GetInLoadXMLState())
+  {
+    return;
+  }
+  if (this->IsRender() && proxy->GetProperty("MapScalars"))
   {
     vtkSMPropertyHelper(proxy, "MapScalars").Set(0);
+  }
+  // A Bragg map is coloured by BraggWavelength, its active scalars. Chosen
+  // here, before ParaView initialises the representation: it blanks the
+  // colouring of an outline (a volume's first representation), and its Volume
+  // type (the Representation hint) then takes the first array by name
+  // (BraggColor).
+  if (!this->IsRender() && proxy->GetProperty("ColorArrayName"))
+  {
+    const bool volume = this->GetDataInformation(0)->DataSetTypeIsA("vtkImageData");
+    vtkSMPropertyHelper(proxy, "ColorArrayName")
+      .SetInputArrayToProcess(volume ? vtkDataObject::POINT : vtkDataObject::CELL, "BraggWavelength");
+    if (volume)
+    {
+      hideOutsideDomains(this->GetSessionProxyManager());
+      sampleNearest(proxy);
+    }
   }
 }
 

@@ -153,6 +153,29 @@ display = Show(render, image_view)
 check(display.MapScalars == 0 and list(display.ColorArrayName) == ["POINTS", "RGB"],
       f"the image is shown in its RGB colours, unmapped (MapScalars {display.MapScalars})")
 
+# A Bragg map keeps the stone shown (replace_input 0) and shows, on the volume,
+# its domains only: a volume rendering of BraggWavelength in the Visible
+# spectrum map, nearest voxels, transparent below 380 nm (outside domains);
+# on the domain polygons, their surfaces in the same map.
+bragg_hints = bragg.GetHints()
+visibility = [bragg_hints.GetNestedElement(i) for i in range(bragg_hints.GetNumberOfNestedElements())
+              if bragg_hints.GetNestedElement(i).GetName() == "Visibility"]
+check(len(visibility) == 1 and visibility[0].GetAttribute("replace_input") == "0",
+      "a Bragg map leaves the stone shown")
+map_view = CreateView("RenderView")
+on_volume = Show(bragg, map_view)
+opacity = list(on_volume.ScalarOpacityFunction.Points)
+check(on_volume.Representation == "Volume" and list(on_volume.ColorArrayName) == ["POINTS", "BraggWavelength"] and
+      on_volume.InterpolationType == "Nearest",
+      f"the volume's Bragg map is its domains by BraggWavelength: {on_volume.Representation}, "
+      f"{list(on_volume.ColorArrayName)}, {on_volume.InterpolationType}")
+check(opacity[1] == 0 and opacity[4] < 380 and opacity[5] == 0 and opacity[8] == 380 and opacity[9] == 1,
+      f"outside domains (0 nm) is transparent, every visible wavelength opaque: {opacity}")
+check(list(on_volume.LookupTable.RGBPoints)[0] == 380.0, "the Bragg map is in the Visible spectrum map")
+on_polygons = Show(polygons, map_view)
+check(on_polygons.Representation == "Surface" and list(on_polygons.ColorArrayName) == ["CELLS", "BraggWavelength"],
+      f"the domain polygons' Bragg map: {on_polygons.Representation} by {list(on_polygons.ColorArrayName)}")
+
 # The Domains output waits until asked for: Apply shows it in no view (the
 # View hint "None"), with ParaView's own pipeline icon; Show still shows it.
 check(controller.GetPreferredViewType(volume.SMProxy, 1) == "None" and
