@@ -2,8 +2,10 @@
 
 #include "pqDoubleLineEdit.h"
 #include "pqView.h"
+#include "vtkAbstractWidget.h"
 #include "vtkPVXMLElement.h"
 #include "vtkSMPropertyGroup.h"
+#include "vtkSMNewWidgetRepresentationProxy.h"
 #include "vtkSMPropertyHelper.h"
 #include "vtkSMProxy.h"
 
@@ -70,6 +72,16 @@ void pqOpalHandlePropertyWidget::styleHandle(vtkSMPropertyGroup* smgroup)
     vtkSMPropertyHelper(handle, "LabelOffset").Set(offset, 2);
   }
   handle->UpdateVTKObjects();
+  // Where two handles coincide (the light and the eye in the paper's set-up)
+  // the one of higher priority takes the click; among equals VTK serves the
+  // last enabled first, which was the Eye.
+  double priority = 0.0;
+  auto* widgetProxy = vtkSMNewWidgetRepresentationProxy::SafeDownCast(handle);
+  vtkAbstractWidget* widget = widgetProxy ? widgetProxy->GetWidget() : nullptr;
+  if (widget && style->GetScalarAttribute("priority", &priority))
+  {
+    widget->SetPriority(static_cast<float>(priority));
+  }
 }
 
 void pqOpalHandlePropertyWidget::setView(pqView* view)

@@ -4,8 +4,10 @@
  * labelled, coloured 3-D handle (docs/design.md §5.3).
  *
  * The property group's panel_widget "OpalHandle". Its `<Hints><OpalHandle
- * label="Light" color="1 0.8 0.2" offset="10 8"/></Hints>` give the handle's
- * label, colour and label offset. The handle is drawn in 3-D render views
+ * label="Light" color="1 0.8 0.2" offset="10 8" priority="0.6"/></Hints>` give
+ * the handle's label, colour, label offset and, optionally, its priority for
+ * the mouse (the Light's above the Eye's 0.5, VTK's default: where they
+ * coincide a drag moves the light). The handle is drawn in 3-D render views
  * only: an Opal Image View shows the render's 2-D image, where a point of the
  * stone's scene has no place.
  */
