@@ -55,6 +55,13 @@ void checkBudget()
         std::to_string(scale));
   }
   OPAL_CHECK(settledScale(1e-4) == opal::MaxBudgetScale, "a budget no preview keeps takes the coarsest");
+  // A small preview that cost more than large ones (a light pass in it) does not make every size look cheap.
+  opal::FrameBudget outlier;
+  outlier.setBudget(0.1, 2);
+  outlier.record(opal::previewPixels(800, 600, 4), costOf(opal::previewPixels(800, 600, 4)));
+  outlier.record(opal::previewPixels(800, 600, 9), 0.8);
+  OPAL_CHECK(outlier.scaleFor(800, 600) > 4, "an outlier coarsens the previews, got scale " +
+      std::to_string(outlier.scaleFor(800, 600)));
   opal::FrameBudget none;
   none.setBudget(0, 3);
   none.record(1000, 10);

@@ -41,7 +41,9 @@ void FrameBudget::record(double pixels, double seconds)
 // Least squares of seconds = fixed + perPixel x pixels over the kept
 // previews. With one size only the fixed part cannot be told apart: all of it
 // is taken per pixel, which predicts a smaller preview too cheap, and the
-// next preview, measured at its own size, separates the two.
+// next preview, measured at its own size, separates the two. A fit that
+// costs less for more pixels (a light pass or a busy moment in a small
+// preview) is no model of the march: then too all is taken per pixel.
 double FrameBudget::predicted(double pixels) const
 {
   const double n = static_cast<double>(this->Samples.size());
@@ -60,10 +62,11 @@ double FrameBudget::predicted(double pixels) const
   const double spread = n * spp - sp * sp;
   double perPixel = st / sp;
   double fixed = 0;
-  if (spread > 1e-9 * n * spp)
+  const double slope = spread > 1e-9 * n * spp ? (n * spt - sp * st) / spread : 0;
+  if (slope > 0)
   {
-    perPixel = std::max((n * spt - sp * st) / spread, 0.0);
-    fixed = std::max((st - perPixel * sp) / n, 0.0);
+    perPixel = slope;
+    fixed = std::max((st - slope * sp) / n, 0.0);
   }
   return fixed + perPixel * pixels;
 }
