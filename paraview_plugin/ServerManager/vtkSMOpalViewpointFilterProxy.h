@@ -14,7 +14,9 @@
  * §2.8, §4). A Bragg map follows the stone's first render; a new render leads
  * the Bragg maps no render leads yet; renders stay independent of each other
  * (two eyes on one stone are a fair comparison). The render's image is shown
- * in true colours: its representations start with Map Scalars off. The
+ * in true colours: its representations start with Map Scalars off. A Bragg
+ * map's start coloured by BraggWavelength; on the volume, nearest voxels and
+ * an opacity of 0 below 380 nm make its volume rendering the domains only. The
  * volume's proxy calls FillFromVolumePreset again when its preset changes.
  */
 #pragma once
