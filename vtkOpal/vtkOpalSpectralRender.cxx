@@ -339,6 +339,11 @@ int vtkOpalSpectralRender::GetBackgroundFrameState() const
   return this->RenderSession ? static_cast<int>(this->RenderSession->backgroundState()) : 0;
 }
 
+double vtkOpalSpectralRender::GetBackgroundFrameProgress() const
+{
+  return this->GetBackgroundFrameState() == 1 ? this->RenderSession->backgroundProgress() : 0.0;
+}
+
 bool vtkOpalSpectralRender::TakeBackgroundFrame(vtkImageData* image)
 {
   try

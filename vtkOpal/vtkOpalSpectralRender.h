@@ -132,6 +132,8 @@ public:
   bool IsEyeInsideOpal();
   /// 0 none, 1 running, 2 finished (TakeBackgroundFrame gives it).
   int GetBackgroundFrameState() const;
+  /// The running background frame's fraction done, 0-1 (0 when none runs).
+  double GetBackgroundFrameProgress() const;
   /// Fills `image` with the finished background frame as an update would fill
   /// the output; false if none has finished, or it failed (said in an error).
   bool TakeBackgroundFrame(vtkImageData* image);

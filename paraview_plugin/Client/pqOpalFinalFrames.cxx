@@ -1,6 +1,7 @@
 #include "pqOpalFinalFrames.h"
 
 #include "pqApplicationCore.h"
+#include "pqCoreUtilities.h"
 #include "pqRepresentation.h"
 #include "pqServer.h"
 #include "pqServerManagerModel.h"
@@ -8,6 +9,9 @@
 #include "vtkCompositeRepresentation.h"
 #include "vtkOpalSpectralRepresentation.h"
 #include "vtkSMProxy.h"
+
+#include <QMainWindow>
+#include <QStatusBar>
 
 namespace
 {
@@ -68,4 +72,33 @@ void pqOpalFinalFrames::renderViewsWithReadyFrames()
     }
   }
   this->Requested = ready;
+  this->ShowProgress();
+}
+
+// The passes under way, in the main window's status bar: the GUI stays free
+// (ParaView's own progress bar would lock its input while it shows).
+void pqOpalFinalFrames::ShowProgress()
+{
+  auto* window = qobject_cast<QMainWindow*>(pqCoreUtilities::mainWidget());
+  if (!window)
+  {
+    return;
+  }
+  QString message;
+  for (pqRepresentation* representation :
+    pqApplicationCore::instance()->getServerManagerModel()->findItems<pqRepresentation*>())
+  {
+    vtkOpalSpectralRepresentation* opal = opalOf(representation);
+    int pass = 0, passes = 0;
+    double fraction = 0;
+    if (opal && opal->GetRefinementProgress(pass, passes, fraction))
+    {
+      message = QString("Opal Spectral: pass %1 of %2, %3%").arg(pass).arg(passes).arg(int(100 * fraction));
+    }
+  }
+  if (!message.isEmpty() || this->ShowingProgress)
+  {
+    window->statusBar()->showMessage(message);
+  }
+  this->ShowingProgress = !message.isEmpty();
 }

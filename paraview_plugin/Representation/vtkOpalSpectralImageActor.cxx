@@ -381,6 +381,18 @@ vtkMTimeType vtkOpalSpectralImageActor::GetReadyFinalFrame()
   return ready ? this->StartedKey * 4 + this->StartedPass : 0;
 }
 
+bool vtkOpalSpectralImageActor::GetRefinementProgress(int& pass, int& passes, double& fraction)
+{
+  if (!this->Render || this->StartedKey != this->Render->GetMTime() || this->Render->GetBackgroundFrameState() != 1)
+  {
+    return false;
+  }
+  pass = static_cast<int>(this->StartedPass) + 1;
+  passes = static_cast<int>(this->Passes.size());
+  fraction = this->Render->GetBackgroundFrameProgress();
+  return true;
+}
+
 void vtkOpalSpectralImageActor::CancelFinalFrame()
 {
   if (this->Render)

@@ -86,6 +86,10 @@ public:
   /// the same until it is drawn or dropped; 0 if none. The view should render.
   vtkMTimeType GetReadyFinalFrame();
 
+  /// The refinement under way: its pass (1-based) and their number, and the
+  /// pass's fraction done; false if none runs (the view shows its last pass).
+  bool GetRefinementProgress(int& pass, int& passes, double& fraction);
+
   /// Stops a final frame rendering on the worker (the stone is hidden or leaves the view).
   void CancelFinalFrame();
 

@@ -256,6 +256,18 @@ void vtkOpalSpectralRepresentation::SetFrameBudget(double seconds)
   this->Actor->SetFrameBudget(seconds);
 }
 
+bool vtkOpalSpectralRepresentation::GetRefinementProgress(int& pass, int& passes, double& fraction)
+{
+  return this->Actor->GetRefinementProgress(pass, passes, fraction);
+}
+
+double vtkOpalSpectralRepresentation::GetRefinementProgressValue()
+{
+  int pass = 0, passes = 0;
+  double fraction = 0;
+  return this->GetRefinementProgress(pass, passes, fraction) ? pass - 1 + fraction : -1.0;
+}
+
 int vtkOpalSpectralRepresentation::GetLastPreviewScale()
 {
   return this->Actor->GetLastPreviewScale();

@@ -64,6 +64,14 @@ public:
   /// the pixels each way, whatever they cost.
   void SetFrameBudget(double seconds);
 
+  /// The refinement passes under way in the background (docs/design.md §5.2):
+  /// the pass (1-based), their number and the pass's fraction done; false if none runs.
+  bool GetRefinementProgress(int& pass, int& passes, double& fraction);
+
+  /// The same as one number, for tests: passes done plus the running one's
+  /// fraction (0 at the first pass's start), -1 if none runs.
+  double GetRefinementProgressValue();
+
   /// The last preview's PreviewScale (its pixels: 1/scale of the width and height), for tests.
   int GetLastPreviewScale();
 

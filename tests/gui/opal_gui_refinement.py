@@ -8,8 +8,10 @@ its progressive final frames.
 2. Progressive: after the coarse drag, the still render draws the drag's
    preview, and the script then only watches on a timer: the view is refined
    by itself, pass by pass (a quarter, a half of the pixels each way, then the
-   final frame: three background frames), the window changing at each, and
-   the last one equals a screenshot's pixels within 1 level.
+   final frame: three background frames), the window changing at each, the
+   progress of the pass under way told (RefinementProgress, which the GUI
+   shows in its status bar), and the last one equals a screenshot's pixels
+   within 1 level.
 3. A camera change during the refinement abandons it at once.
 
 The verdict goes to OPAL_GUI_VERDICT, then the client is ended."""
@@ -91,6 +93,7 @@ class Refinement:
         self.drawn = [grab(view)]
         self.completed = info(stone, "CompletedFinalFrames")
         self.step = self.watch
+        self.progress = []
         self.started = time.time()
 
     def tick(self, caller, event):
@@ -105,6 +108,7 @@ class Refinement:
             end()
 
     def watch(self):
+        self.progress.append(info(self.stone, "RefinementProgress"))
         window = grab(self.view)
         if numpy.abs(window - self.drawn[-1]).max() > 0:
             self.drawn.append(window)
@@ -115,6 +119,10 @@ class Refinement:
         check(passes == 3, f"the held view was refined in three passes without input ({passes} completed, "
               f"{len(self.drawn) - 1} changes of the window)")
         check(len(self.drawn) >= 3, "the window changed as the passes arrived")
+        running = [p for p in self.progress if p >= 0]
+        check(running and max(running) < 3 and self.progress[-1] == -1,
+              f"the progress of the passes under way was told (from {min(running or [-1]):.2f} to "
+              f"{max(running or [-1]):.2f} of 3), and none once the last was drawn")
         shot = screenshot(self.view)
         check(shot.shape == window.shape and numpy.abs(shot - window).max() <= 1,
               "the last pass equals a screenshot's final frame within 1 level")
