@@ -214,6 +214,13 @@ vtkImageData* vtkOpalSpectralImageActor::UpdateFrame(vtkRenderer* renderer, bool
   {
     return this->DeferredFrame(eye);
   }
+  // A drag before the first view has arrived draws nothing rather than wait
+  // for what the worker is making (the device's volume, the pipelines, the
+  // light field); the still render at its end starts the first view again.
+  if (interactive && this->DeferFinalFrames && this->LastQuality < 0)
+  {
+    return nullptr;
+  }
   // The headlight follows the eye at still frames; a preview keeps the last
   // still frame's light, so dragging re-marches without rerunning the light
   // pass (the light field depends on the light, not on the eye).

@@ -4,7 +4,8 @@ not wait for the final frame.
 
 0. The first view: Render() returns at once, before even a preview (the
    device's volume, the pipelines and the light field are made on the
-   worker), and the stone appears without input.
+   worker), an interactive render meanwhile draws nothing and waits for
+   nothing, and the stone appears without input.
 1. After a camera change, Render() returns with the preview drawn (the
    representation's LastFrameQuality 1, no final frame completed yet).
 2. The script then returns to the GUI's event loop and only watches, on a
@@ -163,6 +164,10 @@ try:
     lines.append(f"the first render returned in {time.time() - started:.2f} s")
     check(steps.info("FinalFramesInBackground") == 1, "the GUI renders final frames in the background")
     check(steps.info("LastFrameQuality") == -1, "the first render returned before drawing the stone")
+    started = time.time()
+    view.SMProxy.InteractiveRender()  # a drag begun at once
+    lines.append(f"an interactive render meanwhile returned in {time.time() - started:.2f} s")
+    check(steps.info("LastFrameQuality") == -1, "a drag before the first view arrives draws nothing, waiting for nothing")
     # Into the event loop: from here on only the timer looks, nothing renders but the GUI.
     interactor = view.GetInteractor()
     interactor.AddObserver("TimerEvent", steps.tick)
