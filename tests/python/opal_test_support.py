@@ -38,10 +38,11 @@ def run(command, timeout=240):
     return result
 
 
-def run_gui_script(script, plugin, paraview, output_directory):
+def run_gui_script(script, plugin, paraview, output_directory, arguments=()):
     """Runs tests/gui/`script` in the ParaView client (paraview --script) on a
-    virtual display of its own; returns the verdict it wrote (the client's
-    stdout is not the test's), or "no verdict written"."""
+    virtual display of its own, with the client's further `arguments`; returns
+    the verdict it wrote (the client's stdout is not the test's), or "no
+    verdict written"."""
     here = os.path.dirname(os.path.abspath(__file__))
     output = os.path.join(output_directory, "gui")
     os.makedirs(output, exist_ok=True)
@@ -53,7 +54,7 @@ def run_gui_script(script, plugin, paraview, output_directory):
     gui = os.path.join(here, "..", "gui")  # the scripts' shared module, opal_gui_verdict
     os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [gui, os.environ.get("PYTHONPATH")]))
     run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 1280x1024x24",
-         paraview, "--script=" + os.path.join(gui, script)], timeout=280)
+         paraview, "--script=" + os.path.join(gui, script), *arguments], timeout=280)
     return open(verdict).read() if os.path.exists(verdict) else "no verdict written"
 
 
