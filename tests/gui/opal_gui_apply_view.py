@@ -16,26 +16,12 @@ import os
 import time
 
 import numpy
-from paraview import servermanager
 from paraview.simple import GetActiveView, GetSources, GetViews, LoadPlugin
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 
-from opal_gui_verdict import end_with_verdict
+from opal_gui_verdict import Verdict, grab
 
-output = os.path.dirname(os.environ["OPAL_GUI_VERDICT"])
-lines = []
-checks = []
-
-
-def check(condition, what):
-    checks.append(bool(condition))
-    lines.append(f"{'ok' if condition else 'FAILED'}: {what}")
-
-
-def end():
-    end_with_verdict(lines, bool(checks) and all(checks))
+verdict = Verdict()
+lines, check, end = verdict.lines, verdict.check, verdict.end
 
 
 def source_named(xml_name):
@@ -51,22 +37,6 @@ def representation_in(view, proxy, port):
                 inputs.GetOutputPortForConnection(0) == port:
             return representation
     return None
-
-
-def grab(view, name):
-    """The window's pixels as drawn last (no new render), also written to a PNG file."""
-    grabber = vtkWindowToImageFilter()
-    grabber.SetInput(view.GetRenderWindow())
-    grabber.ShouldRerenderOff()
-    grabber.ReadFrontBufferOff()
-    grabber.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(os.path.join(output, name))
-    writer.SetInputConnection(grabber.GetOutputPort())
-    writer.Write()
-    image = grabber.GetOutput()
-    width, height, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
 
 
 class Watch:

@@ -22,53 +22,12 @@ import os
 import time
 
 import numpy
-from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, SaveScreenshot, Show
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, Show
 
-from opal_gui_verdict import end_with_verdict
+from opal_gui_verdict import Verdict, grab, screenshot
 
-verdict_path = os.environ["OPAL_GUI_VERDICT"]
-output = os.path.dirname(verdict_path)
-lines = []
-checks = []
-
-
-def check(condition, what):
-    checks.append(bool(condition))
-    lines.append(f"{'ok' if condition else 'FAILED'}: {what}")
-
-
-def end():
-    end_with_verdict(lines, bool(checks) and all(checks))
-
-
-def grab(view, name):
-    """The window's pixels as drawn last (no new render), also written to a PNG file."""
-    grabber = vtkWindowToImageFilter()
-    grabber.SetInput(view.GetRenderWindow())
-    grabber.ShouldRerenderOff()
-    grabber.ReadFrontBufferOff()
-    grabber.Update()
-    writer = vtkPNGWriter()
-    writer.SetFileName(os.path.join(output, name))
-    writer.SetInputConnection(grabber.GetOutputPort())
-    writer.Write()
-    image = grabber.GetOutput()
-    width, height, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
-
-
-def screenshot(view, name):
-    path = os.path.join(output, name)
-    SaveScreenshot(path, view, ImageResolution=list(view.ViewSize))
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
+verdict = Verdict()
+lines, check, end = verdict.lines, verdict.check, verdict.end
 
 
 class FinalFrames:

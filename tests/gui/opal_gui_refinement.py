@@ -2,6 +2,7 @@
 TestOpalGuiRefinement (docs/design.md §5.2): the live view's frame budget and
 its progressive final frames.
 
+0. The first view arrives by itself (it renders on the worker).
 1. Frame budget: a drag (interactive renders) under a budget no preview can
    keep takes the coarsest previews (PreviewScale 16), under a budget any
    preview keeps the finest (1), with no budget (0) half the pixels (2).
@@ -20,48 +21,12 @@ import os
 import time
 
 import numpy
-from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, SaveScreenshot, Show
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGReader
-from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, Show
 
-from opal_gui_verdict import end_with_verdict
+from opal_gui_verdict import Verdict, grab, screenshot
 
-output = os.path.dirname(os.environ["OPAL_GUI_VERDICT"])
-lines = []
-checks = []
-
-
-def check(condition, what):
-    checks.append(bool(condition))
-    lines.append(f"{'ok' if condition else 'FAILED'}: {what}")
-
-
-def end():
-    end_with_verdict(lines, bool(checks) and all(checks))
-
-
-def grab(view):
-    """The window's pixels as drawn last (no new render)."""
-    grabber = vtkWindowToImageFilter()
-    grabber.SetInput(view.GetRenderWindow())
-    grabber.ShouldRerenderOff()
-    grabber.ReadFrontBufferOff()
-    grabber.Update()
-    image = grabber.GetOutput()
-    width, height, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
-
-
-def screenshot(view):
-    path = os.path.join(output, "gui-refinement-screenshot.png")
-    SaveScreenshot(path, view, ImageResolution=list(view.ViewSize))
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    return vtk_to_numpy(image.GetPointData().GetScalars())[:, :3].astype(int).reshape(height, width, 3)
+verdict = Verdict()
+lines, check, end = verdict.lines, verdict.check, verdict.end
 
 
 def place(view, degrees):
@@ -90,10 +55,22 @@ class Refinement:
     def __init__(self, view, stone):
         self.view, self.stone = view, stone
         self.ticks = 0
-        self.drawn = [grab(view)]
-        self.completed = info(stone, "CompletedFinalFrames")
-        self.step = self.watch
+        self.step = self.wait_for_first_view
         self.progress = []
+
+    def wait_for_first_view(self):
+        """The first view renders on the worker; a drag before it arrives draws nothing."""
+        if info(self.stone, "LastFrameQuality") != 0:
+            return
+        scales = {budget: drag(self.view, self.stone, budget) for budget in (1000.0, 0.0)}
+        scales[0.001] = drag(self.view, self.stone, 0.001)
+        check(scales == {1000.0: 1, 0.0: 2, 0.001: 16},
+              f"the previews' scale follows the budget: {scales} (budget seconds: scale)")
+        Render(self.view)  # still: the drag's last preview, then the passes in the background
+        check(info(self.stone, "LastFrameQuality") == 1, "the still render returned with the preview drawn")
+        self.drawn = [grab(self.view)]
+        self.completed = info(self.stone, "CompletedFinalFrames")
+        self.step = self.watch
         self.started = time.time()
 
     def tick(self, caller, event):
@@ -123,7 +100,7 @@ class Refinement:
         check(running and max(running) < 3 and self.progress[-1] == -1,
               f"the progress of the passes under way was told (from {min(running or [-1]):.2f} to "
               f"{max(running or [-1]):.2f} of 3), and none once the last was drawn")
-        shot = screenshot(self.view)
+        shot = screenshot(self.view, "gui-refinement-screenshot.png")
         check(shot.shape == window.shape and numpy.abs(shot - window).max() <= 1,
               "the last pass equals a screenshot's final frame within 1 level")
         # A new camera during the refinement: the passes of the old one stop.
@@ -156,12 +133,6 @@ try:
     Render(view)  # the first render resets the camera
     place(view, 0)
     Render(view)
-    scales = {budget: drag(view, stone, budget) for budget in (1000.0, 0.0)}
-    scales[0.001] = drag(view, stone, 0.001)
-    check(scales == {1000.0: 1, 0.0: 2, 0.001: 16},
-          f"the previews' scale follows the budget: {scales} (budget seconds: scale)")
-    Render(view)  # still: the drag's last preview, then the passes in the background
-    check(info(stone, "LastFrameQuality") == 1, "the still render returned with the preview drawn")
     steps = Refinement(view, stone)
     interactor = view.GetInteractor()
     interactor.AddObserver("TimerEvent", steps.tick)
