@@ -18,7 +18,7 @@ import time
 import numpy
 from paraview.simple import GetActiveView, GetSources, GetViews, LoadPlugin
 
-from opal_gui_verdict import Verdict, grab
+from opal_gui_verdict import TimedSteps, Verdict, grab
 
 verdict = Verdict()
 lines, check, end = verdict.lines, verdict.check, verdict.end
@@ -39,24 +39,13 @@ def representation_in(view, proxy, port):
     return None
 
 
-class Watch:
+class Watch(TimedSteps):
     def __init__(self, view):
         self.view = view
-        self.ticks = 0
+        # About 4 minutes of ticks: far more than the playback and a first frame take on lavapipe.
+        super().__init__(verdict, 2400)
         self.step = self.wait_for_apply
         self.started = time.time()
-
-    def tick(self, caller, event):
-        self.ticks += 1
-        try:
-            # About 4 minutes of ticks: far more than the playback and a first frame take on lavapipe.
-            if self.ticks > 2400:
-                check(False, f"the steps end (stuck in {self.step.__name__})")
-                end()
-            self.step()
-        except Exception as error:  # the verdict must be written whatever happens
-            check(False, f"error: {error!r}")
-            end()
 
     def wait_for_apply(self):
         """Until the playback has applied the render: its image is shown in an Opal Image View."""
@@ -106,9 +95,7 @@ try:
     LoadPlugin(os.environ["OPAL_PLUGIN"], remote=False, ns=globals())
     view = GetActiveView()
     watch = Watch(view)
-    interactor = view.GetInteractor()
-    interactor.AddObserver("TimerEvent", watch.tick)
-    interactor.CreateRepeatingTimer(100)
+    watch.start(view, 100)
 except Exception as error:  # the verdict must be written whatever happens
     check(False, f"error: {error!r}")
     end()

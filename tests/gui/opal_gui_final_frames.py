@@ -24,18 +24,19 @@ import time
 import numpy
 from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, Show
 
-from opal_gui_verdict import Verdict, grab, screenshot
+from opal_gui_verdict import TimedSteps, Verdict, grab, screenshot
 
 verdict = Verdict()
 lines, check, end = verdict.lines, verdict.check, verdict.end
 
 
-class FinalFrames:
+class FinalFrames(TimedSteps):
     """The steps, run by the interactor's timer (a Qt timer) in the event loop."""
 
     def __init__(self, view, stone):
         self.view, self.stone = view, stone
-        self.ticks = 0
+        # About 3 minutes of ticks: far more than a frame takes on lavapipe.
+        super().__init__(verdict, 1800)
         self.step = self.wait_for_first_view
         self.started = time.time()
 
@@ -46,18 +47,6 @@ class FinalFrames:
     def look_from(self, eye):
         self.view.CameraPosition, self.view.CameraFocalPoint, self.view.CameraViewUp = eye, [0, 2, 0], [0, 0, -1]
         Render(self.view)
-
-    def tick(self, caller, event):
-        self.ticks += 1
-        try:
-            # About 3 minutes of ticks: far more than a frame takes on lavapipe.
-            if self.ticks > 1800:
-                check(False, f"the steps end (stuck in {self.step.__name__})")
-                end()
-            self.step()
-        except Exception as error:  # the verdict must be written whatever happens
-            check(False, f"error: {error!r}")
-            end()
 
     def wait_for_first_view(self):
         if self.info("LastFrameQuality") != 0:
@@ -128,9 +117,7 @@ try:
     lines.append(f"an interactive render meanwhile returned in {time.time() - started:.2f} s")
     check(steps.info("LastFrameQuality") == -1, "a drag before the first view arrives draws nothing, waiting for nothing")
     # Into the event loop: from here on only the timer looks, nothing renders but the GUI.
-    interactor = view.GetInteractor()
-    interactor.AddObserver("TimerEvent", steps.tick)
-    interactor.CreateRepeatingTimer(100)
+    steps.start(view, 100)
 except Exception as error:  # the verdict must be written whatever happens
     check(False, f"error: {error!r}")
     end()

@@ -23,7 +23,7 @@ import time
 import numpy
 from paraview.simple import GetActiveViewOrCreate, LoadPlugin, OutputPort, Render, Show
 
-from opal_gui_verdict import Verdict, grab, screenshot
+from opal_gui_verdict import TimedSteps, Verdict, grab, screenshot
 
 verdict = Verdict()
 lines, check, end = verdict.lines, verdict.check, verdict.end
@@ -49,12 +49,12 @@ def drag(view, stone, budget):
     return info(stone, "LastPreviewScale")
 
 
-class Refinement:
+class Refinement(TimedSteps):
     """The steps, run by the interactor's timer in the event loop."""
 
     def __init__(self, view, stone):
         self.view, self.stone = view, stone
-        self.ticks = 0
+        super().__init__(verdict, 3600)  # 3 minutes: far more than the passes take on lavapipe
         self.step = self.wait_for_first_view
         self.progress = []
 
@@ -72,17 +72,6 @@ class Refinement:
         self.completed = info(self.stone, "CompletedFinalFrames")
         self.step = self.watch
         self.started = time.time()
-
-    def tick(self, caller, event):
-        self.ticks += 1
-        try:
-            if self.ticks > 3600:  # minutes: far more than the passes take on lavapipe
-                check(False, f"the steps end (stuck in {self.step.__name__})")
-                end()
-            self.step()
-        except Exception as error:  # the verdict must be written whatever happens
-            check(False, f"error: {error!r}")
-            end()
 
     def watch(self):
         self.progress.append(info(self.stone, "RefinementProgress"))
@@ -134,9 +123,7 @@ try:
     place(view, 0)
     Render(view)
     steps = Refinement(view, stone)
-    interactor = view.GetInteractor()
-    interactor.AddObserver("TimerEvent", steps.tick)
-    interactor.CreateRepeatingTimer(50)
+    steps.start(view, 50)
 except Exception as error:  # the verdict must be written whatever happens
     check(False, f"error: {error!r}")
     end()

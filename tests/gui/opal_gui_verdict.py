@@ -63,3 +63,30 @@ def screenshot(view, name, size=None):
     reader.SetFileName(path)
     reader.Update()
     return pixels_of(reader.GetOutput())
+
+
+class TimedSteps:
+    """Steps run by the interactor's timer in the GUI's event loop: each tick
+    calls self.step (set by the subclass; a step ends the client through the
+    verdict). Past `limit` ticks, or on an error, the verdict says so and the
+    client ends: the verdict must be written whatever happens."""
+
+    def __init__(self, verdict, limit):
+        self.verdict, self.limit, self.ticks = verdict, limit, 0
+
+    def tick(self, caller, event):
+        self.ticks += 1
+        try:
+            if self.ticks > self.limit:
+                self.verdict.check(False, f"the steps end (stuck in {self.step.__name__})")
+                self.verdict.end()
+            self.step()
+        except Exception as error:
+            self.verdict.check(False, f"error: {error!r}")
+            self.verdict.end()
+
+    def start(self, view, period_ms):
+        """Into the event loop: from here on only the timer looks."""
+        interactor = view.GetInteractor()
+        interactor.AddObserver("TimerEvent", self.tick)
+        interactor.CreateRepeatingTimer(period_ms)
