@@ -11,9 +11,15 @@
 #include "vtkObjectFactory.h"
 #include "vtkOutputWindow.h"
 #include "vtkXMLImageDataWriter.h"
+#include "vtkXMLPImageDataWriter.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <vector>
 
 namespace
 {
@@ -61,14 +67,32 @@ void installStderrOutputWindow(const std::string& program)
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
 }
 
-void showProgress(vtkAlgorithm* algorithm, ProgressBar& bar)
+void showProgress(vtkAlgorithm* algorithm, ProgressBar& bar, int pieces)
 {
-  vtkNew<vtkCallbackCommand> command;
-  command->SetCallback([](vtkObject*, unsigned long, void* client, void* callData) {
-    static_cast<ProgressBar*>(client)->show(*static_cast<double*>(callData));
+  // The algorithm reports 0 to 1 for each piece; the bar shows the whole.
+  struct Pieces
+  {
+    ProgressBar* Bar;
+    int Count, Done;
+  };
+  auto track = [algorithm](Pieces* pieces, unsigned long event, void (*callback)(vtkObject*, unsigned long, void*, void*)) {
+    vtkNew<vtkCallbackCommand> command;
+    command->SetCallback(callback);
+    command->SetClientData(pieces);
+    if (event == vtkCommand::EndEvent)
+    {
+      command->SetClientDataDeleteCallback([](void* client) { delete static_cast<Pieces*>(client); });
+    }
+    algorithm->AddObserver(event, command);
+  };
+  Pieces* shared = new Pieces{ &bar, std::max(pieces, 1), 0 };
+  track(shared, vtkCommand::ProgressEvent, [](vtkObject*, unsigned long, void* client, void* callData) {
+    const Pieces* p = static_cast<Pieces*>(client);
+    p->Bar->show((p->Done + *static_cast<double*>(callData)) / p->Count);
   });
-  command->SetClientData(&bar);
-  algorithm->AddObserver(vtkCommand::ProgressEvent, command);
+  track(shared, vtkCommand::EndEvent, [](vtkObject*, unsigned long, void* client, void*) {
+    ++static_cast<Pieces*>(client)->Done;
+  });
 }
 
 std::string writeImageDataFile(const std::string& path, vtkImageData* image)
@@ -83,4 +107,80 @@ std::string writeImageDataFile(const std::string& path, vtkImageData* image)
     writer->SetFileName(temporary.c_str());
     return writer->Write() == 1;
   });
+}
+
+namespace
+{
+// A folder created exclusively under an unpredictable name, removed with
+// what is left in it when the holder ends.
+class StagingFolder
+{
+public:
+  explicit StagingFolder(const std::filesystem::path& beside)
+  {
+    const std::filesystem::path folder = beside.parent_path().empty() ? "." : beside.parent_path();
+    std::string pattern = (folder / ("." + beside.filename().string() + "-XXXXXX")).string();
+    if (mkdtemp(pattern.data()))
+    {
+      this->Path = pattern;
+    }
+    else
+    {
+      this->Error = std::strerror(errno);
+    }
+  }
+  ~StagingFolder()
+  {
+    std::error_code ignored;
+    std::filesystem::remove_all(this->Path, ignored);
+  }
+  StagingFolder(const StagingFolder&) = delete;
+  StagingFolder& operator=(const StagingFolder&) = delete;
+
+  std::filesystem::path Path;
+  std::string Error;
+};
+} // namespace
+
+std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm* source, int pieces)
+{
+  const std::filesystem::path target(path);
+  const StagingFolder staging(target);
+  if (staging.Path.empty())
+  {
+    return "could not write " + path + ": " + staging.Error + " (creating a folder for its pieces beside it)";
+  }
+  vtkNew<vtkXMLPImageDataWriter> writer;
+  writer->SetInputConnection(source->GetOutputPort());
+  writer->SetFileName((staging.Path / target.filename()).c_str());
+  writer->SetNumberOfPieces(pieces);
+  writer->SetStartPiece(0);
+  writer->SetEndPiece(pieces - 1);
+  writer->SetDataModeToBinary(); // as writeImageDataFile, for bookworm's expat
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1)
+  {
+    return "could not write " + path + " (the volume or one of its " + std::to_string(pieces) + " pieces failed)";
+  }
+  // The summary and its pieces, under the names the writer gave them.
+  std::vector<std::filesystem::path> staged, targets;
+  for (const auto& entry : std::filesystem::directory_iterator(staging.Path))
+  {
+    staged.push_back(entry.path());
+    targets.push_back(target.parent_path() / entry.path().filename());
+  }
+  FileSetTransaction transaction(targets);
+  for (std::size_t i = 0; i < staged.size(); ++i)
+  {
+    const std::string error = writeFileAtomically(targets[i], [&](const std::string& file) {
+      std::filesystem::copy_file(staged[i], file, std::filesystem::copy_options::overwrite_existing);
+      return true;
+    });
+    if (!error.empty())
+    {
+      return error;
+    }
+  }
+  transaction.commit();
+  return {};
 }

@@ -1,5 +1,5 @@
 // What the programs need of VTK: its messages on stderr, an algorithm's
-// progress on a bar, writing .vti files. opal-volume links it; opal-render
+// progress on a bar, writing .vti and partitioned .pvti files. opal-volume links it; opal-render
 // loads it (through its .vti output module) only when a .vti is asked for.
 #pragma once
 
@@ -14,8 +14,17 @@ class vtkImageData;
 // prefixed with the program's name; the executive's request dumps are dropped.
 void installStderrOutputWindow(const std::string& program);
 
-// Shows `algorithm`'s progress on `bar` (which must outlive the algorithm's updates).
-void showProgress(vtkAlgorithm* algorithm, ProgressBar& bar);
+// Shows `algorithm`'s progress on `bar` (which must outlive the algorithm's
+// updates) over `pieces` executions, one per piece.
+void showProgress(vtkAlgorithm* algorithm, ProgressBar& bar, int pieces = 1);
 
 // Writes image data as a .vti (inline binary, zlib); empty string on success, else the reason.
 std::string writeImageDataFile(const std::string& path, vtkImageData* image);
+
+// Writes the image `source` produces as a partitioned .pvti at `path` and its
+// `pieces` piece files beside it (NAME_0.vti, ...), each piece requested from
+// the source alone (a source that fills only the extent asked, as
+// vtkOpalSource does, then holds one piece at a time). The set is written in
+// a private folder beside `path`, then replaced all or none. Empty string on
+// success, else the reason.
+std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm* source, int pieces);

@@ -1,5 +1,6 @@
-// opal-volume: builds the opal volume and writes it as a .vti file, with a
-// one-screen summary of what was built.
+// opal-volume: builds the opal volume and writes it as a .vti file, or as a
+// partitioned .pvti built and written piece by piece, with a one-screen
+// summary of what was built.
 #include "OpalAtomicFile.h"
 #include "OpalCliFiles.h"
 #include "OpalModelOptions.h"
@@ -10,19 +11,119 @@
 #include "vtkOpalSource.h"
 
 #include "vtkDataArray.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <CLI/CLI.hpp>
 
 #include <array>
+#include <cstdint>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+
+namespace
+{
+// What the summary reports, gathered from each piece the source builds.
+struct BuiltCounts
+{
+  std::array<long long, 3> VoxelTypes{ 0, 0, 0 }; // empty, scattering, diffraction
+  int DomainsPlaced = 0;
+};
+
+// Adds the voxel types of the points `piece` owns: a point on a piece's upper
+// face belongs to the piece above it, unless it is on the grid's own.
+void countPiece(vtkImageData* piece, const int whole[6], BuiltCounts& counts)
+{
+  int extent[6];
+  piece->GetExtent(extent);
+  vtkDataArray* types = piece->GetPointData()->GetArray("VoxelType");
+  vtkIdType ijk[3];
+  for (ijk[2] = extent[4]; ijk[2] <= extent[5]; ++ijk[2])
+    for (ijk[1] = extent[2]; ijk[1] <= extent[3]; ++ijk[1])
+      for (ijk[0] = extent[0]; ijk[0] <= extent[1]; ++ijk[0])
+      {
+        bool owned = true;
+        for (int a = 0; a < 3; ++a)
+        {
+          owned = owned && (ijk[a] < extent[2 * a + 1] || extent[2 * a + 1] == whole[2 * a + 1]);
+        }
+        if (owned)
+        {
+          const vtkIdType point = (ijk[0] - extent[0]) +
+            (extent[1] - extent[0] + 1) * ((ijk[1] - extent[2]) + (extent[3] - extent[2] + 1) * (ijk[2] - extent[4]));
+          ++counts.VoxelTypes[static_cast<std::size_t>(types->GetComponent(point, 0)) % 3];
+        }
+      }
+  counts.DomainsPlaced = static_cast<int>(piece->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
+}
+
+// Counts every piece the source builds (the whole grid is one piece).
+void countEachPiece(vtkOpalSource* source, BuiltCounts& counts)
+{
+  vtkNew<vtkCallbackCommand> command;
+  command->SetClientData(&counts);
+  command->SetCallback([](vtkObject* caller, unsigned long, void* client, void*) {
+    auto* built = static_cast<vtkOpalSource*>(caller);
+    int whole[6];
+    built->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    if (built->GetOutput()->GetNumberOfPoints() > 0)
+    {
+      countPiece(built->GetOutput(), whole, *static_cast<BuiltCounts*>(client));
+    }
+  });
+  source->AddObserver(vtkCommand::EndEvent, command);
+}
+
+// Builds the volume and writes it: a .vti whole, a .pvti piece by piece.
+// Empty string on success, else the reason.
+std::string buildAndWrite(vtkOpalSource* source, const std::string& output, int pieces)
+{
+  const SignalsHeld held; // a signal while writing is delivered once the files are whole or gone
+  if (lowerCaseExtension(output) == ".pvti")
+  {
+    return writePartitionedImageDataFile(output, source, pieces);
+  }
+  if (!source->GetExecutive()->Update())
+  {
+    return "the volume could not be built.";
+  }
+  return writeImageDataFile(output, source->GetOutput());
+}
+
+void printSummary(vtkOpalSource* source, const OpalModelOptions& model, const BuiltCounts& counts, double seconds,
+  const std::string& output, int pieces)
+{
+  const std::array<int, 3>& dims = source->GetModelParameters().Dimensions;
+  const std::array<long long, 3>& types = counts.VoxelTypes;
+  const opal::PresetSettings* recorded = opal::presetByIndex(model.presetIndex());
+  std::printf("Opal volume (preset %s)\n", recorded ? recorded->Name : "custom");
+  std::printf("  grid             %d x %d x %d voxels (%lld)\n", dims[0], dims[1], dims[2],
+    types[0] + types[1] + types[2]);
+  std::printf("  empty            %lld\n", types[0]);
+  std::printf("  scattering       %lld\n", types[1]);
+  std::printf("  diffraction      %lld\n", types[2]);
+  if (source->GetDomainLayout() == static_cast<int>(opal::DomainLayoutKind::Voronoi))
+  {
+    std::printf("  voronoi cells    %d, %d ordered (domains)\n", source->GetVoronoiCellCount(), counts.DomainsPlaced);
+  }
+  else
+  {
+    std::printf("  domains placed   %d of %d\n", counts.DomainsPlaced, source->GetDomainCount());
+  }
+  std::printf("  build time       %.3f s\n", seconds);
+  std::printf("  written to       %s%s\n", output.c_str(),
+    pieces > 1 ? (" (" + std::to_string(pieces) + " pieces)").c_str() : "");
+}
+} // namespace
 
 int main(int argc, char** argv)
 {
@@ -30,12 +131,25 @@ int main(int argc, char** argv)
   OpalModelOptions model;
   model.addTo(app);
   std::string output = "opal.vti";
-  app.add_option("-o,--output", output, "Output .vti file")->check(fileExtension({ ".vti" }))->capture_default_str();
+  app.add_option("-o,--output", output, "Output .vti file, or .pvti: a partitioned volume, one .vti per piece beside it")
+    ->check(fileExtension({ ".vti", ".pvti" }))
+    ->capture_default_str();
+  int pieces = 0;
+  CLI::Option* piecesOption = app.add_option("--pieces", pieces,
+    "Pieces of a .pvti output (default 4), each built and written alone, as ParaView's ranks read them");
+  piecesOption->check(CLI::Range(1, 4096));
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {
     return status;
   }
+  const bool partitioned = lowerCaseExtension(output) == ".pvti";
+  if (!partitioned && piecesOption->count() > 0)
+  {
+    std::cerr << "opal-volume: --pieces needs a .pvti output; " << output << " is one .vti file." << std::endl;
+    return 2;
+  }
+  pieces = partitioned ? (pieces > 0 ? pieces : 4) : 1;
   // A full disk or a file-size limit then fails the write (and is reported)
   // instead of killing the process half way through a file.
   std::signal(SIGXFSZ, SIG_IGN);
@@ -45,8 +159,11 @@ int main(int argc, char** argv)
   // The preset first: choosing it sets its values, which the flags then replace.
   source->SetPreset(model.presetIndex());
   source->SetModelParameters(model.parameters());
-  for (const std::string& error :
-    { opal::validate(source->GetModelParameters()), opal::volumeMemoryError(source->GetModelParameters()) })
+  // A .pvti's pieces are built one at a time: the memory a piece needs.
+  const std::array<int, 3>& dims = source->GetModelParameters().Dimensions;
+  const std::uint64_t pieceVoxels = (static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2] + pieces - 1) / pieces;
+  for (const std::string& error : { opal::validate(source->GetModelParameters()),
+         opal::volumeMemoryError(source->GetModelParameters(), opal::VolumeArrays::All, pieceVoxels) })
   {
     if (!error.empty())
     {
@@ -55,52 +172,17 @@ int main(int argc, char** argv)
     }
   }
   ProgressBar bar("volume");
-  showProgress(source, bar);
+  showProgress(source, bar, pieces);
+  BuiltCounts counts;
+  countEachPiece(source, counts);
   const auto start = std::chrono::steady_clock::now();
-  if (!source->GetExecutive()->Update())
-  {
-    std::cerr << "opal-volume: the volume could not be built." << std::endl;
-    return 1;
-  }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  vtkImageData* volume = source->GetOutput();
-
-  std::array<long long, 3> counts{ 0, 0, 0 };
-  vtkDataArray* types = volume->GetPointData()->GetArray("VoxelType");
-  for (vtkIdType i = 0; i < types->GetNumberOfTuples(); ++i)
-  {
-    ++counts[static_cast<std::size_t>(types->GetComponent(i, 0)) % 3];
-  }
-  const int placed = static_cast<int>(volume->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
-  std::string error;
-  {
-    const SignalsHeld held; // a signal while writing is delivered once the file is whole or gone
-    error = writeImageDataFile(output, volume);
-  }
+  const std::string error = buildAndWrite(source, output, pieces);
   if (!error.empty())
   {
     std::cerr << "opal-volume: " << error << std::endl;
     return 1;
   }
-
-  int dims[3];
-  volume->GetDimensions(dims);
-  const opal::PresetSettings* recorded = opal::presetByIndex(model.presetIndex());
-  std::printf("Opal volume (preset %s)\n", recorded ? recorded->Name : "custom");
-  std::printf("  grid             %d x %d x %d voxels (%lld)\n", dims[0], dims[1], dims[2],
-    counts[0] + counts[1] + counts[2]);
-  std::printf("  empty            %lld\n", counts[0]);
-  std::printf("  scattering       %lld\n", counts[1]);
-  std::printf("  diffraction      %lld\n", counts[2]);
-  if (source->GetDomainLayout() == static_cast<int>(opal::DomainLayoutKind::Voronoi))
-  {
-    std::printf("  voronoi cells    %d, %d ordered (domains)\n", source->GetVoronoiCellCount(), placed);
-  }
-  else
-  {
-    std::printf("  domains placed   %d of %d\n", placed, source->GetDomainCount());
-  }
-  std::printf("  build time       %.3f s\n", seconds);
-  std::printf("  written to       %s\n", output.c_str());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printSummary(source, model, counts, seconds, output, pieces);
   return 0;
 }

@@ -120,7 +120,7 @@ void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
   this->Modified();
 }
 
-std::string vtkOpalSource::Validate() const
+std::string vtkOpalSource::Validate(const int* extent) const
 {
   if (this->Preset != opal::CustomPreset && !opal::presetByIndex(this->Preset))
   {
@@ -129,13 +129,23 @@ std::string vtkOpalSource::Validate() const
   }
   const opal::ModelParameters parameters = this->GetModelParameters();
   const std::string error = opal::validate(parameters);
-  // Refuse what cannot fit in this machine's memory, before any work.
-  return error.empty() ? opal::volumeMemoryError(parameters) : error;
+  if (!error.empty() || !extent)
+  {
+    return error;
+  }
+  // Refuse what cannot fit in this machine's memory, before any work: the
+  // piece asked for, so a volume larger than one machine is built by pieces.
+  std::uint64_t voxels = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    voxels *= static_cast<std::uint64_t>(std::max(extent[2 * a + 1] - extent[2 * a] + 1, 0));
+  }
+  return opal::volumeMemoryError(parameters, opal::VolumeArrays::All, voxels);
 }
 
-bool vtkOpalSource::Refuses()
+bool vtkOpalSource::Refuses(const int* extent)
 {
-  const std::string error = this->Validate();
+  const std::string error = this->Validate(extent);
   if (!error.empty() && (error != this->ReportedError || this->GetMTime() != this->ReportedErrorTime))
   {
     vtkErrorMacro(<< error);
@@ -155,7 +165,7 @@ int vtkOpalSource::RequestInformation(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (this->Refuses())
+  if (this->Refuses(nullptr))
   {
     // An empty image, so the executive adds no error of its own about a missing extent.
     const int none[6] = { 0, -1, 0, -1, 0, -1 };
@@ -356,11 +366,21 @@ bool vtkOpalSource::FillVolume(
 int vtkOpalSource::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
-  if (this->Refuses())
+  const opal::ModelParameters parameters = this->GetModelParameters();
+  // Within the grid: a request left from a larger grid (a refused one) asks
+  // beyond it, and its memory is not this grid's.
+  vtkInformation* imageInfo = outputVector->GetInformationObject(0);
+  int extent[6];
+  imageInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
+  for (int a = 0; a < 3; ++a)
+  {
+    extent[2 * a] = std::max(extent[2 * a], 0);
+    extent[2 * a + 1] = std::min(extent[2 * a + 1], parameters.Dimensions[a] - 1);
+  }
+  if (this->Refuses(extent))
   {
     return 0;
   }
-  const opal::ModelParameters parameters = this->GetModelParameters();
   const opal::Grid grid = opal::Grid::fromParameters(parameters);
   this->UpdateProgress(0.0);
   const std::optional<opal::DomainLayout> layout = this->BuildLayout(parameters);
@@ -369,10 +389,7 @@ int vtkOpalSource::RequestData(
     return 0;
   }
 
-  vtkInformation* imageInfo = outputVector->GetInformationObject(0);
   vtkImageData* image = vtkImageData::GetData(imageInfo);
-  int extent[6];
-  imageInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent);
   image->SetExtent(extent);
   image->SetSpacing(grid.Spacing.data());
   image->SetOrigin(grid.Origin.data());

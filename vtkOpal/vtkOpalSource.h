@@ -99,12 +99,13 @@ private:
   vtkOpalSource(const vtkOpalSource&) = delete;
   void operator=(const vtkOpalSource&) = delete;
 
-  // Empty if the parameters are valid, else the message naming the parameter.
-  std::string Validate() const;
+  // Empty if the parameters are valid and, given an extent to fill, its
+  // arrays fit in memory; else the message naming the parameter.
+  std::string Validate(const int* extent) const;
   // Validate's error, said once per change of the settings (the pipeline asks
   // for the information and then the data, ParaView more than once); true if
   // there is one.
-  bool Refuses();
+  bool Refuses(const int* extent);
   // The domain layout (warning when not all domains fit); empty if aborted.
   std::optional<opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
   // Fills the image's extent with the voxel arrays; false if aborted.

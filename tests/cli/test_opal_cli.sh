@@ -29,6 +29,13 @@ oiiotool --info -v spectral.exr | grep -q "44 channel" || fail "spectral.exr has
 
 "$volume" --dimensions 40 20 50 --domain-count 30 -o v.vti >v.txt 2>&1 || fail "opal-volume exits 0"
 grep -q "domains placed   30 of 30" v.txt || fail "opal-volume prints its summary"
+# A partitioned volume: the summary and its pieces, built piece by piece, count what the one file holds.
+"$volume" --dimensions 40 20 50 --domain-count 30 -o v.pvti --pieces 3 >p.txt 2>&1 || fail "opal-volume .pvti exits 0"
+for f in v.pvti v_0.vti v_1.vti v_2.vti; do [[ -s $f ]] || fail "$f written"; done
+[[ -z $(find . -maxdepth 1 -name '.v.pvti-*') ]] || fail "the .pvti's staging folder is removed"
+grep -q "(3 pieces)" p.txt || fail "opal-volume says it wrote 3 pieces: $(cat p.txt)"
+[[ $(grep -E "^  (empty|scattering|diffraction) " p.txt) == $(grep -E "^  (empty|scattering|diffraction) " v.txt) ]] ||
+  fail "the pieces' voxel counts equal the one file's: $(cat p.txt v.txt)"
 # Voronoi grains: a preset sets the layout; a flag given with it wins over its value.
 "$volume" --dimensions 40 20 50 --preset pinfire -o grains.vti >g.txt 2>&1 || fail "opal-volume --preset pinfire exits 0"
 grep -q "voronoi cells    3000, 360 ordered" g.txt || fail "pinfire: 3000 cells, 12% ordered: $(cat g.txt)"
@@ -93,6 +100,10 @@ expect_one_line "volume fraction just past 0.74" "got 0.7400001" "$volume" --sca
 expect_one_line "volume's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$volume" --refractive-index 5 -o x.vti
 expect_one_line "render's refractive index 5" "RefractiveIndex must lie in .1, 4)" "$render" "${small[@]}" --refractive-index 5 -o x.png
 # A volume beyond this machine's memory: refused before any work, one line, exit 2.
+expect_one_line "pieces of one .vti" "--pieces" "$volume" --dimensions 40 20 50 --pieces 3 -o x.vti
+expect_one_line "no pieces" "--pieces" "$volume" --dimensions 40 20 50 --pieces 0 -o x.pvti
+expect_one_line "a .pvti piece beyond memory" "A piece of" "$volume" --dimensions 4000 4000 4000 --pieces 4 -o x.pvti
+expect_one_line ".pvti in a missing folder" "could not write" "$volume" --dimensions 40 20 50 -o missing/x.pvti
 expect_one_line "opal-volume beyond memory" "memory" "$volume" --dimensions 4000 4000 4000 -o x.vti
 [[ $status_of_last == 2 ]] || fail "a volume beyond memory exits 2 (got $status_of_last)"
 expect_one_line "opal-render beyond memory" "memory" "$render" --dimensions 4000 4000 4000 -o x.png

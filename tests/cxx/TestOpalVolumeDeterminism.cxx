@@ -1,9 +1,11 @@
 // Determinism and piece invariance (docs/design.md §2.7): the same seed gives
 // identical arrays, another seed different ones, and any split of the extent
 // into pieces gives exactly the whole run's values: for the paper's polygon
-// layout and for Voronoi grains with correlated diameters (CellId too).
+// layout and for Voronoi grains with correlated diameters (CellId too). A grid
+// larger than this machine's memory is refused whole and built by pieces.
 #include "OpalTestVolumes.h"
 
+#include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
 
@@ -54,6 +56,23 @@ void checkDeterminism(const std::string& layout, const SourceMaker& make, const 
     OPAL_CHECK(covered >= whole->GetNumberOfPoints(), layout + ": the pieces cover the volume");
   }
 }
+// The memory check is the piece's (§2.7, §8.2): 4000^3 voxels (2.4 TB of
+// arrays) are refused whole, and a small piece of them builds.
+void checkPieceOfHugeGrid()
+{
+  opaltest::silenceExpectedErrors();
+  auto whole = opaltest::makeSmallSource(7);
+  whole->SetDimensions(4000, 4000, 4000);
+  vtkNew<opaltest::MessageRecorder> recorder;
+  recorder->watch(whole);
+  OPAL_CHECK(!whole->GetExecutive()->Update(), "a 4000^3 grid is refused whole");
+  OPAL_CHECK(recorder->anyContains(recorder->Errors, "of memory"), "the refusal names the memory");
+  auto source = opaltest::makeSmallSource(7);
+  source->SetDimensions(4000, 4000, 4000);
+  const int piece[6] = { 1980, 2019, 0, 19, 1980, 2029 };
+  source->UpdateExtent(piece);
+  OPAL_CHECK(source->GetOutput()->GetNumberOfPoints() == 40 * 20 * 50, "a 40 x 20 x 50 piece of it builds");
+}
 } // namespace
 
 int TestOpalVolumeDeterminism(int, char*[])
@@ -63,5 +82,6 @@ int TestOpalVolumeDeterminism(int, char*[])
   checkDeterminism("polygons", [](int seed) { return opaltest::makeSmallSource(seed); }, names);
   names.emplace_back("CellId");
   checkDeterminism("voronoi", [](int seed) { return opaltest::makeSmallGrainSource(seed); }, names);
+  checkPieceOfHugeGrid();
   return opaltest::finish("TestOpalVolumeDeterminism");
 }

@@ -8,7 +8,9 @@ whole image), so RGB must match exactly and the float arrays to 1e-5 relative
 (identical arithmetic; the tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too).
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render"""
+The pvti case reads the volume from a partitioned file, each rank its piece,
+and renders it.
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|pvti"""
 import os
 import sys
 
@@ -20,16 +22,35 @@ import opal_test_config as config
 from opal_test_support import check, finish, run
 
 ranks, kind = int(sys.argv[1]), sys.argv[2]
-arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else []) + \
-    (["--voronoi"] if kind == "voronoi" else [])
 here = os.path.dirname(os.path.abspath(__file__))
-writer = os.path.join(here, "opal_write_pipeline.py")
 os.makedirs(config.OUTPUT_DIRECTORY, exist_ok=True)
 serial = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_serial.vti")
 parallel = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_parallel.pvti")
+mpiexec = [config.MPIEXEC, "-np", str(ranks), config.PVBATCH]
 
-run([config.PVBATCH, writer, serial] + arguments)
-run([config.MPIEXEC, "-np", str(ranks), config.PVBATCH, writer, parallel] + arguments)
+if kind == "pvti":
+    # A volume file read by pieces: opal-volume writes it as one .vti and as a
+    # .pvti of 4 pieces; each rank reads only its piece of the .pvti (checked
+    # against the .vti), and the render of the pieces equals the one-process
+    # render of the .vti.
+    reader = os.path.join(here, "opal_render_file.py")
+    whole = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.vti")
+    pieces = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.pvti")
+    volume = [config.OPAL_VOLUME, "--dimensions", "48", "24", "60", "--domain-count", "60"]
+    run(volume + ["-o", whole])
+    written = run(volume + ["-o", pieces, "--pieces", "4"]).stdout
+    check("(4 pieces)" in written, "opal-volume says it wrote 4 pieces")
+    run([config.PVBATCH, reader, whole, serial, "96", "72"])
+    read_by_ranks = run(mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
+                                        "--pieces-of", whole]).stdout
+    check(read_by_ranks.count(" read extent ") == ranks, f"each of the {ranks} ranks read its own piece:\n"
+          + read_by_ranks)
+else:
+    arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else []) + \
+        (["--voronoi"] if kind == "voronoi" else [])
+    writer = os.path.join(here, "opal_write_pipeline.py")
+    run([config.PVBATCH, writer, serial] + arguments)
+    run(mpiexec + [writer, parallel] + arguments)
 
 
 def read(reader_class, path):

@@ -75,10 +75,12 @@ RenderVolume BuiltVolume::renderVolume() const
   return volume;
 }
 
-std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays arrays)
+std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays arrays, std::uint64_t pieceVoxels)
 {
-  const std::uint64_t voxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
+  const std::uint64_t gridVoxels = static_cast<std::uint64_t>(parameters.Dimensions[0]) *
     static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
+  const bool piece = pieceVoxels > 0 && pieceVoxels < gridVoxels;
+  const std::uint64_t voxels = piece ? pieceVoxels : gridVoxels;
   // A Voronoi layout keeps each voxel's cell (twice: layout and array) and
   // lists the ordered ones (16 bytes each, at most all).
   const std::uint64_t layoutBytes = parameters.DomainLayout == DomainLayoutKind::Voronoi ? 4 + 4 + 16 : 0;
@@ -90,9 +92,12 @@ std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays ar
   {
     return {};
   }
-  return "Dimensions " + std::to_string(parameters.Dimensions[0]) + " x " + std::to_string(parameters.Dimensions[1]) +
-    " x " + std::to_string(parameters.Dimensions[2]) + " need about " + formatBytes(needed) +
-    " for the volume's arrays, more than this machine's " + formatBytes(available) + " of memory.";
+  const std::string dimensions = std::to_string(parameters.Dimensions[0]) + " x " +
+    std::to_string(parameters.Dimensions[1]) + " x " + std::to_string(parameters.Dimensions[2]);
+  return (piece ? "A piece of " + std::to_string(voxels) + " voxels of Dimensions " + dimensions + " needs"
+                : "Dimensions " + dimensions + " need") +
+    " about " + formatBytes(needed) + " for the volume's arrays, more than this machine's " +
+    formatBytes(available) + " of memory.";
 }
 
 std::optional<BuiltVolume> buildVolume(

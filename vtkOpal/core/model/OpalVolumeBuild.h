@@ -46,8 +46,10 @@ struct BuiltVolume
 };
 
 // Empty if the volume's arrays fit in this machine's memory, else the
-// sentence refusing it with the estimate (checked before any work).
-std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays arrays = VolumeArrays::All);
+// sentence refusing it with the estimate (checked before any work): those of
+// the whole grid, or of a piece of `voxels` voxels.
+std::string volumeMemoryError(
+  const ModelParameters& parameters, VolumeArrays arrays = VolumeArrays::All, std::uint64_t voxels = 0);
 
 // Builds the volume of valid parameters; progress(fraction) may return false
 // to abort, and then the result is empty.

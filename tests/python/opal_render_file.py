@@ -1,0 +1,49 @@
+"""pvbatch helper: reads an opal volume from a file with ParaView's reader
+(each rank reads its piece of a .pvti), renders it and saves the image (a
+.pvti under MPI, one piece per rank). With --pieces-of VTI each rank first
+checks that it read only its piece (under MPI: fewer points than the grid's)
+and that the piece equals that extent of the one-file volume VTI.
+Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--pieces-of VTI]"""
+import sys
+
+import numpy
+from paraview.simple import LoadPlugin, OpenDataFile, SaveData
+from vtkmodules.numpy_interface import dataset_adapter
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+from vtkmodules.vtkParallelCore import vtkMultiProcessController
+
+import opal_test_config as config
+
+
+def check_piece(piece, whole_path):
+    """Every array of the rank's piece equals the same extent of the whole volume."""
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(whole_path)
+    reader.Update()
+    whole = reader.GetOutput()
+    controller = vtkMultiProcessController.GetGlobalController()
+    rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+    extent, points = piece.GetExtent(), piece.GetNumberOfPoints()
+    print(f"rank {rank} of {ranks} read extent {extent}: {points} of {whole.GetNumberOfPoints()} points", flush=True)
+    if ranks > 1 and not 0 < points < whole.GetNumberOfPoints():
+        sys.exit(f"rank {rank} read {points} points, not a piece of the {whole.GetNumberOfPoints()}")
+    dims = [extent[2 * a + 1] - extent[2 * a] + 1 for a in range(3)]
+    for name in dataset_adapter.WrapDataObject(whole).PointData.keys():
+        full = dataset_adapter.WrapDataObject(whole).PointData[name]
+        full = numpy.asarray(full).reshape(whole.GetDimensions()[::-1] + (-1,))
+        ours = numpy.asarray(dataset_adapter.WrapDataObject(piece).PointData[name]).reshape(dims[::-1] + [-1])
+        expected = full[extent[4]:extent[5] + 1, extent[2]:extent[3] + 1, extent[0]:extent[1] + 1]
+        if not numpy.array_equal(ours, expected):
+            sys.exit(f"rank {rank}: {name} of its piece differs from the one-file volume")
+
+
+source_path, output = sys.argv[1], sys.argv[2]
+size = [int(v) for v in sys.argv[3:5]]
+LoadPlugin(config.PLUGIN, remote=True, ns=globals())
+volume = OpenDataFile(source_path)
+if "--pieces-of" in sys.argv:
+    volume.UpdatePipeline()
+    check_piece(volume.GetClientSideObject().GetOutputDataObject(0),
+                sys.argv[sys.argv.index("--pieces-of") + 1])
+render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
+SaveData(output, proxy=render, DataMode="Binary")
