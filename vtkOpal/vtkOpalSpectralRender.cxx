@@ -5,6 +5,7 @@
 #include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
 #include "vtkOpalRenderInput.h"
+#include "vtkOpalRankAgreement.h"
 #include "vtkOpalRenderOutput.h"
 
 #include "vtkImageData.h"
@@ -15,10 +16,24 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
+#include <charconv>
 #include <optional>
 #include <stdexcept>
 
 vtkStandardNewMacro(vtkOpalSpectralRender);
+
+namespace
+{
+// A sentence to continue after a semicolon.
+std::string withoutFullStop(std::string sentence)
+{
+  if (!sentence.empty() && sentence.back() == '.')
+  {
+    sentence.pop_back();
+  }
+  return sentence;
+}
+} // namespace
 
 vtkOpalSpectralRender::vtkOpalSpectralRender()
 {
@@ -174,7 +189,7 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
   const std::string error = vtkOpalRenderInput::Read(input, volume, storage);
   if (!error.empty())
   {
-    vtkErrorMacro(<< error);
+    this->SayError(error);
     return false;
   }
   this->UploadedVolume = nullptr; // until the upload succeeds
@@ -192,37 +207,127 @@ int vtkOpalSpectralRender::RequestData(
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkImageData* output = vtkImageData::GetData(outInfo);
-  if (!this->ReportedError.empty())
-  {
-    return 0; // the information request failed and said why (ParaView asks for data regardless)
-  }
-  if (!input)
-  {
-    vtkErrorMacro("The input is not image data; connect an Opal Volume.");
-    return 0;
-  }
-  FailedRequest request{ input, input->GetMTime(), this->GetMTime(), {} };
+  FailedRequest request{ input, input ? input->GetMTime() : 0, this->GetMTime(), {} };
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request.Extent.data());
-  const int* extent = request.Extent.data();
-  if (extent[1] < extent[0] || extent[3] < extent[2])
-  {
-    output->Initialize();
-    return 1;
-  }
-  // A failed request leaves the output without the requested extent, so the
-  // pipeline asks again at every update (a view: at every frame): the same
-  // request fails at once, having said why, until the input or a setting changes.
-  if (this->LastFailure == request)
+  // Under MPI every rank takes part in both agreements, whatever it found:
+  // nothing returns before the first.
+  if (!this->AgreeToRender(input, request))
   {
     return 0;
   }
   this->LastFailure.reset();
-  const RenderOutcome outcome = this->RenderExtent(inputVector[0]->GetInformationObject(0), input, extent, output);
+  const int* extent = request.Extent.data();
+  RenderOutcome outcome = RenderOutcome::Rendered;
+  this->LastErrorText.clear();
+  if (extent[1] < extent[0] || extent[3] < extent[2])
+  {
+    output->Initialize();
+  }
+  else
+  {
+    outcome = this->RenderExtent(inputVector[0]->GetInformationObject(0), input, extent, output);
+  }
+  outcome = this->AgreeOnOutcome(outcome);
+  if (outcome != RenderOutcome::Rendered)
+  {
+    output->Initialize(); // no rank keeps its piece of an image another failed
+  }
   if (outcome == RenderOutcome::Failed)
   {
     this->LastFailure = request;
   }
   return outcome == RenderOutcome::Rendered ? 1 : 0;
+}
+
+std::string vtkOpalSpectralRender::SettingsText() const
+{
+  std::string text;
+  const opal::RenderParameters p = this->GetRenderParameters();
+  for (const auto& row : opal::renderParameterRows())
+  {
+    text += row.Name;
+    for (const double value : row.Get(p))
+    {
+      char number[32]; // the shortest text that reads back as the value
+      text += " " + std::string(number, std::to_chars(number, number + sizeof(number), value).ptr);
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedRequest& request)
+{
+  namespace agreement = vtkOpalRankAgreement;
+  agreement::RankView mine{ this->SettingsText(), RankReady, {} };
+  if (!this->ReportedError.empty())
+  {
+    // The information request failed and said why (ParaView asks for data regardless).
+    mine.Code = RankFailed;
+    mine.Message = this->ReportedError;
+  }
+  else if (!input)
+  {
+    mine.Code = RankFailed;
+    mine.Message = "The input is not image data; connect an Opal Volume.";
+    vtkErrorMacro(<< mine.Message);
+  }
+  else if (this->LastFailure == request)
+  {
+    // A failed request leaves the output without the requested extent, so the
+    // pipeline asks again at every update (a view: at every frame): the same
+    // request fails at once, having said why, until the input or a setting changes.
+    mine.Code = RankRepeated;
+  }
+  const std::vector<agreement::RankView> views = agreement::Gather(mine);
+  const int failed = agreement::FirstWith(views, RankFailed);
+  if (failed >= 0 && mine.Code != RankFailed)
+  {
+    vtkErrorMacro("Rank " << failed << " of " << views.size() << " cannot render: "
+                          << withoutFullStop(views[failed].Message) << "; no rank renders.");
+    this->LastFailure = request;
+  }
+  const std::string disagreement = failed < 0 ? agreement::SettingsDisagreement(views) : std::string();
+  if (!disagreement.empty())
+  {
+    vtkErrorMacro(<< disagreement);
+    this->LastFailure = request;
+  }
+  bool allRepeated = true;
+  for (const agreement::RankView& view : views)
+  {
+    allRepeated = allRepeated && view.Code == RankRepeated;
+  }
+  return failed < 0 && disagreement.empty() && !allRepeated;
+}
+
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(RenderOutcome mine)
+{
+  namespace agreement = vtkOpalRankAgreement;
+  const std::vector<agreement::RankView> views =
+    agreement::Gather({ {}, static_cast<int>(mine), this->LastErrorText });
+  // The worst outcome over the ranks: a failure, a lost device, an abort.
+  for (const RenderOutcome worst : { RenderOutcome::Failed, RenderOutcome::DeviceLost, RenderOutcome::Aborted })
+  {
+    const int rank = agreement::FirstWith(views, static_cast<int>(worst));
+    if (rank < 0)
+    {
+      continue;
+    }
+    if (mine == RenderOutcome::Rendered && worst != RenderOutcome::Aborted)
+    {
+      vtkErrorMacro("Rank " << rank << " of " << views.size() << " could not render its piece: "
+                            << withoutFullStop(views[rank].Message) << "; no rank outputs its piece of the image.");
+    }
+    return mine == RenderOutcome::Rendered ? worst : mine;
+  }
+  return mine;
+}
+
+void vtkOpalSpectralRender::SayError(const std::string& message)
+{
+  this->LastErrorText = message;
+  vtkErrorMacro(<< message);
 }
 
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
@@ -256,11 +361,11 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
   }
   catch (const opal::NoVulkanDeviceError& e)
   {
-    vtkErrorMacro("No Vulkan device: " << e.what());
+    this->SayError(std::string("No Vulkan device: ") + e.what());
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< e.what());
+    this->SayError(e.what());
   }
   return RenderOutcome::Failed;
 }
@@ -272,8 +377,8 @@ bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData
   if (!messages.empty())
   {
     // With OPAL_VULKAN_VALIDATION set, what the layer says is a bug: shown, and the request fails.
-    vtkErrorMacro("The Vulkan validation layer reported " << messages.size() << " message(s); the first: "
-                                                          << messages.front());
+    this->SayError("The Vulkan validation layer reported " + std::to_string(messages.size()) +
+      " message(s); the first: " + messages.front());
     return false;
   }
   if (frame.Status == opal::FrameStatus::Aborted)
@@ -396,7 +501,7 @@ void vtkOpalSpectralRender::EndSession()
 void vtkOpalSpectralRender::DropLostDevice(const opal::DeviceLostError& error)
 {
   this->EndSession();
-  vtkErrorMacro(<< error.what() << "; the next render creates a new device");
+  this->SayError(std::string(error.what()) + "; the next render creates a new device");
   // The filter's state changed (it has no device): a live view that
   // remembers a failed update by the filter's MTime asks again.
   this->Modified();

@@ -228,4 +228,24 @@ private:
     }
   };
   std::optional<FailedRequest> LastFailure;
+
+  // Each rank's state for an exchange (vtkOpalRankAgreement), beside the outcomes.
+  enum RankCode
+  {
+    RankReady = 0,
+    RankRepeated = 1, // the request that failed last, asked again
+    RankFailed = 2,   // said in an error
+  };
+  // The settings as every rank must have them: a line per parameter.
+  std::string SettingsText() const;
+  // The first agreement: false where this request must fail (said once, in
+  // an error on every rank): a rank's information or input failed, the
+  // ranks' settings differ, or every rank asks again for its last failure.
+  bool AgreeToRender(vtkImageData* input, const FailedRequest& request);
+  // The second: the ranks' worst outcome, which each rank returns (one that
+  // rendered says which rank failed, and why).
+  RenderOutcome AgreeOnOutcome(RenderOutcome mine);
+  // An error of the data request, kept for the outcome's agreement.
+  void SayError(const std::string& message);
+  std::string LastErrorText;
 };

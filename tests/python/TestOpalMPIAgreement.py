@@ -1,0 +1,55 @@
+"""pvpython: under MPI the ranks of one render agree (docs/design.md §8.1).
+Ranks whose settings differ, a rank without a Vulkan device and a rank whose
+settings are refused each give one clear error on every rank, no image piece
+on any rank, and no hang (each run is bounded; a hang fails the test);
+ranks that agree render.
+Usage: pvpython TestOpalMPIAgreement.py N"""
+import os
+import re
+import subprocess
+import sys
+
+from opal_test_support import check, child_environment, finish
+import opal_test_config as config
+
+ranks = int(sys.argv[1])
+scene = os.path.join(os.path.dirname(os.path.abspath(__file__)), "opal_rank_agreement_scene.py")
+
+
+def run_ranks(case, rank1_environment=None):
+    """Runs the scene on `ranks` ranks (rank 1 with its own environment where
+    given); returns stdout + stderr."""
+    command = [config.MPIEXEC, "-np", "1", config.PVBATCH, "--symmetric", scene, case]
+    others = ["-np", str(ranks - 1)] + (["env"] + rank1_environment if rank1_environment else []) + \
+        [config.PVBATCH, "--symmetric", scene, case]
+    try:
+        result = subprocess.run(command + [":"] + others, env=child_environment(), capture_output=True,
+                                text=True, timeout=180)
+    except subprocess.TimeoutExpired:
+        check(False, f"{case}: the ranks finish (no hang)")
+        return ""
+    return result.stdout + result.stderr
+
+
+def images_of(output):
+    """Each rank's image points, as the ranks printed them (their lines may interleave)."""
+    return {int(rank): int(points) for rank, points in re.findall(r"rank (\d+) image (\d+)", output)}
+
+
+def expect_refused(case, sentence, rank1_environment=None):
+    output = run_ranks(case, rank1_environment)
+    images = images_of(output)
+    check(len(images) == ranks, f"{case}: every rank reports:\n{output[-3000:]}")
+    check(all(points == 0 for points in images.values()), f"{case}: no rank holds an image piece: {images}")
+    said = output.count(sentence)
+    check(said == ranks, f"{case}: every rank says '{sentence}' once, said {said} times:\n{output[-3000:]}")
+
+
+output = run_ranks("same")
+images = images_of(output)
+check(len(images) == ranks and all(points > 0 for points in images.values()),
+      f"ranks that agree render their pieces: {images}\n{output[-3000:]}")
+expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
+expect_refused("information", "ViewAngle")
+expect_refused("same", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
+finish("TestOpalMPIAgreement", f"({ranks} ranks)")

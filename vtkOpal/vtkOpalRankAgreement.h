@@ -1,0 +1,36 @@
+// Under MPI the ranks of one render agree before and after it
+// (docs/design.md §8.1): each rank's view is gathered to every rank, so all
+// take the same path and say the same, and none waits in an exchange that
+// another has left (every rank of a data request calls both, whatever it found).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace vtkOpalRankAgreement
+{
+// What a rank brings: its settings, one "Name value..." line per parameter
+// (compared), and its state, a code (the caller's; 0 fine) with the sentence
+// that says why.
+struct RankView
+{
+  std::string Settings;
+  int Code = 0;
+  std::string Message;
+};
+
+// This rank's number and the number of ranks (0 and 1 without a
+// multi-process controller).
+int Rank();
+int Ranks();
+
+// Every rank's view, in rank order: this rank's alone with one process.
+std::vector<RankView> Gather(const RankView& mine);
+
+// Empty where every rank's settings equal rank 0's; else one sentence naming
+// the first parameter in which a rank differs, with both values.
+std::string SettingsDisagreement(const std::vector<RankView>& views);
+
+// The first rank (from 0) whose code is `code`, or -1.
+int FirstWith(const std::vector<RankView>& views, int code);
+} // namespace vtkOpalRankAgreement
