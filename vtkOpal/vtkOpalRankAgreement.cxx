@@ -1,5 +1,6 @@
 #include "vtkOpalRankAgreement.h"
 
+#include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
 #include <algorithm>
@@ -104,6 +105,19 @@ std::string SettingsDisagreement(const std::vector<RankView>& views)
     }
   }
   return {};
+}
+
+bool AnyRank(bool mine)
+{
+  vtkMultiProcessController* controller = ranksController();
+  if (!controller)
+  {
+    return mine;
+  }
+  const int local = mine ? 1 : 0;
+  int any = 0;
+  controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
+  return any != 0;
 }
 
 int FirstWith(const std::vector<RankView>& views, int code)

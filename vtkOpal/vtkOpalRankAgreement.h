@@ -31,6 +31,9 @@ std::vector<RankView> Gather(const RankView& mine);
 // the first parameter in which a rank differs, with both values.
 std::string SettingsDisagreement(const std::vector<RankView>& views);
 
+// True on every rank where any rank's `mine` is true.
+bool AnyRank(bool mine);
+
 // The first rank (from 0) whose code is `code`, or -1.
 int FirstWith(const std::vector<RankView>& views, int code);
 } // namespace vtkOpalRankAgreement

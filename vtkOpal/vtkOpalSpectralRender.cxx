@@ -7,6 +7,7 @@
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalRankAgreement.h"
 #include "vtkOpalRenderOutput.h"
+#include "vtkOpalVolumePieces.h"
 
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -145,14 +146,19 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
   }
   outInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), overlaps ? requested : whole, 6);
 
-  // Every pixel may look through the whole volume: ask for all of it, as one
-  // piece, whichever piece of the image this process renders.
+  // Every pixel may look through the whole volume: one process asks for all
+  // of it; under MPI each rank asks for its piece and the ranks gather the
+  // arrays the render reads (GatherVolume), whichever piece of the image
+  // this rank renders.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int wholeExtent[6];
+  int wholeExtent[6], piece[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
+  vtkOpalVolumePieces::PieceExtent(wholeExtent, piece);
+  // The extent alone says which: ParaView's executive would intersect it
+  // with its own split of a piece number.
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), wholeExtent, 6);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
   return 1;
 }
 
@@ -219,7 +225,11 @@ int vtkOpalSpectralRender::RequestData(
   const int* extent = request.Extent.data();
   RenderOutcome outcome = RenderOutcome::Rendered;
   this->LastErrorText.clear();
-  if (extent[1] < extent[0] || extent[3] < extent[2])
+  if (!this->GatherVolume(input, inputVector[0]->GetInformationObject(0)))
+  {
+    outcome = RenderOutcome::Failed;
+  }
+  else if (extent[1] < extent[0] || extent[3] < extent[2])
   {
     output->Initialize();
   }
@@ -237,6 +247,38 @@ int vtkOpalSpectralRender::RequestData(
     this->LastFailure = request;
   }
   return outcome == RenderOutcome::Rendered ? 1 : 0;
+}
+
+bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
+{
+  if (vtkOpalRankAgreement::Ranks() == 1 ||
+    !vtkOpalRankAgreement::AnyRank(this->GatheredFrom != input || this->GatheredTime != input->GetMTime()))
+  {
+    return true;
+  }
+  int whole[6];
+  inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  this->GatheredFrom = nullptr;
+  const std::string error = vtkOpalVolumePieces::Gather(input, whole, this->GatheredVolume);
+  if (!error.empty())
+  {
+    this->GatheredVolume = nullptr;
+    this->SayError(error);
+    return false;
+  }
+  this->GatheredFrom = input;
+  this->GatheredTime = input->GetMTime();
+  return true;
+}
+
+vtkImageData* vtkOpalSpectralRender::VolumeOf(vtkImageData* input) const
+{
+  if (vtkOpalRankAgreement::Ranks() == 1)
+  {
+    return input;
+  }
+  return input && this->GatheredFrom == input && this->GatheredTime == input->GetMTime() ? this->GatheredVolume.Get()
+                                                                                          : nullptr;
 }
 
 std::string vtkOpalSpectralRender::SettingsText() const
@@ -339,7 +381,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
   p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
   try
   {
-    if (!this->UploadVolume(input))
+    if (!this->UploadVolume(this->VolumeOf(input)))
     {
       return RenderOutcome::Failed;
     }
@@ -398,8 +440,9 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
 {
   this->CancelBackgroundFrame();
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  if (!input)
+  if (!input || !this->VolumeOf(input))
   {
+    // Under MPI the whole volume exists only once a data request has gathered it.
     vtkErrorMacro("The render has no input to render in the background; update it first.");
     return false;
   }
@@ -411,7 +454,7 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
   }
   try
   {
-    if (!this->UploadVolume(input))
+    if (!this->UploadVolume(this->VolumeOf(input)))
     {
       return false;
     }
@@ -432,9 +475,10 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
 bool vtkOpalSpectralRender::IsEyeInsideOpal()
 {
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  vtkImageData* volume = this->VolumeOf(input);
   // Only the volume uploaded: an input the render has not read yet is the render's to report on.
-  const bool uploaded = input && this->RenderSession && this->UploadedVolume == input &&
-    this->UploadedVolumeTime == input->GetMTime();
+  const bool uploaded = volume && this->RenderSession && this->UploadedVolume == volume &&
+    this->UploadedVolumeTime == volume->GetMTime();
   return uploaded &&
     this->RenderSession->eyeInsideOpal(this->GetResolvedFrame(this->GetInputInformation(0, 0), input));
 }

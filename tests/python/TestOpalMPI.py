@@ -1,11 +1,12 @@
 """pvpython: `mpiexec -np N pvbatch` builds the opal volume (and renders it) as
 N pieces, one per rank, and the result equals the one-process run.
 
-Volume: every array exactly. Render: each rank renders its rows and columns of
-the image from the whole volume (every rank generates it, by the volume's
-determinism) with the same automatic exposure (taken from a thumbnail of the
-whole image), so RGB must match exactly and the float arrays to 1e-5 relative
-(identical arithmetic; the tolerance only allows for a different CPU path).
+Volume: every array exactly. Render: each rank builds its piece of the volume,
+the ranks gather the arrays the render reads into the whole volume on every
+rank, and each renders its rows and columns of the image from it with the same
+automatic exposure (taken from a thumbnail of the whole image), so RGB must
+match exactly and the float arrays to 1e-5 relative (identical arithmetic; the
+tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too).
 The pvti case reads the volume from a partitioned file, each rank its piece,
@@ -31,8 +32,8 @@ mpiexec = [config.MPIEXEC, "-np", str(ranks), config.PVBATCH]
 if kind == "pvti":
     # A volume file read by pieces: opal-volume writes it as one .vti and as a
     # .pvti of 4 pieces; each rank reads only its piece of the .pvti (checked
-    # against the .vti), and the render of the pieces equals the one-process
-    # render of the .vti.
+    # against the .vti), the render asks for no more (checked after it), and
+    # the render of the pieces equals the one-process render of the .vti.
     reader = os.path.join(here, "opal_render_file.py")
     whole = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.vti")
     pieces = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.pvti")
@@ -43,8 +44,8 @@ if kind == "pvti":
     run([config.PVBATCH, reader, whole, serial, "96", "72"])
     read_by_ranks = run(mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
                                         "--pieces-of", whole]).stdout
-    check(read_by_ranks.count(" read extent ") == ranks, f"each of the {ranks} ranks read its own piece:\n"
-          + read_by_ranks)
+    check(read_by_ranks.count(" read extent ") == 2 * ranks,
+          f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
 else:
     arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else []) + \
         (["--voronoi"] if kind == "voronoi" else [])

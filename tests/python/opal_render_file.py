@@ -2,7 +2,8 @@
 (each rank reads its piece of a .pvti), renders it and saves the image (a
 .pvti under MPI, one piece per rank). With --pieces-of VTI each rank first
 checks that it read only its piece (under MPI: fewer points than the grid's)
-and that the piece equals that extent of the one-file volume VTI.
+and that the piece equals that extent of the one-file volume VTI, before the
+render and after it (the render asks each rank for its piece alone).
 Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--pieces-of VTI]"""
 import sys
 
@@ -47,3 +48,6 @@ if "--pieces-of" in sys.argv:
                 sys.argv[sys.argv.index("--pieces-of") + 1])
 render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
 SaveData(output, proxy=render, DataMode="Binary")
+if "--pieces-of" in sys.argv:
+    # The render asked each rank for its piece alone (and gathered what it reads).
+    check_piece(volume.GetClientSideObject().GetOutputDataObject(0), sys.argv[sys.argv.index("--pieces-of") + 1])
