@@ -11,9 +11,8 @@ namespace vtkOpalRankAgreement
 {
 namespace
 {
-vtkMultiProcessController* ranksController()
+vtkMultiProcessController* ranksController(vtkMultiProcessController* controller)
 {
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   return controller && controller->GetNumberOfProcesses() > 1 ? controller : nullptr;
 }
 
@@ -46,21 +45,19 @@ std::vector<std::string> lines(const std::string& text)
 }
 } // namespace
 
-int Rank()
+int Rank(vtkMultiProcessController* controller)
 {
-  vtkMultiProcessController* controller = ranksController();
-  return controller ? controller->GetLocalProcessId() : 0;
+  return ranksController(controller) ? controller->GetLocalProcessId() : 0;
 }
 
-int Ranks()
+int Ranks(vtkMultiProcessController* controller)
 {
-  vtkMultiProcessController* controller = ranksController();
-  return controller ? controller->GetNumberOfProcesses() : 1;
+  return ranksController(controller) ? controller->GetNumberOfProcesses() : 1;
 }
 
-std::vector<RankView> Gather(const RankView& mine)
+std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& mine)
 {
-  vtkMultiProcessController* controller = ranksController();
+  vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
     return { mine };
@@ -107,9 +104,9 @@ std::string SettingsDisagreement(const std::vector<RankView>& views)
   return {};
 }
 
-bool AnyRank(bool mine)
+bool AnyRank(vtkMultiProcessController* given, bool mine)
 {
-  vtkMultiProcessController* controller = ranksController();
+  vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
     return mine;

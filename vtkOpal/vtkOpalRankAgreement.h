@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+class vtkMultiProcessController;
+
 namespace vtkOpalRankAgreement
 {
 // What a rank brings: its settings, one "Name value..." line per parameter
@@ -19,20 +21,21 @@ struct RankView
   std::string Message;
 };
 
-// This rank's number and the number of ranks (0 and 1 without a
-// multi-process controller).
-int Rank();
-int Ranks();
+// The ranks are the processes of `controller` (the filter's; none, or one
+// process, is a rank of its own).
+// This rank's number and the number of ranks.
+int Rank(vtkMultiProcessController* controller);
+int Ranks(vtkMultiProcessController* controller);
 
 // Every rank's view, in rank order: this rank's alone with one process.
-std::vector<RankView> Gather(const RankView& mine);
+std::vector<RankView> Gather(vtkMultiProcessController* controller, const RankView& mine);
 
 // Empty where every rank's settings equal rank 0's; else one sentence naming
 // the first parameter in which a rank differs, with both values.
 std::string SettingsDisagreement(const std::vector<RankView>& views);
 
 // True on every rank where any rank's `mine` is true.
-bool AnyRank(bool mine);
+bool AnyRank(vtkMultiProcessController* controller, bool mine);
 
 // The first rank (from 0) whose code is `code`, or -1.
 int FirstWith(const std::vector<RankView>& views, int code);

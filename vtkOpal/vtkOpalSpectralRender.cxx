@@ -12,6 +12,7 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpalArrayCopy.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -50,12 +51,16 @@ vtkOpalSpectralRender::vtkOpalSpectralRender()
   this->SetRenderParameters(defaults);
   this->DeviceIndex = -1;
   this->DeviceMemoryLimit = 0;
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
 vtkOpalSpectralRender::~vtkOpalSpectralRender()
 {
   this->EndSession();
+  this->SetController(nullptr);
 }
+
+vtkCxxSetObjectMacro(vtkOpalSpectralRender, Controller, vtkMultiProcessController);
 
 opal::RenderParameters vtkOpalSpectralRender::GetRenderParameters() const
 {
@@ -153,7 +158,7 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   int wholeExtent[6], piece[6];
   inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-  vtkOpalVolumePieces::PieceExtent(wholeExtent, piece);
+  vtkOpalVolumePieces::PieceExtent(this->Controller, wholeExtent, piece);
   // The extent alone says which: ParaView's executive would intersect it
   // with its own split of a piece number.
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
@@ -251,15 +256,15 @@ int vtkOpalSpectralRender::RequestData(
 
 bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
 {
-  if (vtkOpalRankAgreement::Ranks() == 1 ||
-    !vtkOpalRankAgreement::AnyRank(this->GatheredFrom != input || this->GatheredTime != input->GetMTime()))
+  if (vtkOpalRankAgreement::Ranks(this->Controller) == 1 ||
+    !vtkOpalRankAgreement::AnyRank(this->Controller, this->GatheredFrom != input || this->GatheredTime != input->GetMTime()))
   {
     return true;
   }
   int whole[6];
   inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   this->GatheredFrom = nullptr;
-  const std::string error = vtkOpalVolumePieces::Gather(input, whole, this->GatheredVolume);
+  const std::string error = vtkOpalVolumePieces::Gather(this->Controller, input, whole, this->GatheredVolume);
   if (!error.empty())
   {
     this->GatheredVolume = nullptr;
@@ -273,7 +278,7 @@ bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* in
 
 vtkImageData* vtkOpalSpectralRender::VolumeOf(vtkImageData* input) const
 {
-  if (vtkOpalRankAgreement::Ranks() == 1)
+  if (vtkOpalRankAgreement::Ranks(this->Controller) == 1)
   {
     return input;
   }
@@ -321,7 +326,7 @@ bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedReque
     // request fails at once, having said why, until the input or a setting changes.
     mine.Code = RankRepeated;
   }
-  const std::vector<agreement::RankView> views = agreement::Gather(mine);
+  const std::vector<agreement::RankView> views = agreement::Gather(this->Controller, mine);
   const int failed = agreement::FirstWith(views, RankFailed);
   if (failed >= 0 && mine.Code != RankFailed)
   {
@@ -347,7 +352,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(Rende
 {
   namespace agreement = vtkOpalRankAgreement;
   const std::vector<agreement::RankView> views =
-    agreement::Gather({ {}, static_cast<int>(mine), this->LastErrorText });
+    agreement::Gather(this->Controller, { {}, static_cast<int>(mine), this->LastErrorText });
   // The worst outcome over the ranks: a failure, a lost device, an abort.
   for (const RenderOutcome worst : { RenderOutcome::Failed, RenderOutcome::DeviceLost, RenderOutcome::Aborted })
   {

@@ -61,6 +61,8 @@
 #include <optional>
 #include <string>
 
+class vtkMultiProcessController;
+
 namespace opal
 {
 struct RenderFrame;
@@ -104,6 +106,12 @@ public:
   /// Limit on device memory in MB (0: none), to test or to protect a small device.
   vtkSetMacro(DeviceMemoryLimit, int);
   vtkGetMacro(DeviceMemoryLimit, int);
+  /// The ranks of one render (docs/design.md §8.1), as VTK's parallel filters
+  /// take them: each asks for its piece of the volume, they gather what the
+  /// render reads and agree before and after it. Default: the global
+  /// controller; nullptr (or one process) renders alone from the whole volume.
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -158,6 +166,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   OPAL_RENDER_PARAMETERS(OPAL_VTK_MEMBER)
+  vtkMultiProcessController* Controller = nullptr;
   bool PresetPlacement = true;
   int DeviceIndex;
   int DeviceMemoryLimit;

@@ -21,9 +21,8 @@ namespace
 constexpr std::array<const char*, 5> RenderArrays = { "ScatteringCoefficient", "DomainId", "SurfaceDistance",
   "AbsorptionCoefficient", "AbsorptionExponent" };
 
-vtkMultiProcessController* ranksController()
+vtkMultiProcessController* ranksController(vtkMultiProcessController* controller)
 {
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   return controller && controller->GetNumberOfProcesses() > 1 ? controller : nullptr;
 }
 
@@ -79,9 +78,9 @@ std::vector<char> gatherBytes(vtkMultiProcessController* controller, vtkDataArra
 }
 } // namespace
 
-void PieceExtent(const int whole[6], int extent[6])
+void PieceExtent(vtkMultiProcessController* given, const int whole[6], int extent[6])
 {
-  vtkMultiProcessController* controller = ranksController();
+  vtkMultiProcessController* controller = ranksController(given);
   std::copy(whole, whole + 6, extent);
   if (controller && pointsIn(whole) > 0)
   {
@@ -91,10 +90,11 @@ void PieceExtent(const int whole[6], int extent[6])
   }
 }
 
-std::string Gather(vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume)
+std::string Gather(
+  vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume)
 {
   volume = vtkSmartPointer<vtkImageData>::New();
-  vtkMultiProcessController* controller = ranksController();
+  vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
     volume->ShallowCopy(piece);

@@ -9,13 +9,16 @@
 #include <string>
 
 class vtkImageData;
+class vtkMultiProcessController;
 
 namespace vtkOpalVolumePieces
 {
+// The ranks are the processes of `controller` (the filter's; none, or one
+// process, is one rank holding the whole).
 // The piece of `whole` (an extent) this rank asks for: the whole with one
 // process, else the rank's piece of as many as there are ranks (VTK's extent
 // translator, as ParaView splits image data).
-void PieceExtent(const int whole[6], int extent[6]);
+void PieceExtent(vtkMultiProcessController* controller, const int whole[6], int extent[6]);
 
 // Collective (every rank calls it together): the whole volume, `whole`,
 // from every rank's piece, with the render's point arrays
@@ -23,5 +26,6 @@ void PieceExtent(const int whole[6], int extent[6]);
 // absorption pair) and this piece's field data; the piece itself with one
 // process. Empty string, else (on every rank alike) the reason: the ranks'
 // pieces differ in an array.
-std::string Gather(vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume);
+std::string Gather(
+  vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume);
 } // namespace vtkOpalVolumePieces

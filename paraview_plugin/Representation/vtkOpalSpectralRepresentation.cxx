@@ -67,6 +67,10 @@ vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
   // placement (fig13's 5 degrees), only OpalModelRotation; the Bragg model as
   // the representation's properties say (ParaView fills in the preset's).
   this->Render->SetPresetPlacement(false);
+  // Each rank draws the whole stone into its own view from the whole volume
+  // (ParaView composites the views): its render stands alone, and the view's
+  // frames on one rank never wait for another's (docs/design.md §8.1).
+  this->Render->SetController(nullptr);
 }
 
 void vtkOpalSpectralRepresentation::SetRenderSettings(vtkOpalSpectralRender* settings)
