@@ -1,9 +1,12 @@
 """Scaling bench under MPI (run with `mpiexec -np N pvbatch --symmetric`):
 builds the opal volume (each rank its piece) and renders the 640 x 480 frame
 (each rank its piece of the image, from the whole volume), printing per rank
-the wall time of each and the peak resident memory. A run whose ranks would
-together need more than this machine's memory (every rank holds the whole
-volume: ~125 bytes per voxel, measured at 320 x 160 x 400) is skipped, saying so.
+the wall time of each and the peak resident memory, and from rank 0's
+figures an estimate for the 10 um stone (16 x 8 x 20 mm, 1600 x 800 x 2000
+voxels). A run whose ranks would together need more than this machine's
+memory is skipped, saying so: each rank holds its piece of the volume's
+arrays and the render's arrays and device fields of the whole volume, ~39 /
+ranks + 83 bytes per voxel (fitted to 320 x 160 x 400 on 1, 2 and 4 ranks).
 Usage: opal_bench_mpi.py PLUGIN NX NY NZ"""
 import os
 import resource
@@ -12,22 +15,25 @@ import time
 
 from paraview.simple import LoadPlugin
 from paraview import servermanager
-from vtkmodules.vtkParallelCore import vtkMultiProcessController
+from vtkmodules.vtkCommonCore import vtkDoubleArray
+from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
 
 plugin, dimensions = sys.argv[1], [int(v) for v in sys.argv[2:5]]
 LoadPlugin(plugin, remote=False, ns=globals())
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-BYTES_PER_VOXEL = 125
-per_rank = dimensions[0] * dimensions[1] * dimensions[2] * BYTES_PER_VOXEL
+PIECE_BYTES, WHOLE_BYTES = 39, 83
+voxels = dimensions[0] * dimensions[1] * dimensions[2]
+per_rank = voxels * (PIECE_BYTES / ranks + WHOLE_BYTES)
 machine = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
 if ranks * per_rank > 0.9 * machine:
     if rank == 0:
         print(f"  {dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels on {ranks} rank(s): skipped, "
-              f"~{per_rank / 2**30:.1f} GB per rank (each holds the whole volume) x {ranks} exceeds "
+              f"~{per_rank / 2**30:.1f} GB per rank (the render's whole volume on each) x {ranks} exceeds "
               f"0.9 of this machine's {machine / 2**30:.1f} GB", flush=True)
     sys.exit(0)
 
+baseline_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # the process before the volume
 volume = OpalVolume(Dimensions=dimensions)  # noqa: F821 (from the plugin)
 controller.Barrier()
 start = time.perf_counter()
@@ -43,6 +49,21 @@ peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 for r in range(ranks):
     if r == rank:
         print(f"  {dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels, rank {rank} of {ranks}: "
-              f"volume piece {volume_seconds:.3f} s, render (whole volume + its image piece) "
+              f"volume piece {volume_seconds:.3f} s, render (gather + its image piece) "
               f"{render_seconds:.3f} s, peak memory {peak_mb:.0f} MB", flush=True)
     controller.Barrier()
+fastest = vtkDoubleArray()
+fastest.InsertNextValue(volume_seconds)
+fastest_all = vtkDoubleArray()
+controller.AllReduce(fastest, fastest_all, vtkCommunicator.MIN_OP)
+if rank == 0:
+    # The 10 um stone from this run's per-voxel costs: the fastest rank's
+    # volume time per voxel and rank (rank 0 also builds the domain polygons),
+    # and the memory per voxel beyond the process before the volume.
+    stone = 1600 * 800 * 2000
+    build_ns = fastest_all.GetValue(0) * ranks / voxels * 1e9
+    bytes_per_voxel = (peak_mb - baseline_mb) * 2**20 / voxels
+    print(f"  10 um estimate (1600x800x2000 = {stone / 1e9:.2f} G voxels) from this run: volume "
+          f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
+          f"{bytes_per_voxel:.0f} bytes per voxel here, so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
+          f"(the render's arrays and device fields of the whole volume on every rank)", flush=True)
