@@ -5,7 +5,8 @@
 // and for 400-700 nm by 5 nm); domain crossings recorded and
 // diffracted after the walk, in rounds when a ray crosses more domains than
 // the record holds (8), equal the sum of the domains rendered one at a time.
-// A thick body, where a node's sum underflows, renders finite and as close.
+// A thick body, where a node's sum underflows, renders finite and as close;
+// so does a body that absorbs red, whose longest wavelength's node dies first.
 // The preview quality renders half the size and about the same image.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
@@ -99,6 +100,21 @@ void checkThickBody(opaltest::SceneRenderer& renderer)
   checkSpectralNodes(renderer, volume->renderVolume(), { 380.0, 780.0 }, 10.0, { 2e-3, 3e-2 });
 }
 
+// A body that absorbs red (mu_a(550) (550/lambda)^p with p = -8, 2/mm at
+// 550 nm: 33/mm at 780 nm, 0.1/mm at 380 nm): the longest wavelength's node,
+// node 0, is the one that dies deep in the stone (the thick body's shortest
+// does). The nodes' image agrees with every wavelength's as the thick body's
+// does (measured on lavapipe: mean 0.19%, worst pixel 2.3%).
+void checkRedAbsorbingBody(opaltest::SceneRenderer& renderer)
+{
+  opal::ModelParameters model;
+  model.Dimensions = { 80, 40, 100 };
+  model.BodyAbsorption = 2.0;
+  model.BodyAbsorptionExponent = -8.0;
+  const auto volume = opal::buildVolume(model);
+  checkSpectralNodes(renderer, volume->renderVolume(), { 380.0, 780.0 }, 10.0, { 2e-3, 3e-2 });
+}
+
 // A clear slab (no scattering, so no domain dims another) with `layers`
 // horizontal domains one above another, each of its own plane spacing, seen
 // from above: a vertical ray crosses every one.
@@ -181,6 +197,7 @@ int TestOpalSpectralMarch(int, char*[])
   }
   checkSpectralNodes(*renderer);
   checkThickBody(*renderer);
+  checkRedAbsorbingBody(*renderer);
   checkCrossingRounds(*renderer);
   checkPreview(*renderer);
   const auto messages = renderer->context().validationMessages();
