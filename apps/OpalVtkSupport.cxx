@@ -75,24 +75,20 @@ void showProgress(vtkAlgorithm* algorithm, ProgressBar& bar, int pieces)
     ProgressBar* Bar;
     int Count, Done;
   };
-  auto track = [algorithm](Pieces* pieces, unsigned long event, void (*callback)(vtkObject*, unsigned long, void*, void*)) {
-    vtkNew<vtkCallbackCommand> command;
-    command->SetCallback(callback);
-    command->SetClientData(pieces);
+  vtkNew<vtkCallbackCommand> command;
+  command->SetClientData(new Pieces{ &bar, std::max(pieces, 1), 0 });
+  command->SetClientDataDeleteCallback([](void* client) { delete static_cast<Pieces*>(client); });
+  command->SetCallback([](vtkObject*, unsigned long event, void* client, void* callData) {
+    auto* p = static_cast<Pieces*>(client);
     if (event == vtkCommand::EndEvent)
     {
-      command->SetClientDataDeleteCallback([](void* client) { delete static_cast<Pieces*>(client); });
+      ++p->Done;
+      return;
     }
-    algorithm->AddObserver(event, command);
-  };
-  Pieces* shared = new Pieces{ &bar, std::max(pieces, 1), 0 };
-  track(shared, vtkCommand::ProgressEvent, [](vtkObject*, unsigned long, void* client, void* callData) {
-    const Pieces* p = static_cast<Pieces*>(client);
     p->Bar->show((p->Done + *static_cast<double*>(callData)) / p->Count);
   });
-  track(shared, vtkCommand::EndEvent, [](vtkObject*, unsigned long, void* client, void*) {
-    ++static_cast<Pieces*>(client)->Done;
-  });
+  algorithm->AddObserver(vtkCommand::ProgressEvent, command);
+  algorithm->AddObserver(vtkCommand::EndEvent, command);
 }
 
 std::string writeImageDataFile(const std::string& path, vtkImageData* image)
@@ -150,6 +146,9 @@ std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm*
   {
     return "could not write " + path + ": " + staging.Error + " (creating a folder for its pieces beside it)";
   }
+  // Signals are not held while the pieces are built (an abort would make
+  // VTK's partitioned writer ask for the piece again, endlessly): a kill then
+  // leaves the hidden staging folder, never a target touched.
   vtkNew<vtkXMLPImageDataWriter> writer;
   writer->SetInputConnection(source->GetOutputPort());
   writer->SetFileName((staging.Path / target.filename()).c_str());
@@ -164,11 +163,17 @@ std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm*
   }
   // The summary and its pieces, under the names the writer gave them.
   std::vector<std::filesystem::path> staged, targets;
-  for (const auto& entry : std::filesystem::directory_iterator(staging.Path))
+  std::error_code listing;
+  for (const auto& entry : std::filesystem::directory_iterator(staging.Path, listing))
   {
     staged.push_back(entry.path());
     targets.push_back(target.parent_path() / entry.path().filename());
   }
+  if (listing)
+  {
+    return "could not write " + path + ": " + listing.message() + " (listing its pieces)";
+  }
+  const SignalsHeld held; // delivered once the set is whole or gone
   FileSetTransaction transaction(targets);
   for (std::size_t i = 0; i < staged.size(); ++i)
   {

@@ -14,6 +14,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
+#include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -23,6 +24,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <chrono>
@@ -87,7 +89,6 @@ void countEachPiece(vtkOpalSource* source, BuiltCounts& counts)
 // Empty string on success, else the reason.
 std::string buildAndWrite(vtkOpalSource* source, const std::string& output, int pieces)
 {
-  const SignalsHeld held; // a signal while writing is delivered once the files are whole or gone
   if (lowerCaseExtension(output) == ".pvti")
   {
     return writePartitionedImageDataFile(output, source, pieces);
@@ -96,13 +97,35 @@ std::string buildAndWrite(vtkOpalSource* source, const std::string& output, int 
   {
     return "the volume could not be built.";
   }
+  const SignalsHeld held; // a signal while writing is delivered once the file is whole or gone
   return writeImageDataFile(output, source->GetOutput());
+}
+
+// The voxels of the largest piece, as VTK's partitioned writer splits the grid.
+std::uint64_t largestPiece(const std::array<int, 3>& dims, int pieces)
+{
+  int whole[6] = { 0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1 };
+  std::uint64_t largest = 0;
+  vtkNew<vtkExtentTranslator> translator;
+  for (int piece = 0; piece < pieces; ++piece)
+  {
+    int extent[6];
+    translator->PieceToExtentThreadSafe(piece, pieces, 0, whole, extent, vtkExtentTranslator::BLOCK_MODE, 0);
+    std::uint64_t voxels = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      voxels *= static_cast<std::uint64_t>(std::max(extent[2 * a + 1] - extent[2 * a] + 1, 0));
+    }
+    largest = std::max(largest, voxels);
+  }
+  return largest;
 }
 
 void printSummary(vtkOpalSource* source, const OpalModelOptions& model, const BuiltCounts& counts, double seconds,
   const std::string& output, int pieces)
 {
-  const std::array<int, 3>& dims = source->GetModelParameters().Dimensions;
+  const opal::ModelParameters parameters = source->GetModelParameters();
+  const std::array<int, 3>& dims = parameters.Dimensions;
   const std::array<long long, 3>& types = counts.VoxelTypes;
   const opal::PresetSettings* recorded = opal::presetByIndex(model.presetIndex());
   std::printf("Opal volume (preset %s)\n", recorded ? recorded->Name : "custom");
@@ -119,7 +142,7 @@ void printSummary(vtkOpalSource* source, const OpalModelOptions& model, const Bu
   {
     std::printf("  domains placed   %d of %d\n", counts.DomainsPlaced, source->GetDomainCount());
   }
-  std::printf("  build time       %.3f s\n", seconds);
+  std::printf("  build and write  %.3f s\n", seconds);
   std::printf("  written to       %s%s\n", output.c_str(),
     pieces > 1 ? (" (" + std::to_string(pieces) + " pieces)").c_str() : "");
 }
@@ -160,10 +183,9 @@ int main(int argc, char** argv)
   source->SetPreset(model.presetIndex());
   source->SetModelParameters(model.parameters());
   // A .pvti's pieces are built one at a time: the memory a piece needs.
-  const std::array<int, 3>& dims = source->GetModelParameters().Dimensions;
-  const std::uint64_t pieceVoxels = (static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2] + pieces - 1) / pieces;
-  for (const std::string& error : { opal::validate(source->GetModelParameters()),
-         opal::volumeMemoryError(source->GetModelParameters(), opal::VolumeArrays::All, pieceVoxels) })
+  const opal::ModelParameters parameters = source->GetModelParameters();
+  for (const std::string& error : { opal::validate(parameters),
+         opal::volumeMemoryError(parameters, opal::VolumeArrays::All, largestPiece(parameters.Dimensions, pieces)) })
   {
     if (!error.empty())
     {

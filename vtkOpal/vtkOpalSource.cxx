@@ -140,7 +140,8 @@ std::string vtkOpalSource::Validate(const int* extent) const
   {
     voxels *= static_cast<std::uint64_t>(std::max(extent[2 * a + 1] - extent[2 * a] + 1, 0));
   }
-  return opal::volumeMemoryError(parameters, opal::VolumeArrays::All, voxels);
+  // An empty request (a rank without a piece) builds nothing.
+  return voxels == 0 ? std::string() : opal::volumeMemoryError(parameters, opal::VolumeArrays::All, voxels);
 }
 
 bool vtkOpalSource::Refuses(const int* extent)

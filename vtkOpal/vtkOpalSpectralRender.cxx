@@ -264,6 +264,14 @@ bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* in
   int whole[6];
   inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   this->GatheredFrom = nullptr;
+  this->GatheredVolume = nullptr;
+  // The gathered arrays (and one array's exchange) must fit on every rank.
+  const std::string memory = vtkOpalVolumePieces::MemoryError(whole);
+  if (vtkOpalRankAgreement::AnyRank(this->Controller, !memory.empty()))
+  {
+    this->SayError(memory.empty() ? "Another rank cannot hold the whole volume the render reads." : memory);
+    return false;
+  }
   const std::string error = vtkOpalVolumePieces::Gather(this->Controller, input, whole, this->GatheredVolume);
   if (!error.empty())
   {
@@ -288,7 +296,7 @@ vtkImageData* vtkOpalSpectralRender::VolumeOf(vtkImageData* input) const
 
 std::string vtkOpalSpectralRender::SettingsText() const
 {
-  std::string text;
+  std::string text = "PresetPlacement " + std::to_string(this->PresetPlacement ? 1 : 0) + "\n";
   const opal::RenderParameters p = this->GetRenderParameters();
   for (const auto& row : opal::renderParameterRows())
   {
@@ -307,7 +315,14 @@ bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedReque
 {
   namespace agreement = vtkOpalRankAgreement;
   agreement::RankView mine{ this->SettingsText(), RankReady, {} };
-  if (!this->ReportedError.empty())
+  if (this->LastFailure == request)
+  {
+    // A failed request leaves the output without the requested extent, so the
+    // pipeline asks again at every update (a view: at every frame): the same
+    // request fails at once, having said why, until the input or a setting changes.
+    mine.Code = RankRepeated;
+  }
+  else if (!this->ReportedError.empty())
   {
     // The information request failed and said why (ParaView asks for data regardless).
     mine.Code = RankFailed;
@@ -319,33 +334,33 @@ bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedReque
     mine.Message = "The input is not image data; connect an Opal Volume.";
     vtkErrorMacro(<< mine.Message);
   }
-  else if (this->LastFailure == request)
-  {
-    // A failed request leaves the output without the requested extent, so the
-    // pipeline asks again at every update (a view: at every frame): the same
-    // request fails at once, having said why, until the input or a setting changes.
-    mine.Code = RankRepeated;
-  }
   const std::vector<agreement::RankView> views = agreement::Gather(this->Controller, mine);
   const int failed = agreement::FirstWith(views, RankFailed);
-  if (failed >= 0 && mine.Code != RankFailed)
-  {
-    vtkErrorMacro("Rank " << failed << " of " << views.size() << " cannot render: "
-                          << withoutFullStop(views[failed].Message) << "; no rank renders.");
-    this->LastFailure = request;
-  }
   const std::string disagreement = failed < 0 ? agreement::SettingsDisagreement(views) : std::string();
-  if (!disagreement.empty())
-  {
-    vtkErrorMacro(<< disagreement);
-    this->LastFailure = request;
-  }
   bool allRepeated = true;
   for (const agreement::RankView& view : views)
   {
     allRepeated = allRepeated && view.Code == RankRepeated;
   }
-  return failed < 0 && disagreement.empty() && !allRepeated;
+  if (failed < 0 && disagreement.empty())
+  {
+    return !allRepeated;
+  }
+  // Said once: by a rank that had not failed this request already.
+  if (mine.Code == RankReady)
+  {
+    if (failed >= 0)
+    {
+      vtkErrorMacro("Rank " << failed << " of " << views.size() << " cannot render: "
+                            << withoutFullStop(views[failed].Message) << "; no rank renders.");
+    }
+    else
+    {
+      vtkErrorMacro(<< disagreement);
+    }
+  }
+  this->LastFailure = request; // on every rank alike
+  return false;
 }
 
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(RenderOutcome mine)
@@ -353,7 +368,8 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(Rende
   namespace agreement = vtkOpalRankAgreement;
   const std::vector<agreement::RankView> views =
     agreement::Gather(this->Controller, { {}, static_cast<int>(mine), this->LastErrorText });
-  // The worst outcome over the ranks: a failure, a lost device, an abort.
+  // The worst outcome over the ranks, which every rank returns: a failure, a
+  // lost device (the rank that lost it has said so and dropped it), an abort.
   for (const RenderOutcome worst : { RenderOutcome::Failed, RenderOutcome::DeviceLost, RenderOutcome::Aborted })
   {
     const int rank = agreement::FirstWith(views, static_cast<int>(worst));
@@ -366,7 +382,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(Rende
       vtkErrorMacro("Rank " << rank << " of " << views.size() << " could not render its piece: "
                             << withoutFullStop(views[rank].Message) << "; no rank outputs its piece of the image.");
     }
-    return mine == RenderOutcome::Rendered ? worst : mine;
+    return worst;
   }
   return mine;
 }
@@ -563,4 +579,5 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   vtkOpalArrayCopy::print(os, indent, "PresetPlacement", this->PresetPlacement);
   vtkOpalArrayCopy::print(os, indent, "DeviceIndex", this->DeviceIndex);
   vtkOpalArrayCopy::print(os, indent, "DeviceMemoryLimit", this->DeviceMemoryLimit);
+  os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -1,5 +1,7 @@
 #include "vtkOpalVolumePieces.h"
 
+#include "OpalMemory.h"
+
 #include "vtkDataArray.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
@@ -7,6 +9,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkType.h"
 
 #include <algorithm>
 #include <array>
@@ -36,6 +39,41 @@ vtkIdType pointsIn(const int* e)
   return points;
 }
 
+void pieceOf(int rank, int ranks, const int whole[6], int extent[6])
+{
+  std::copy(whole, whole + 6, extent);
+  if (ranks > 1 && pointsIn(whole) > 0)
+  {
+    vtkNew<vtkExtentTranslator> translator;
+    translator->PieceToExtentThreadSafe(
+      rank, ranks, 0, const_cast<int*>(whole), extent, vtkExtentTranslator::BLOCK_MODE, 0);
+  }
+}
+
+// Empty where every rank's piece lies within the whole and holds the piece
+// it was asked for (so together they cover it); else the reason.
+std::string coverageError(const std::vector<int>& extents, const int whole[6])
+{
+  const int ranks = static_cast<int>(extents.size() / 6);
+  for (int r = 0; r < ranks; ++r)
+  {
+    const int* e = &extents[6 * r];
+    int asked[6];
+    pieceOf(r, ranks, whole, asked);
+    for (int a = 0; a < 3 && pointsIn(asked) > 0; ++a)
+    {
+      const bool within = e[2 * a] >= whole[2 * a] && e[2 * a + 1] <= whole[2 * a + 1];
+      const bool holds = e[2 * a] <= asked[2 * a] && e[2 * a + 1] >= asked[2 * a + 1];
+      if (!within || !holds)
+      {
+        return "Rank " + std::to_string(r) + "'s piece of the volume is not the extent it asked for " +
+          "(an upstream filter made less or more): the ranks cannot gather the whole volume.";
+      }
+    }
+  }
+  return {};
+}
+
 // Copies each rank's rows of one array (`bytes`, the ranks' pieces one after
 // another) into `whole` at their extents.
 void placeRows(const std::vector<char>& bytes, const std::vector<int>& extents, const int* w, vtkDataArray* whole)
@@ -58,36 +96,129 @@ void placeRows(const std::vector<char>& bytes, const std::vector<int>& extents, 
   }
 }
 
-// Every rank's values of one array, the ranks' pieces one after another.
-std::vector<char> gatherBytes(vtkMultiProcessController* controller, vtkDataArray* mine)
+// Every rank's `lengths[r]` bytes from `mine` into `bytes` (the ranks' pieces
+// one after another), in rounds of at most 64 MiB per rank: MPI's counts and
+// displacements are ints. False where an exchange failed (alike on every rank).
+bool gatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
+  std::vector<char>& bytes)
 {
   const int ranks = controller->GetNumberOfProcesses();
-  const vtkIdType length = mine->GetNumberOfValues() * mine->GetDataTypeSize();
-  std::vector<vtkIdType> lengths(ranks), offsets(ranks);
-  controller->AllGather(&length, lengths.data(), 1);
-  vtkIdType total = 0;
+  const vtkIdType round = std::min<vtkIdType>(vtkIdType(64) << 20, (VTK_INT_MAX - 1) / ranks);
+  std::vector<vtkIdType> offsets(ranks, 0);
+  for (int r = 1; r < ranks; ++r)
+  {
+    offsets[r] = offsets[r - 1] + lengths[r - 1];
+  }
+  bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  std::vector<char> window(static_cast<std::size_t>(round * ranks));
+  const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
+  const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
+  for (vtkIdType start = 0; start < longest; start += round)
+  {
+    std::vector<vtkIdType> counts(ranks), places(ranks);
+    for (int r = 0; r < ranks; ++r)
+    {
+      counts[r] = std::clamp<vtkIdType>(lengths[r] - start, 0, round);
+      places[r] = r * round;
+    }
+    const vtkIdType count = std::clamp<vtkIdType>(mineLength - start, 0, round);
+    if (!controller->AllGatherV(count > 0 ? mine + start : mine, window.data(), count, counts.data(), places.data()))
+    {
+      return false;
+    }
+    for (int r = 0; r < ranks; ++r)
+    {
+      std::copy_n(&window[places[r]], counts[r], &bytes[offsets[r] + start]);
+    }
+  }
+  return true;
+}
+
+// The array as sent: itself where its values lie in one block, else an
+// ordinary copy (a numpy or implicit array).
+vtkSmartPointer<vtkDataArray> contiguous(vtkDataArray* array)
+{
+  if (!array || array->HasStandardMemoryLayout())
+  {
+    return array;
+  }
+  auto copy = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(array->GetDataType()));
+  copy->DeepCopy(array);
+  return copy;
+}
+
+// One array of every rank's piece into `volume`: empty, or the reason it
+// cannot be (alike on every rank).
+std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* piece, const char* name,
+  const std::vector<int>& extents, const int whole[6], vtkImageData* volume)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  // Its type and components (0: absent; -1: an empty piece takes the others').
+  vtkSmartPointer<vtkDataArray> mine = contiguous(piece->GetPointData()->GetArray(name));
+  const bool empty = pointsIn(piece->GetExtent()) == 0;
+  const int kind[2] = { empty ? -1 : mine ? mine->GetDataType() : 0, empty ? -1 : mine ? mine->GetNumberOfComponents() : 0 };
+  std::vector<int> kinds(2 * ranks);
+  controller->AllGather(kind, kinds.data(), 2);
+  std::array<int, 2> agreed{ -1, -1 };
   for (int r = 0; r < ranks; ++r)
   {
-    offsets[r] = total;
-    total += lengths[r];
+    const std::array<int, 2> other{ kinds[2 * r], kinds[2 * r + 1] };
+    if (other[0] != -1 && agreed[0] != -1 && other != agreed)
+    {
+      return std::string("The ranks' pieces of the volume differ in the point array ") + name +
+        " (present, type or components): every rank must read the same volume.";
+    }
+    agreed = other[0] != -1 ? other : agreed;
   }
-  std::vector<char> bytes(static_cast<std::size_t>(total));
-  controller->AllGatherV(static_cast<const char*>(mine->GetVoidPointer(0)), bytes.data(), length, lengths.data(),
-    offsets.data());
-  return bytes;
+  if (agreed[0] <= 0)
+  {
+    return {}; // absent everywhere: the render's reading names it where it needs it
+  }
+  auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(agreed[0]));
+  array->SetNumberOfComponents(agreed[1]);
+  const vtkIdType tupleBytes = agreed[1] * array->GetDataTypeSize();
+  std::vector<vtkIdType> lengths(ranks);
+  const vtkIdType length = mine && !empty ? mine->GetNumberOfValues() * mine->GetDataTypeSize() : 0;
+  controller->AllGather(&length, lengths.data(), 1);
+  for (int r = 0; r < ranks; ++r)
+  {
+    if (lengths[r] != pointsIn(&extents[6 * r]) * tupleBytes)
+    {
+      return "Rank " + std::to_string(r) + "'s " + name + " does not hold one value per point of its piece.";
+    }
+  }
+  std::vector<char> bytes;
+  if (!gatherBytes(controller, mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr,
+        lengths, bytes))
+  {
+    return std::string("The ranks could not exchange the volume's ") + name + ".";
+  }
+  array->SetName(name);
+  array->SetNumberOfTuples(pointsIn(whole));
+  placeRows(bytes, extents, whole, array);
+  volume->GetPointData()->AddArray(array);
+  return {};
 }
 } // namespace
 
 void PieceExtent(vtkMultiProcessController* given, const int whole[6], int extent[6])
 {
   vtkMultiProcessController* controller = ranksController(given);
-  std::copy(whole, whole + 6, extent);
-  if (controller && pointsIn(whole) > 0)
+  pieceOf(controller ? controller->GetLocalProcessId() : 0, controller ? controller->GetNumberOfProcesses() : 1,
+    whole, extent);
+}
+
+std::string MemoryError(const int whole[6])
+{
+  // The render's arrays with the absorption pair, and one array's exchange.
+  const std::uint64_t needed = static_cast<std::uint64_t>(pointsIn(whole)) * (opal::RenderVolumeBytesPerVoxel + 8 + 4);
+  const std::uint64_t available = opal::physicalMemoryBytes();
+  if (available == 0 || needed <= available)
   {
-    vtkNew<vtkExtentTranslator> translator;
-    translator->PieceToExtentThreadSafe(controller->GetLocalProcessId(), controller->GetNumberOfProcesses(), 0,
-      const_cast<int*>(whole), extent, vtkExtentTranslator::BLOCK_MODE, 0);
+    return {};
   }
+  return "The whole volume's arrays that the render reads need about " + opal::formatBytes(needed) +
+    " on every rank, more than this machine's " + opal::formatBytes(available) + " of memory.";
 }
 
 std::string Gather(
@@ -100,41 +231,24 @@ std::string Gather(
     volume->ShallowCopy(piece);
     return {};
   }
-  const int ranks = controller->GetNumberOfProcesses();
-  std::vector<int> extents(6 * ranks);
+  std::vector<int> extents(6 * controller->GetNumberOfProcesses());
   controller->AllGather(piece->GetExtent(), extents.data(), 6);
+  const std::string uncovered = coverageError(extents, whole);
+  if (!uncovered.empty())
+  {
+    return uncovered;
+  }
   volume->SetExtent(const_cast<int*>(whole));
   volume->SetOrigin(piece->GetOrigin());
   volume->SetSpacing(piece->GetSpacing());
   volume->GetFieldData()->ShallowCopy(piece->GetFieldData());
-  const bool empty = pointsIn(piece->GetExtent()) == 0;
   for (const char* name : RenderArrays)
   {
-    // Each array's type and components (0: absent), agreed over the ranks
-    // whose piece holds points (-1: an empty piece takes the others').
-    vtkDataArray* mine = piece->GetPointData()->GetArray(name);
-    const int kind = empty ? -1 : mine && mine->HasStandardMemoryLayout() ? mine->GetDataType() * 8 + mine->GetNumberOfComponents() : 0;
-    std::vector<int> kinds(ranks);
-    controller->AllGather(&kind, kinds.data(), 1);
-    kinds.erase(std::remove(kinds.begin(), kinds.end(), -1), kinds.end());
-    if (std::any_of(kinds.begin(), kinds.end(), [&](int k) { return k != kinds.front(); }))
+    const std::string error = gatherArray(controller, piece, name, extents, whole, volume);
+    if (!error.empty())
     {
-      return std::string("The ranks' pieces of the volume differ in the point array ") + name +
-        " (present, type or components): every rank must read the same volume.";
+      return error;
     }
-    if (kinds.empty() || kinds.front() == 0)
-    {
-      continue;
-    }
-    vtkSmartPointer<vtkDataArray> array = vtkSmartPointer<vtkDataArray>::Take(
-      vtkDataArray::CreateDataArray(kinds.front() / 8));
-    array->SetNumberOfComponents(kinds.front() % 8);
-    vtkSmartPointer<vtkDataArray> sent = mine ? vtkSmartPointer<vtkDataArray>(mine) : array;
-    const std::vector<char> bytes = gatherBytes(controller, sent);
-    array->SetName(name);
-    array->SetNumberOfTuples(pointsIn(whole));
-    placeRows(bytes, extents, whole, array);
-    volume->GetPointData()->AddArray(array);
   }
   return {};
 }

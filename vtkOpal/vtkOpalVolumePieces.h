@@ -20,6 +20,10 @@ namespace vtkOpalVolumePieces
 // translator, as ParaView splits image data).
 void PieceExtent(vtkMultiProcessController* controller, const int whole[6], int extent[6]);
 
+// Empty where the arrays the render reads of the whole volume `whole` (an
+// extent) fit in this machine's memory, else the sentence refusing them.
+std::string MemoryError(const int whole[6]);
+
 // Collective (every rank calls it together): the whole volume, `whole`,
 // from every rank's piece, with the render's point arrays
 // (ScatteringCoefficient, DomainId, SurfaceDistance and, where present, the
