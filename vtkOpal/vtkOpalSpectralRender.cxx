@@ -155,15 +155,7 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
   // of it; under MPI each rank asks for its piece and the ranks gather the
   // arrays the render reads (GatherVolume), whichever piece of the image
   // this rank renders.
-  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
-  int wholeExtent[6], piece[6];
-  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), wholeExtent);
-  vtkOpalVolumePieces::PieceExtent(this->Controller, wholeExtent, piece);
-  // The extent alone says which: ParaView's executive would intersect it
-  // with its own split of a piece number.
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
+  vtkOpalVolumePieces::AskForPiece(this->Controller, inputVector[0]->GetInformationObject(0));
   return 1;
 }
 
@@ -256,42 +248,19 @@ int vtkOpalSpectralRender::RequestData(
 
 bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
 {
-  if (vtkOpalRankAgreement::Ranks(this->Controller) == 1 ||
-    !vtkOpalRankAgreement::AnyRank(this->Controller, this->GatheredFrom != input || this->GatheredTime != input->GetMTime()))
-  {
-    return true;
-  }
   int whole[6];
   inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  this->GatheredFrom = nullptr;
-  this->GatheredVolume = nullptr;
-  // The gathered arrays (and one array's exchange) must fit on every rank.
-  const std::string memory = vtkOpalVolumePieces::MemoryError(whole);
-  if (vtkOpalRankAgreement::AnyRank(this->Controller, !memory.empty()))
-  {
-    this->SayError(memory.empty() ? "Another rank cannot hold the whole volume the render reads." : memory);
-    return false;
-  }
-  const std::string error = vtkOpalVolumePieces::Gather(this->Controller, input, whole, this->GatheredVolume);
+  const std::string error = this->Gathered.Update(this->Controller, input, whole);
   if (!error.empty())
   {
-    this->GatheredVolume = nullptr;
     this->SayError(error);
-    return false;
   }
-  this->GatheredFrom = input;
-  this->GatheredTime = input->GetMTime();
-  return true;
+  return error.empty();
 }
 
 vtkImageData* vtkOpalSpectralRender::VolumeOf(vtkImageData* input) const
 {
-  if (vtkOpalRankAgreement::Ranks(this->Controller) == 1)
-  {
-    return input;
-  }
-  return input && this->GatheredFrom == input && this->GatheredTime == input->GetMTime() ? this->GatheredVolume.Get()
-                                                                                          : nullptr;
+  return this->Gathered.Of(this->Controller, input);
 }
 
 std::string vtkOpalSpectralRender::SettingsText() const

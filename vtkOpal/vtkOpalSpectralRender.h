@@ -54,7 +54,7 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkOpalModule.h" // for export macro
 #include "vtkOpalTableMacros.h" // for OPAL_VTK_SET_GET, OPAL_VTK_MEMBER
-#include "vtkSmartPointer.h"    // for the gathered volume
+#include "vtkOpalVolumePieces.h" // for the gathered volume
 
 #include <array>
 #include <memory>
@@ -257,15 +257,13 @@ private:
   RenderOutcome AgreeOnOutcome(RenderOutcome mine);
   // Under MPI, collective: the whole volume gathered from the ranks' pieces
   // (vtkOpalVolumePieces), again where any rank's piece changed; false, said
-  // in an error, where the pieces differ.
+  // in an error, where the pieces differ or the whole does not fit.
   bool GatherVolume(vtkImageData* input, vtkInformation* inputInformation);
   // The volume the render reads for this input: the input itself with one
   // process, the gathered volume under MPI (nullptr before a data request
   // gathered it).
   vtkImageData* VolumeOf(vtkImageData* input) const;
-  vtkSmartPointer<vtkImageData> GatheredVolume;
-  vtkDataObject* GatheredFrom = nullptr; // the piece it was gathered with, in its version
-  vtkMTimeType GatheredTime = 0;
+  vtkOpalVolumePieces::GatheredVolume Gathered;
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

@@ -1,14 +1,17 @@
 #include "vtkOpalVolumePieces.h"
 
 #include "OpalMemory.h"
+#include "vtkOpalRankAgreement.h"
 
 #include "vtkDataArray.h"
 #include "vtkExtentTranslator.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkMultiProcessController.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkType.h"
 
 #include <algorithm>
@@ -201,11 +204,19 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
 }
 } // namespace
 
-void PieceExtent(vtkMultiProcessController* given, const int whole[6], int extent[6])
+void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformation)
 {
   vtkMultiProcessController* controller = ranksController(given);
+  int whole[6], piece[6];
+  inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   pieceOf(controller ? controller->GetLocalProcessId() : 0, controller ? controller->GetNumberOfProcesses() : 1,
-    whole, extent);
+    whole, piece);
+  // The extent alone says which: ParaView's executive would intersect it
+  // with its own split of a piece number, which left holes.
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
 }
 
 std::string MemoryError(const int whole[6])
@@ -251,5 +262,40 @@ std::string Gather(
     }
   }
   return {};
+}
+
+std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6])
+{
+  if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
+    !vtkOpalRankAgreement::AnyRank(controller, this->From != piece || this->Time != piece->GetMTime()))
+  {
+    return {};
+  }
+  this->From = nullptr;
+  this->Volume = nullptr;
+  // The gathered arrays (and one array's exchange) must fit on every rank.
+  const std::string memory = MemoryError(whole);
+  if (vtkOpalRankAgreement::AnyRank(controller, !memory.empty()))
+  {
+    return memory.empty() ? "Another rank cannot hold the whole volume the render reads." : memory;
+  }
+  const std::string error = Gather(controller, piece, whole, this->Volume);
+  if (!error.empty())
+  {
+    this->Volume = nullptr;
+    return error;
+  }
+  this->From = piece;
+  this->Time = piece->GetMTime();
+  return {};
+}
+
+vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImageData* piece) const
+{
+  if (vtkOpalRankAgreement::Ranks(controller) == 1)
+  {
+    return piece;
+  }
+  return piece && this->From == piece && this->Time == piece->GetMTime() ? this->Volume.Get() : nullptr;
 }
 } // namespace vtkOpalVolumePieces

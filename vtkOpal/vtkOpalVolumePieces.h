@@ -1,28 +1,33 @@
 // Under MPI the render's input is each rank's piece of the volume
 // (docs/design.md §8.1): a rank builds or reads only its piece, and the point
 // arrays the render reads are gathered into the whole volume on every rank,
-// which each rank renders its piece of the image from.
+// which each rank renders its piece of the image (the render) or the whole
+// stone (the live view's representation) from.
 #pragma once
 
+#include "vtkOpalModule.h" // for the export macro
 #include "vtkSmartPointer.h"
+#include "vtkType.h"
 
 #include <string>
 
 class vtkImageData;
+class vtkInformation;
 class vtkMultiProcessController;
 
 namespace vtkOpalVolumePieces
 {
 // The ranks are the processes of `controller` (the filter's; none, or one
 // process, is one rank holding the whole).
-// The piece of `whole` (an extent) this rank asks for: the whole with one
-// process, else the rank's piece of as many as there are ranks (VTK's extent
-// translator, as ParaView splits image data).
-void PieceExtent(vtkMultiProcessController* controller, const int whole[6], int extent[6]);
+// Asks the input (`inputInformation`, of a request for the update extent)
+// for this rank's piece of its whole extent, by extent alone: the whole with
+// one process, else the rank's piece of as many as there are ranks (VTK's
+// extent translator, as ParaView splits image data), without ghost levels.
+VTKOPAL_EXPORT void AskForPiece(vtkMultiProcessController* controller, vtkInformation* inputInformation);
 
 // Empty where the arrays the render reads of the whole volume `whole` (an
 // extent) fit in this machine's memory, else the sentence refusing them.
-std::string MemoryError(const int whole[6]);
+VTKOPAL_EXPORT std::string MemoryError(const int whole[6]);
 
 // Collective (every rank calls it together): the whole volume, `whole`,
 // from every rank's piece, with the render's point arrays
@@ -30,6 +35,25 @@ std::string MemoryError(const int whole[6]);
 // absorption pair) and this piece's field data; the piece itself with one
 // process. Empty string, else (on every rank alike) the reason: the ranks'
 // pieces differ in an array.
-std::string Gather(
+VTKOPAL_EXPORT std::string Gather(
   vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume);
+
+// The whole volume gathered from the ranks' pieces, kept until a rank's piece
+// changes: its owner's data request updates it, its frames read it.
+class VTKOPAL_EXPORT GatheredVolume
+{
+public:
+  // Collective: gathers again where any rank's piece (not null) changed since
+  // the last Update, after checking that the whole fits on every rank;
+  // nothing to do with one process. Empty, else (alike on every rank) the reason.
+  std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6]);
+  // The whole volume of `piece`: the piece itself with one process; nullptr
+  // where the last Update failed or was given another piece.
+  vtkImageData* Of(vtkMultiProcessController* controller, vtkImageData* piece) const;
+
+private:
+  vtkSmartPointer<vtkImageData> Volume;
+  vtkImageData* From = nullptr; // the piece it was gathered from, in its version
+  vtkMTimeType Time = 0;
+};
 } // namespace vtkOpalVolumePieces

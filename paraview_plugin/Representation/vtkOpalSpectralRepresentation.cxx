@@ -5,9 +5,11 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpalSpectralImageActor.h"
 #include "vtkOpalSpectralRender.h"
+#include "vtkOpalVolumePieces.h"
 #include "vtkPVRenderView.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -61,6 +63,7 @@ int vtkOpalSpectralRepresentation::GetNumberOfAbandonedFinalFrames()
 }
 
 vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
+  : Gathered(std::make_unique<vtkOpalVolumePieces::GatheredVolume>())
 {
   this->Actor->SetRender(this->Render);
   // The stone stays where the scene has it (its Domains, slices): no preset
@@ -68,8 +71,9 @@ vtkOpalSpectralRepresentation::vtkOpalSpectralRepresentation()
   // the representation's properties say (ParaView fills in the preset's).
   this->Render->SetPresetPlacement(false);
   // Each rank draws the whole stone into its own view from the whole volume
-  // (ParaView composites the views): its render stands alone, and the view's
-  // frames on one rank never wait for another's (docs/design.md §8.1).
+  // gathered at the update (ParaView composites the views): its render stands
+  // alone, and the view's frames on one rank never wait for another's
+  // (docs/design.md §8.1).
   this->Render->SetController(nullptr);
 }
 
@@ -136,28 +140,46 @@ int vtkOpalSpectralRepresentation::FillInputPortInformation(int, vtkInformation*
   return 1;
 }
 
-// Each rank renders the whole stone (the source makes any extent, so every
-// rank can build all of it): the whole extent, not this rank's piece.
+// Each rank asks for its piece of the volume alone, as the render does
+// (docs/design.md §8.1).
 int vtkOpalSpectralRepresentation::RequestUpdateExtent(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   this->Superclass::RequestUpdateExtent(request, inputVector, outputVector);
   for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
   {
-    vtkInformation* inInfo = inputVector[0]->GetInformationObject(i);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-    inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    vtkOpalVolumePieces::AskForPiece(
+      vtkMultiProcessController::GetGlobalController(), inputVector[0]->GetInformationObject(i));
   }
   return 1;
+}
+
+// Under MPI, collective (every rank's view updates together): the ranks'
+// pieces gathered into the whole volume, again where any rank's piece changed.
+vtkImageData* vtkOpalSpectralRepresentation::WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation)
+{
+  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
+  int whole[6];
+  pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  const std::string error = this->Gathered->Update(ranks, piece, whole);
+  if (!error.empty())
+  {
+    vtkErrorMacro(<< error);
+  }
+  return this->Gathered->Of(ranks, piece);
 }
 
 int vtkOpalSpectralRepresentation::RequestData(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() > 0
+  vtkImageData* piece = inputVector[0]->GetNumberOfInformationObjects() > 0
     ? vtkImageData::GetData(inputVector[0], 0)
     : nullptr;
+  vtkImageData* input = piece ? this->WholeVolume(piece, inputVector[0]->GetInformationObject(0)) : nullptr;
+  if (piece && !input)
+  {
+    return 0; // the pieces were not gathered (said): the view keeps the stone it had
+  }
   // A new volume only when the input changed: the render session then keeps
   // the uploaded volume and the light field across property changes.
   if (this->Volume && input && input->GetMTime() == this->VolumeTime)

@@ -14,8 +14,10 @@
  * GUI's plugin part sets it), a still render does not wait for a final frame:
  * it draws the preview, the final frame renders on a worker thread, and the
  * GUI renders the view again when GetReadyFinalFrame says it has finished;
- * screenshots always wait. Each rank renders the whole
- * volume: the representation asks its input for the whole extent.
+ * screenshots always wait. Under MPI (pvserver, pvbatch) each rank asks its
+ * input for its piece of the volume alone, the ranks gather the arrays the
+ * render reads into the whole volume on every rank, and each rank renders the
+ * whole stone from it (docs/design.md §8.1).
  *
  * The optics are the render filter's settings, with its defaults
  * (opal::RenderParameters): RefractiveIndex, BraggBandwidth, DiffractionGain, BraggModel,
@@ -37,8 +39,13 @@ namespace opal
 {
 struct RenderParameters;
 }
+namespace vtkOpalVolumePieces
+{
+class GatheredVolume;
+}
 
 class vtkImageData;
+class vtkInformation;
 class vtkOpalSpectralImageActor;
 class vtkOpalSpectralRender;
 
@@ -124,6 +131,9 @@ private:
   vtkOpalSpectralRepresentation(const vtkOpalSpectralRepresentation&) = delete;
   void operator=(const vtkOpalSpectralRepresentation&) = delete;
 
+  // The whole volume of the input's piece (this rank's under MPI); nullptr
+  // where the ranks' pieces could not be gathered (said in an error).
+  vtkImageData* WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation);
   // Copies the settings' rows into Render if they changed since the last copy.
   void ApplyRenderSettings();
 
@@ -132,7 +142,8 @@ private:
   vtkMTimeType SettingsTime = 0; // the settings' MTime at the last copy
   std::unique_ptr<opal::RenderParameters> AppliedSettings; // the settings as last copied
   vtkNew<vtkOpalSpectralImageActor> Actor;
+  std::unique_ptr<vtkOpalVolumePieces::GatheredVolume> Gathered; // under MPI, from the ranks' pieces
   vtkSmartPointer<vtkImageData> Volume;
-  vtkMTimeType VolumeTime = 0; // the input's MTime when Volume was taken
+  vtkMTimeType VolumeTime = 0; // the whole volume's MTime when Volume was taken
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
 };

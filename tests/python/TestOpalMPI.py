@@ -10,13 +10,17 @@ tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too).
 The pvti case reads the volume from a partitioned file, each rank its piece,
-and renders it.
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render|pvti"""
+and renders it; the view case shows that file as "Opal Spectral" in a render
+view (the live view's representation), each rank again asking for its piece
+alone, and the screenshot equals the one-process one.
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|pvti|view"""
 import os
+import random
 import sys
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader
 
 import opal_test_config as config
@@ -29,21 +33,28 @@ serial = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_serial.vti")
 parallel = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_parallel.pvti")
 mpiexec = [config.MPIEXEC, "-np", str(ranks), config.PVBATCH]
 
-if kind == "pvti":
+if kind in ("pvti", "view"):
     # A volume file read by pieces: opal-volume writes it as one .vti and as a
     # .pvti of 4 pieces; each rank reads only its piece of the .pvti (checked
-    # against the .vti), the render asks for no more (checked after it), and
-    # the render of the pieces equals the one-process render of the .vti.
+    # against the .vti), the render or the view asks for no more (checked
+    # after it), and the image of the pieces equals the one-process image of the .vti.
     reader = os.path.join(here, "opal_render_file.py")
-    whole = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.vti")
-    pieces = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_pvti_volume.pvti")
+    whole = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_volume.vti")
+    pieces = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_volume.pvti")
     volume = [config.OPAL_VOLUME, "--dimensions", "48", "24", "60", "--domain-count", "60"]
     run(volume + ["-o", whole])
     written = run(volume + ["-o", pieces, "--pieces", "4"]).stdout
     check("(4 pieces)" in written, "opal-volume says it wrote 4 pieces")
-    run([config.PVBATCH, reader, whole, serial, "96", "72"])
-    read_by_ranks = run(mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
-                                        "--pieces-of", whole]).stdout
+    view = ["--view"] if kind == "view" else []
+    if view:
+        serial, parallel = serial[:-4] + ".png", parallel[:-5] + ".png"
+        # The views need a display; a random first display number, as xvfb-run -a races.
+        display = ["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 640x480x24"]
+    else:
+        display = []
+    run(display + [config.PVBATCH, reader, whole, serial, "96", "72"] + view)
+    read_by_ranks = run(display + mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
+                                                  "--pieces-of", whole] + view).stdout
     check(read_by_ranks.count(" read extent ") == 2 * ranks,
           f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
 else:
@@ -61,6 +72,16 @@ def read(reader_class, path):
     return reader
 
 
+if kind == "view":
+    images = [vtk_to_numpy(read(vtkPNGReader, path).GetOutput().GetPointData().GetScalars()) for path in (serial, parallel)]
+    stone = numpy.mean(numpy.any(images[0] != images[0][0], axis=1))
+    check(0.1 < stone < 0.9, f"the one-process view shows the stone ({100 * stone:.0f}% of the view)")
+    # Each rank renders the whole stone from the same gathered volume, and
+    # ParaView composites equal frames by depth: the screenshots are equal.
+    differing = numpy.mean(numpy.any(images[0] != images[1], axis=1))
+    check(images[0].shape == images[1].shape and differing == 0,
+          f"the {ranks}-rank view equals the one-process view ({100 * differing:.2f}% of pixels differ)")
+    finish("TestOpalMPI", f"({kind}, {ranks} ranks)")
 serial_data = read(vtkXMLImageDataReader, serial).GetOutput()
 parallel_reader = read(vtkXMLPImageDataReader, parallel)
 parallel_data = parallel_reader.GetOutput()

@@ -1,16 +1,20 @@
 """pvbatch helper: reads an opal volume from a file with ParaView's reader
 (each rank reads its piece of a .pvti), renders it and saves the image (a
-.pvti under MPI, one piece per rank). With --pieces-of VTI each rank first
-checks that it read only its piece (under MPI: fewer points than the grid's)
-and that the piece equals that extent of the one-file volume VTI, before the
-render and after it (the render asks each rank for its piece alone).
-Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--pieces-of VTI]"""
+.pvti under MPI, one piece per rank); with --view, shows it as "Opal
+Spectral" in a render view instead and saves a screenshot (OUTPUT.png; run
+under Xvfb). With --pieces-of VTI each rank first checks that it read only its
+piece (under MPI: fewer points than the grid's) and that the piece equals that
+extent of the one-file volume VTI, before the render and after it, and that
+the reader never read more than a piece meanwhile (the render and the
+representation ask each rank for its piece alone).
+Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--view] [--pieces-of VTI]"""
 import sys
 
 import numpy
-from paraview.simple import LoadPlugin, OpenDataFile, SaveData
+from paraview.simple import CreateView, LoadPlugin, OpenDataFile, Render, SaveData, SaveScreenshot, Show
 from vtkmodules.numpy_interface import dataset_adapter
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
 
 import opal_test_config as config
@@ -38,16 +42,49 @@ def check_piece(piece, whole_path):
             sys.exit(f"rank {rank}: {name} of its piece differs from the one-file volume")
 
 
+def watch_reads(reader):
+    """The points of each piece the reader reads from now on (what the render
+    or the representation asked for)."""
+    reads = []
+    reader.AddObserver("EndEvent", lambda caller, event: reads.append(caller.GetOutputDataObject(0).GetNumberOfPoints()))
+    return reads
+
+
+def check_reads(reads, whole_path):
+    """Under MPI no read since watch_reads was of the whole volume."""
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(whole_path)
+    reader.UpdateInformation()
+    extent = reader.GetOutputInformation(0).Get(vtkStreamingDemandDrivenPipeline.WHOLE_EXTENT())
+    whole = (extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) * (extent[5] - extent[4] + 1)
+    controller = vtkMultiProcessController.GetGlobalController()
+    rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
+    print(f"rank {rank} of {ranks} read pieces of {reads} points", flush=True)
+    if ranks > 1 and not all(0 < points < whole for points in reads):
+        sys.exit(f"rank {rank} read {max(reads)} points, not a piece of the {whole}")
+
+
 source_path, output = sys.argv[1], sys.argv[2]
 size = [int(v) for v in sys.argv[3:5]]
+pieces_of = sys.argv[sys.argv.index("--pieces-of") + 1] if "--pieces-of" in sys.argv else None
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 volume = OpenDataFile(source_path)
-if "--pieces-of" in sys.argv:
+if pieces_of:
     volume.UpdatePipeline()
-    check_piece(volume.GetClientSideObject().GetOutputDataObject(0),
-                sys.argv[sys.argv.index("--pieces-of") + 1])
-render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
-SaveData(output, proxy=render, DataMode="Binary")
-if "--pieces-of" in sys.argv:
-    # The render asked each rank for its piece alone (and gathered what it reads).
-    check_piece(volume.GetClientSideObject().GetOutputDataObject(0), sys.argv[sys.argv.index("--pieces-of") + 1])
+    check_piece(volume.GetClientSideObject().GetOutputDataObject(0), pieces_of)
+    reads = watch_reads(volume.GetClientSideObject())
+if "--view" in sys.argv:
+    view = CreateView("RenderView")
+    view.ViewSize = size
+    display = Show(volume, view)
+    display.Representation = "Opal Spectral"
+    view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 40, 0], [0, 2, 0], [0, 0, -1]
+    Render(view)
+    SaveScreenshot(output, view, ImageResolution=size)
+else:
+    render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
+    SaveData(output, proxy=render, DataMode="Binary")
+if pieces_of:
+    # The render (or representation) asked each rank for its piece alone (and gathered what it reads).
+    check_piece(volume.GetClientSideObject().GetOutputDataObject(0), pieces_of)
+    check_reads(reads, pieces_of)
