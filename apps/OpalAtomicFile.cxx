@@ -381,23 +381,45 @@ std::string sharedFileError(const std::vector<OutputName>& outputs)
   return {};
 }
 
+namespace
+{
+// Where a file written to `path` goes, as cp writes: through a symbolic link
+// to the file it names, keeping an existing file's permissions, and refusing
+// one we may not write.
+struct Destination
+{
+  std::filesystem::path Target;
+  bool Exists = false;
+  struct stat Existing = {};
+  std::string Problem; // why nothing can be written there, or empty
+};
+
+Destination destinationOf(const std::filesystem::path& path)
+{
+  Destination destination;
+  destination.Target = resolvedTarget(path);
+  destination.Problem = folderProblem(destination.Target);
+  destination.Exists = ::stat(destination.Target.c_str(), &destination.Existing) == 0;
+  if (destination.Problem.empty() && destination.Exists && ::access(destination.Target.c_str(), W_OK) != 0)
+  {
+    destination.Problem = "permission denied";
+  }
+  return destination;
+}
+} // namespace
+
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&)>& write)
 {
   const std::string failed = "could not write " + path.string() + ": ";
-  // As cp does: through a symbolic link to the file it names, keeping an
-  // existing file's permissions, and refusing one we may not write.
-  const std::filesystem::path target = resolvedTarget(path);
-  if (const std::string problem = folderProblem(target); !problem.empty())
+  const Destination destination = destinationOf(path);
+  if (!destination.Problem.empty())
   {
-    return failed + problem;
+    return failed + destination.Problem;
   }
-  struct stat existing = {};
-  const bool exists = ::stat(target.c_str(), &existing) == 0;
-  if (exists && ::access(target.c_str(), W_OK) != 0)
-  {
-    return failed + "permission denied";
-  }
+  const std::filesystem::path& target = destination.Target;
+  const bool exists = destination.Exists;
+  const struct stat& existing = destination.Existing;
   // Private while written where it replaces a file, whose permissions it
   // takes at the end; else those the umask gives a new file.
   OwnedFile temporary(target, "partial", exists ? 0600 : 0666);
@@ -429,6 +451,41 @@ std::string writeFileAtomically(
   std::string reason;
   const std::string error = writeFileAtomically(path, [&](const std::string& file) { return write(file, reason); });
   return error.empty() || reason.empty() ? error : error + " (" + reason + ")";
+}
+
+std::string moveFileAtomically(const std::filesystem::path& finished, const std::filesystem::path& path)
+{
+  const std::string failed = "could not write " + path.string() + ": ";
+  const Destination destination = destinationOf(path);
+  if (!destination.Problem.empty())
+  {
+    return failed + destination.Problem;
+  }
+  const Descriptor file(::open(finished.c_str(), O_RDONLY | O_CLOEXEC));
+  if (file.Number < 0)
+  {
+    return failed + "the finished file " + finished.string() + " cannot be opened";
+  }
+  errno = 0;
+  if (::fsync(file.Number) != 0 || !endsWhole(file.Number, expectedEnding(destination.Target)))
+  {
+    const std::string cause = writeFailureCause(file.Number, errno, destination.Target);
+    return failed + (cause.empty() ? "the file was cut short" : cause);
+  }
+  if (destination.Exists)
+  {
+    ::fchmod(file.Number, destination.Existing.st_mode & 07777);
+  }
+  std::error_code error;
+  std::filesystem::rename(finished, destination.Target, error);
+  if (error.value() == EXDEV) // a link to another file system: copied there
+  {
+    return writeFileAtomically(path, [&](const std::string& copy) {
+      std::filesystem::copy_file(finished, copy, std::filesystem::copy_options::overwrite_existing);
+      return true;
+    });
+  }
+  return error ? "could not move the finished file to " + path.string() + ": " + error.message() : std::string();
 }
 
 FileSetTransaction::FileSetTransaction(const std::vector<std::filesystem::path>& targets)

@@ -46,6 +46,13 @@ std::string writeFileAtomically(
 std::string writeFileAtomically(
   const std::filesystem::path& path, const std::function<bool(const std::string&, std::string&)>& write);
 
+// The same for a file already written whole at `finished` (in the target's
+// folder, by a writer that names its files itself): checked as written
+// whole (synced, its format's ending), given an existing target's
+// permissions, and renamed into place (copied where a link leads to another
+// file system), so the disk never holds it twice.
+std::string moveFileAtomically(const std::filesystem::path& finished, const std::filesystem::path& path);
+
 // Holds back the signals that end a program (SIGINT, SIGTERM, SIGHUP,
 // SIGQUIT) while files are written: one arriving then is delivered when the
 // holder ends, after the files are all written or all restored, so neither

@@ -177,10 +177,7 @@ std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm*
   FileSetTransaction transaction(targets);
   for (std::size_t i = 0; i < staged.size(); ++i)
   {
-    const std::string error = writeFileAtomically(targets[i], [&](const std::string& file) {
-      std::filesystem::copy_file(staged[i], file, std::filesystem::copy_options::overwrite_existing);
-      return true;
-    });
+    const std::string error = moveFileAtomically(staged[i], targets[i]);
     if (!error.empty())
     {
       return error;

@@ -25,6 +25,6 @@ std::string writeImageDataFile(const std::string& path, vtkImageData* image);
 // `pieces` piece files beside it (NAME_0.vti, ...), each piece requested from
 // the source alone (a source that fills only the extent asked, as
 // vtkOpalSource does, then holds one piece at a time). The set is written in
-// a private folder beside `path`, then replaced all or none. Empty string on
-// success, else the reason.
+// a private folder beside `path`, then moved into place all or none (renamed:
+// the disk holds it once). Empty string on success, else the reason.
 std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm* source, int pieces);

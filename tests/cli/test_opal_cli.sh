@@ -34,6 +34,20 @@ grep -q "domains placed   30 of 30" v.txt || fail "opal-volume prints its summar
 for f in v.pvti v_0.vti v_1.vti v_2.vti; do [[ -s $f ]] || fail "$f written"; done
 [[ -z $(find . -maxdepth 1 -name '.v.pvti-*') ]] || fail "the .pvti's staging folder is removed"
 grep -q "(3 pieces)" p.txt || fail "opal-volume says it wrote 3 pieces: $(cat p.txt)"
+# Written again over the set: each piece is renamed into place (a new file, not
+# the old one rewritten: a hard link to the old piece keeps the old contents),
+# keeping a piece's permissions and writing through a link to another file
+# system (/dev/shm where it is one: copied there).
+ln v_0.vti old_0.vti && chmod 640 v_1.vti
+shm=$(mktemp -p /dev/shm opal-piece-XXXXXX.vti 2>/dev/null || mktemp --suffix .vti)
+mv v_2.vti "$shm" && ln -s "$shm" v_2.vti && linked_before=$(md5sum <"$shm")
+"$volume" --dimensions 40 20 50 --domain-count 31 -o v.pvti --pieces 3 >/dev/null 2>&1 || fail "opal-volume .pvti again exits 0"
+[[ $(stat -c %i v_0.vti) != $(stat -c %i old_0.vti) ]] || fail "a piece written again is a new file, renamed into place"
+cmp -s v_0.vti old_0.vti && fail "the piece written again holds the new volume"
+[[ $(stat -c %a v_1.vti) == 640 ]] || fail "a piece written again keeps its permissions (got $(stat -c %a v_1.vti))"
+[[ -L v_2.vti && $(md5sum <"$shm") != "$linked_before" ]] && grep -q "</VTKFile>" "$shm" ||
+  fail "a piece that is a link is written through it"
+rm -f "$shm" old_0.vti
 [[ $(grep -E "^  (empty|scattering|diffraction) " p.txt) == $(grep -E "^  (empty|scattering|diffraction) " v.txt) ]] ||
   fail "the pieces' voxel counts equal the one file's: $(cat p.txt v.txt)"
 # Voronoi grains: a preset sets the layout; a flag given with it wins over its value.
