@@ -1,7 +1,9 @@
 """Scaling bench under MPI (run with `mpiexec -np N pvbatch --symmetric`):
 builds the opal volume (each rank its piece) and renders the 640 x 480 frame
 (each rank its piece of the image, from the whole volume), printing per rank
-the wall time of each and the peak resident memory, and from rank 0's
+the wall time of each, the render's stages (gather, upload, light pass,
+every-order solve, march, the rest) and the peak resident memory with the
+render session's peak of device buffers (host memory on lavapipe), and from rank 0's
 figures an estimate for the 10 um stone (16 x 8 x 20 mm, 1600 x 800 x 2000
 voxels). A run whose ranks would together need more than this machine's
 memory is skipped, saying so: each rank holds its piece of the volume's
@@ -46,11 +48,23 @@ render.UpdatePipeline(0.0)
 render_seconds = time.perf_counter() - start
 controller.Barrier()
 peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+fields = render.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+stages = fields.GetArray("RenderTimings")
+stage = {stages.GetComponentName(c): stages.GetComponent(0, c) for c in range(stages.GetNumberOfComponents())}
+device_mb = fields.GetArray("DeviceMemoryPeak").GetValue(0) / 2**20
+render.UpdatePropertyInformation()
+gather = render.SMProxy.GetProperty("LastGatherSeconds").GetElement(0)
+# The frame's stages are the render session's; besides the gather, the rest
+# of the render's time is the Vulkan device's start, the ranks' agreements
+# and the pipeline.
+other = render_seconds - gather - sum(stage.values())
 for r in range(ranks):
     if r == rank:
         print(f"  {dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels, rank {rank} of {ranks}: "
-              f"volume piece {volume_seconds:.3f} s, render (gather + its image piece) "
-              f"{render_seconds:.3f} s, peak memory {peak_mb:.0f} MB", flush=True)
+              f"volume piece {volume_seconds:.3f} s, render {render_seconds:.3f} s (gather {gather:.3f}, upload "
+              f"{stage['Upload']:.3f}, light pass {stage['LightPass']:.3f}, every order "
+              f"{stage['ScatteredLight']:.3f}, march {stage['March']:.3f}, other {other:.3f} s), peak memory {peak_mb:.0f} MB "
+              f"(of which device buffers {device_mb:.0f} MB)", flush=True)
     controller.Barrier()
 fastest = vtkDoubleArray()
 fastest.InsertNextValue(volume_seconds)
@@ -65,5 +79,6 @@ if rank == 0:
     bytes_per_voxel = (peak_mb - baseline_mb) * 2**20 / voxels
     print(f"  10 um estimate (1600x800x2000 = {stone / 1e9:.2f} G voxels) from this run: volume "
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
-          f"{bytes_per_voxel:.0f} bytes per voxel here, so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
+          f"{bytes_per_voxel:.0f} bytes per voxel here ({device_mb * 2**20 / voxels:.0f} of them device buffers, "
+          f"the image's included), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
           f"(the render's arrays and device fields of the whole volume on every rank)", flush=True)

@@ -7,6 +7,7 @@
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkStringArray.h"
+#include "vtkTypeUInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -73,6 +74,10 @@ void addFieldData(const opal::RenderImage& image, const std::string& deviceName,
   }
   timings->InsertNextTuple(values);
   fields->AddArray(timings);
+  vtkNew<vtkTypeUInt64Array> devicePeak;
+  devicePeak->SetName("DeviceMemoryPeak");
+  devicePeak->InsertNextValue(image.DeviceMemoryPeak);
+  fields->AddArray(devicePeak);
 }
 } // namespace
 

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <optional>
 #include <stdexcept>
 
@@ -250,7 +251,9 @@ bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* in
 {
   int whole[6];
   inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  const auto start = std::chrono::steady_clock::now();
   const std::string error = this->Gathered.Update(this->Controller, input, whole);
+  this->LastGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!error.empty())
   {
     this->SayError(error);

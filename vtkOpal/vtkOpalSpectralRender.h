@@ -112,6 +112,10 @@ public:
   /// controller; nullptr (or one process) renders alone from the whole volume.
   virtual void SetController(vtkMultiProcessController*);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// Seconds the last data request spent gathering the ranks' pieces into the
+  /// whole volume (docs/design.md §8.1); 0 with one process or where no
+  /// rank's piece had changed.
+  vtkGetMacro(LastGatherSeconds, double);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -264,6 +268,7 @@ private:
   // gathered it).
   vtkImageData* VolumeOf(vtkImageData* input) const;
   vtkOpalVolumePieces::GatheredVolume Gathered;
+  double LastGatherSeconds = 0;
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

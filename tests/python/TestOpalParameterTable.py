@@ -33,6 +33,7 @@ PROXIES = {
         "PresetPlacement": "whether the volume's placement comes first (the proxy fills ModelRotation)",
         "DeviceIndex": "the Vulkan device, not the frame",
         "DeviceMemoryLimit": "the device's memory limit, not the frame",
+        "LastGatherSeconds": "what the last update measured (information only), not a setting",
     }),
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",

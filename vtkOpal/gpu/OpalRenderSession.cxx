@@ -485,6 +485,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   frame.Image.Warning = everyOrder ? this->ScatteredLightWarning : std::string();
   frame.Image.Timings = kept;
   frame.Image.Timings.Readback = secondsSince(readStart);
+  frame.Image.DeviceMemoryPeak = this->Context->memoryPeak();
   frame.Ran.Readback = true;
   const std::string nonFinite = nonFiniteArray(frame.Image);
   if (!nonFinite.empty())

@@ -505,6 +505,7 @@ MemoryReservation VulkanContext::reserveMemory(std::uint64_t bytes)
     throw VulkanError(message.str(), VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
   this->MemoryInUse += bytes;
+  this->MemoryPeak = std::max(this->MemoryPeak, this->MemoryInUse);
   return MemoryReservation(this, bytes);
 }
 

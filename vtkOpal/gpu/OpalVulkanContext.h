@@ -93,6 +93,8 @@ public:
   // released when the returned object goes; throws a VulkanError naming the
   // limit when it would be exceeded.
   MemoryReservation reserveMemory(std::uint64_t bytes);
+  // The most bytes of device memory this context's buffers held at once.
+  std::uint64_t memoryPeak() const { return this->MemoryPeak; }
 
   // What the render may use: the memory limit if one is set, else the budget
   // of the heap the device-local buffers come from (VK_EXT_memory_budget's,
@@ -149,6 +151,7 @@ private:
   bool BufferDeviceAddresses = false;
   bool MemoryBudgets = false; // VK_EXT_memory_budget enabled
   std::uint64_t MemoryInUse = 0;
+  std::uint64_t MemoryPeak = 0;
   mutable std::mutex MessageMutex;
   std::vector<std::string> Messages;
 };

@@ -42,6 +42,9 @@ struct RenderImage
   // Empty, or what the frame could not do fully (the every-order solve's budget).
   std::string Warning;
   RenderTimings Timings;
+  // The most device memory the render session's buffers held at once, up to
+  // this frame (bytes; on a CPU driver, host memory).
+  std::uint64_t DeviceMemoryPeak = 0;
 };
 
 // The first output array holding a NaN or an infinity, by name; empty if
