@@ -26,59 +26,85 @@ controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 PIECE_BYTES, WHOLE_BYTES = 39, 83
 voxels = dimensions[0] * dimensions[1] * dimensions[2]
-per_rank = voxels * (PIECE_BYTES / ranks + WHOLE_BYTES)
-machine = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-if ranks * per_rank > 0.9 * machine:
-    if rank == 0:
-        print(f"  {dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels on {ranks} rank(s): skipped, "
-              f"~{per_rank / 2**30:.1f} GB per rank (the render's whole volume on each) x {ranks} exceeds "
-              f"0.9 of this machine's {machine / 2**30:.1f} GB", flush=True)
-    sys.exit(0)
+size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels"
 
-baseline_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # the process before the volume
-volume = OpalVolume(Dimensions=dimensions)  # noqa: F821 (from the plugin)
-controller.Barrier()
-start = time.perf_counter()
-volume.UpdatePipeline(0.0)
-volume_seconds = time.perf_counter() - start
-render = OpalSpectralRender(Input=volume)  # noqa: F821
-controller.Barrier()
-start = time.perf_counter()
-render.UpdatePipeline(0.0)
-render_seconds = time.perf_counter() - start
-controller.Barrier()
-peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
-fields = render.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
-stages = fields.GetArray("RenderTimings")
-stage = {stages.GetComponentName(c): stages.GetComponent(0, c) for c in range(stages.GetNumberOfComponents())}
-device_mb = fields.GetArray("DeviceMemoryPeak").GetValue(0) / 2**20
-render.UpdatePropertyInformation()
-gather = render.SMProxy.GetProperty("LastGatherSeconds").GetElement(0)
-# The frame's stages are the render session's; besides the gather, the rest
-# of the render's time is the Vulkan device's start, the ranks' agreements
-# and the pipeline.
-other = render_seconds - gather - sum(stage.values())
-for r in range(ranks):
-    if r == rank:
-        print(f"  {dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels, rank {rank} of {ranks}: "
-              f"volume piece {volume_seconds:.3f} s, render {render_seconds:.3f} s (gather {gather:.3f}, upload "
-              f"{stage['Upload']:.3f}, light pass {stage['LightPass']:.3f}, every order "
-              f"{stage['ScatteredLight']:.3f}, march {stage['March']:.3f}, other {other:.3f} s), peak memory {peak_mb:.0f} MB "
-              f"(of which device buffers {device_mb:.0f} MB)", flush=True)
+
+def fits():
+    """Whether the ranks' estimated memory fits this machine; else says so (rank 0)."""
+    per_rank = voxels * (PIECE_BYTES / ranks + WHOLE_BYTES)
+    machine = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    if ranks * per_rank <= 0.9 * machine:
+        return True
+    if rank == 0:
+        print(f"  {size} on {ranks} rank(s): skipped, ~{per_rank / 2**30:.1f} GB per rank (the render's whole "
+              f"volume on each) x {ranks} exceeds 0.9 of this machine's {machine / 2**30:.1f} GB", flush=True)
+    return False
+
+
+def timed(proxy):
     controller.Barrier()
-fastest = vtkDoubleArray()
-fastest.InsertNextValue(volume_seconds)
-fastest_all = vtkDoubleArray()
-controller.AllReduce(fastest, fastest_all, vtkCommunicator.MIN_OP)
-if rank == 0:
-    # The 10 um stone from this run's per-voxel costs: the fastest rank's
-    # volume time per voxel and rank (rank 0 also builds the domain polygons),
-    # and the memory per voxel beyond the process before the volume.
+    start = time.perf_counter()
+    proxy.UpdatePipeline(0.0)
+    return time.perf_counter() - start
+
+
+def report(render, volume_seconds, render_seconds, peak_mb):
+    """Prints each rank's figures in rank order; the device peak in MB, or
+    None where the render refused (said in its error, on every rank alike)."""
+    fields = render.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+    stages = fields.GetArray("RenderTimings")
+    if stages is None:
+        if rank == 0:
+            print(f"  {size} on {ranks} rank(s): the render refused it (the error above), "
+                  f"peak memory {peak_mb:.0f} MB", flush=True)
+        return None
+    stage = {stages.GetComponentName(c): stages.GetComponent(0, c) for c in range(stages.GetNumberOfComponents())}
+    device_mb = fields.GetArray("DeviceMemoryPeak").GetValue(0) / 2**20
+    render.UpdatePropertyInformation()
+    gather = render.SMProxy.GetProperty("LastGatherSeconds").GetElement(0)
+    # The frame's stages are the render session's; besides the gather, the
+    # rest of the render's time is the Vulkan device's start, the ranks'
+    # agreements and the pipeline.
+    other = render_seconds - gather - sum(stage.values())
+    for r in range(ranks):
+        if r == rank:
+            print(f"  {size}, rank {rank} of {ranks}: volume piece {volume_seconds:.3f} s, render "
+                  f"{render_seconds:.3f} s (gather {gather:.3f}, upload {stage['Upload']:.3f}, light pass "
+                  f"{stage['LightPass']:.3f}, every order {stage['ScatteredLight']:.3f}, march {stage['March']:.3f}, "
+                  f"other {other:.3f} s), peak memory {peak_mb:.0f} MB (of which device buffers "
+                  f"{device_mb:.0f} MB)", flush=True)
+        controller.Barrier()
+    return device_mb
+
+
+def estimate(volume_seconds, bytes_per_voxel, device_mb):
+    """The 10 um stone from this run's per-voxel costs (rank 0 prints): the
+    fastest rank's volume time per voxel and rank (rank 0 also builds the
+    domain polygons), and the memory per voxel beyond the process before the volume."""
+    fastest = vtkDoubleArray()
+    fastest.InsertNextValue(volume_seconds)
+    fastest_all = vtkDoubleArray()
+    controller.AllReduce(fastest, fastest_all, vtkCommunicator.MIN_OP)
+    if rank != 0:
+        return
     stone = 1600 * 800 * 2000
     build_ns = fastest_all.GetValue(0) * ranks / voxels * 1e9
-    bytes_per_voxel = (peak_mb - baseline_mb) * 2**20 / voxels
     print(f"  10 um estimate (1600x800x2000 = {stone / 1e9:.2f} G voxels) from this run: volume "
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
           f"{bytes_per_voxel:.0f} bytes per voxel here ({device_mb * 2**20 / voxels:.0f} of them device buffers, "
           f"the image's included), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
           f"(the render's arrays and device fields of the whole volume on every rank)", flush=True)
+
+
+# No rank leaves early (pvbatch under MPI must reach its end on every rank).
+if fits():
+    baseline_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # the process before the volume
+    volume = OpalVolume(Dimensions=dimensions)  # noqa: F821 (from the plugin)
+    volume_seconds = timed(volume)
+    render = OpalSpectralRender(Input=volume)  # noqa: F821
+    render_seconds = timed(render)
+    controller.Barrier()
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    device_mb = report(render, volume_seconds, render_seconds, peak_mb)
+    if device_mb is not None:
+        estimate(volume_seconds, (peak_mb - baseline_mb) * 2**20 / voxels, device_mb)

@@ -300,8 +300,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs);
   if (bytes > this->Context->memoryBudget())
   {
-    throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than the " +
-        "device memory limit of " + formatBytes(this->Context->memoryBudget()) + "; use fewer voxels",
+    throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than " +
+        this->Context->memoryBudgetText() + "; use fewer voxels",
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
   auto uploaded = std::make_unique<DeviceVolume>();
@@ -592,8 +592,7 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   if (deviceBytes > this->Context->memoryBudget())
   {
     throw VulkanError("the render needs about " + formatBytes(deviceBytes) + " of device memory (volume " +
-        formatBytes(volumeBytes) + "), more than the device memory limit of " +
-        formatBytes(this->Context->memoryBudget()) + "; use fewer voxels or pixels",
+        formatBytes(volumeBytes) + "), more than " + this->Context->memoryBudgetText() + "; use fewer voxels or pixels",
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
   const std::uint64_t hostBytes = pixels * (3 + 12 + 12 + 4 + 4) + spectrumBytes;

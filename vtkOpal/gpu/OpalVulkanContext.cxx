@@ -1,5 +1,6 @@
 #include "OpalVulkanContext.h"
 
+#include "OpalMemory.h"
 #include "OpalVulkanError.h"
 
 #include <algorithm>
@@ -507,6 +508,12 @@ MemoryReservation VulkanContext::reserveMemory(std::uint64_t bytes)
   this->MemoryInUse += bytes;
   this->MemoryPeak = std::max(this->MemoryPeak, this->MemoryInUse);
   return MemoryReservation(this, bytes);
+}
+
+std::string VulkanContext::memoryBudgetText() const
+{
+  return this->MemoryLimit > 0 ? "the device memory limit of " + formatBytes(this->MemoryLimit)
+                               : "the " + formatBytes(this->memoryBudget()) + " of device memory the device offers";
 }
 
 std::uint64_t VulkanContext::memoryBudget() const

@@ -100,6 +100,9 @@ public:
   // of the heap the device-local buffers come from (VK_EXT_memory_budget's,
   // what other programs leave, where the device reports it; else its size).
   std::uint64_t memoryBudget() const;
+  // memoryBudget() in words for a refusal: "the device memory limit of 2.0
+  // GB" where one is set, else "the 2.0 GB of device memory the device offers".
+  std::string memoryBudgetText() const;
 
   // Records commands into a one-time command buffer, submits it and waits.
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
