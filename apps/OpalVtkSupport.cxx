@@ -18,7 +18,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
+#include <regex>
 #include <vector>
 
 namespace
@@ -136,6 +139,33 @@ public:
   std::filesystem::path Path;
   std::string Error;
 };
+
+// The piece files an earlier summary at `summary` names that the new set
+// does not write again (an earlier run with more pieces), so that they go
+// with it: only plain names beside it (a summary cannot name a file
+// elsewhere) of regular files.
+std::vector<std::filesystem::path> stalePieces(
+  const std::filesystem::path& summary, const std::vector<std::filesystem::path>& written)
+{
+  std::ifstream in(summary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  static const std::regex pieceSource(R"re(<Piece\b[^>]*\bSource="([^"/]+)")re");
+  std::vector<std::filesystem::path> stale;
+  for (auto match = std::sregex_iterator(text.begin(), text.end(), pieceSource); match != std::sregex_iterator();
+       ++match)
+  {
+    const std::filesystem::path piece = summary.parent_path() / (*match)[1].str();
+    std::error_code error;
+    const bool regular = std::filesystem::is_regular_file(std::filesystem::symlink_status(piece, error));
+    if (regular && (*match)[1] != "." && (*match)[1] != ".." &&
+      std::find(written.begin(), written.end(), piece) == written.end() &&
+      std::find(stale.begin(), stale.end(), piece) == stale.end())
+    {
+      stale.push_back(piece);
+    }
+  }
+  return stale;
+}
 } // namespace
 
 std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm* source, int pieces)
@@ -173,14 +203,26 @@ std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm*
   {
     return "could not write " + path + ": " + listing.message() + " (listing its pieces)";
   }
+  // An earlier set's pieces beyond the new ones go with it (kept if it fails).
+  const std::vector<std::filesystem::path> stale = stalePieces(target, targets);
+  std::vector<std::filesystem::path> replaced = targets;
+  replaced.insert(replaced.end(), stale.begin(), stale.end());
   const SignalsHeld held; // delivered once the set is whole or gone
-  FileSetTransaction transaction(targets);
+  FileSetTransaction transaction(replaced);
   for (std::size_t i = 0; i < staged.size(); ++i)
   {
     const std::string error = moveFileAtomically(staged[i], targets[i]);
     if (!error.empty())
     {
       return error;
+    }
+  }
+  for (const std::filesystem::path& piece : stale)
+  {
+    std::error_code error;
+    if (!std::filesystem::remove(piece, error) && error)
+    {
+      return "could not remove " + piece.string() + ", a piece of the earlier " + path + ": " + error.message();
     }
   }
   transaction.commit();

@@ -26,5 +26,7 @@ std::string writeImageDataFile(const std::string& path, vtkImageData* image);
 // the source alone (a source that fills only the extent asked, as
 // vtkOpalSource does, then holds one piece at a time). The set is written in
 // a private folder beside `path`, then moved into place all or none (renamed:
-// the disk holds it once). Empty string on success, else the reason.
+// the disk holds it once); the pieces of an earlier summary at `path` that
+// the new set does not write again are removed with it. Empty string on
+// success, else the reason.
 std::string writePartitionedImageDataFile(const std::string& path, vtkAlgorithm* source, int pieces);

@@ -47,7 +47,14 @@ cmp -s v_0.vti old_0.vti && fail "the piece written again holds the new volume"
 [[ $(stat -c %a v_1.vti) == 640 ]] || fail "a piece written again keeps its permissions (got $(stat -c %a v_1.vti))"
 [[ -L v_2.vti && $(md5sum <"$shm") != "$linked_before" ]] && grep -q "</VTKFile>" "$shm" ||
   fail "a piece that is a link is written through it"
-rm -f "$shm" old_0.vti
+rm -f "$shm" old_0.vti v_2.vti
+# Fewer pieces than the earlier set: its extra piece goes, a file the summary
+# does not name stays.
+"$volume" --dimensions 40 20 50 --domain-count 30 -o v.pvti --pieces 3 >/dev/null 2>&1 && touch v_9.vti &&
+  "$volume" --dimensions 40 20 50 --domain-count 30 -o v.pvti --pieces 2 >/dev/null 2>&1 || fail "opal-volume .pvti 3 then 2 pieces"
+[[ -s v_0.vti && -s v_1.vti && ! -e v_2.vti && -e v_9.vti ]] || fail "the earlier set's third piece is removed, v_9.vti kept: $(ls v_*)"
+[[ $(grep -c "<Piece" v.pvti) == 2 ]] || fail "the summary names 2 pieces"
+rm -f v_9.vti
 [[ $(grep -E "^  (empty|scattering|diffraction) " p.txt) == $(grep -E "^  (empty|scattering|diffraction) " v.txt) ]] ||
   fail "the pieces' voxel counts equal the one file's: $(cat p.txt v.txt)"
 # Voronoi grains: a preset sets the layout; a flag given with it wins over its value.
