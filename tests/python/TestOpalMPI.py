@@ -8,12 +8,14 @@ automatic exposure (taken from a thumbnail of the whole image), so RGB must
 match exactly and the float arrays to 1e-5 relative (identical arithmetic; the
 tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
-(CellId too).
+(CellId too). The grains case renders the pinfire preset's grains; the fire
+case the fire-opal preset (an absorbing body, coupled-wave fcc, every order)
+lit low from the side.
 The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
 alone, and the screenshot equals the one-process one.
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render|pvti|view"""
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|pvti|view"""
 import os
 import random
 import sys
@@ -58,7 +60,8 @@ if kind in ("pvti", "view"):
     check(read_by_ranks.count(" read extent ") == 2 * ranks,
           f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
 else:
-    arguments = ["48", "24", "60"] + (["96", "72"] if kind == "render" else []) + \
+    renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": ["--preset", "fire-opal", "--side-light"]}
+    arguments = ["48", "24", "60"] + (["96", "72"] + renders[kind] if kind in renders else []) + \
         (["--voronoi"] if kind == "voronoi" else [])
     writer = os.path.join(here, "opal_write_pipeline.py")
     run([config.PVBATCH, writer, serial] + arguments)

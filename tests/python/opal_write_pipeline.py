@@ -1,20 +1,32 @@
 """pvbatch helper: builds an Opal Volume, optionally renders it, and saves the
 result (a .pvti under MPI, one piece per rank). With --voronoi the volume is
-of Voronoi grains with correlated scattering diameters.
-Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi]"""
+of Voronoi grains with correlated scattering diameters; --preset NAME starts
+from a preset (its grid replaced by the one given; the render takes the
+preset's Bragg model and planes); --side-light puts the light low to the side
+(the per-voxel light march instead of the sweep from above).
+Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light]"""
 import sys
 
 from paraview.simple import LoadPlugin, SaveData
 
 import opal_test_config as config
 
-voronoi = "--voronoi" in sys.argv
-arguments = [a for a in sys.argv if a != "--voronoi"]
+arguments = list(sys.argv)
+voronoi = "--voronoi" in arguments
+side_light = "--side-light" in arguments
+preset = {}
+if "--preset" in arguments:
+    at = arguments.index("--preset")
+    preset = dict(Preset=arguments[at + 1])
+    del arguments[at:at + 2]
+arguments = [a for a in arguments if a not in ("--voronoi", "--side-light")]
 output, dimensions = arguments[1], [int(v) for v in arguments[2:5]]
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationLength=0.8) if voronoi else {}
-result = OpalVolume(Dimensions=dimensions, DomainCount=60, **grains)  # noqa: F821 (from the plugin)
+# A preset first, then the grid (and domains) given: an edit wins over the preset's value.
+result = OpalVolume(**preset, Dimensions=dimensions, **({} if preset else dict(DomainCount=60)), **grains)  # noqa: F821
 if len(arguments) > 6:
-    result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]])  # noqa: F821
+    light = dict(LightPosition=[60, 10, 0]) if side_light else {}
+    result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]], **light)  # noqa: F821
 # Inline binary: Debian's VTK 9.2 with its patched expat cannot read appended XML data.
 SaveData(output, proxy=result, DataMode="Binary")
