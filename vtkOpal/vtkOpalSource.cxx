@@ -277,28 +277,47 @@ vtkNew<vtkPolyData> makeCellBoundaries(const opal::Grid& grid, const opal::Domai
 }
 } // namespace
 
-std::optional<opal::DomainLayout> vtkOpalSource::BuildLayout(const opal::ModelParameters& parameters)
+std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(const opal::ModelParameters& parameters)
 {
-  opal::DomainLayout layout = opal::DomainLayout::build(parameters, [this](double fraction) {
+  if (this->Layout && this->LayoutTime == this->GetMTime())
+  {
+    return this->Layout;
+  }
+  this->Layout = nullptr;
+  this->Polygons = nullptr;
+  auto layout = std::make_shared<opal::DomainLayout>(opal::DomainLayout::build(parameters, [this](double fraction) {
     this->UpdateProgress(LayoutProgressShare * fraction);
     return !this->GetAbortExecute();
-  });
-  if (layout.aborted())
+  }));
+  if (layout->aborted())
   {
-    return std::nullopt;
+    return nullptr;
   }
   if (const std::string small = opal::smallShapeWarning(parameters); !small.empty())
   {
     vtkWarningMacro(<< small);
   }
-  if (layout.placedCount() < layout.requestedCount())
+  if (layout->placedCount() < layout->requestedCount())
   {
-    vtkWarningMacro("DomainCount: only " << layout.placedCount() << " of " << layout.requestedCount()
+    vtkWarningMacro("DomainCount: only " << layout->placedCount() << " of " << layout->requestedCount()
                                          << " domains could be placed within MaxPlacementAttempts ("
                                          << parameters.MaxPlacementAttempts
                                          << "); DomainsPlaced in the field data says how many.");
   }
+  this->Layout = layout;
+  this->LayoutTime = this->GetMTime();
   return layout;
+}
+
+vtkPolyData* vtkOpalSource::LayoutPolygons(const opal::ModelParameters& parameters)
+{
+  if (!this->Polygons)
+  {
+    const opal::Grid grid = opal::Grid::fromParameters(parameters);
+    this->Polygons = this->Layout->hasCells() ? makeCellBoundaries(grid, *this->Layout, parameters.RefractiveIndex)
+                                              : makeDomainPolygons(*this->Layout, parameters.RefractiveIndex);
+  }
+  return this->Polygons;
 }
 
 bool vtkOpalSource::FillVolume(
@@ -384,7 +403,7 @@ int vtkOpalSource::RequestData(
   }
   const opal::Grid grid = opal::Grid::fromParameters(parameters);
   this->UpdateProgress(0.0);
-  const std::optional<opal::DomainLayout> layout = this->BuildLayout(parameters);
+  const std::shared_ptr<const opal::DomainLayout> layout = this->BuildLayout(parameters);
   if (!layout)
   {
     return 0;
@@ -410,8 +429,7 @@ int vtkOpalSource::RequestData(
     : 0;
   if (piece == 0)
   {
-    polygons->ShallowCopy(layout->hasCells() ? makeCellBoundaries(grid, *layout, parameters.RefractiveIndex)
-                                             : makeDomainPolygons(*layout, parameters.RefractiveIndex));
+    polygons->ShallowCopy(this->LayoutPolygons(parameters));
   }
   else
   {

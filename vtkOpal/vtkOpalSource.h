@@ -36,12 +36,15 @@
 #include "vtkOpalModule.h"       // for export macro
 #include "vtkOpalTableMacros.h"  // for OPAL_VTK_SET_GET, OPAL_VTK_MEMBER
 
-#include <optional>
+#include "vtkSmartPointer.h"     // for the layout's polygons
+
+#include <memory>
 #include <string>
 
 class vtkInformationDoubleVectorKey;
 
 class vtkImageData;
+class vtkPolyData;
 
 namespace opal
 {
@@ -106,12 +109,20 @@ private:
   // for the information and then the data, ParaView more than once); true if
   // there is one.
   bool Refuses(const int* extent);
-  // The domain layout (warning when not all domains fit); empty if aborted.
-  std::optional<opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
+  // The domain layout (warning when not all domains fit); nullptr if
+  // aborted. Built once per change of the settings and kept: the pieces of
+  // one volume (a .pvti written piece by piece) share it.
+  std::shared_ptr<const opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
+  // The layout's polygons (or Voronoi cell boundaries) for port 1, made once per layout.
+  vtkPolyData* LayoutPolygons(const opal::ModelParameters& parameters);
   // Fills the image's extent with the voxel arrays; false if aborted.
   bool FillVolume(vtkImageData* image, const opal::ModelParameters& parameters, const opal::DomainLayout& layout);
 
   // The error last said and the source's modification time then.
   std::string ReportedError;
   vtkMTimeType ReportedErrorTime = 0;
+  // The layout kept, the source's modification time it was built at, its polygons.
+  std::shared_ptr<const opal::DomainLayout> Layout;
+  vtkMTimeType LayoutTime = 0;
+  vtkSmartPointer<vtkPolyData> Polygons;
 };

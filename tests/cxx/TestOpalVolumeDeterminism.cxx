@@ -1,6 +1,7 @@
 // Determinism and piece invariance (docs/design.md §2.7): the same seed gives
-// identical arrays, another seed different ones, and any split of the extent
-// into pieces gives exactly the whole run's values: for the paper's polygon
+// identical arrays, another seed different ones (also on a source that kept
+// the old layout), and any split of the extent into pieces, built by one
+// source, gives exactly the whole run's values: for the paper's polygon
 // layout and for Voronoi grains with correlated diameters (CellId too). A grid
 // larger than this machine's memory is refused whole and built by pieces.
 #include "OpalTestVolumes.h"
@@ -37,12 +38,14 @@ void checkDeterminism(const std::string& layout, const SourceMaker& make, const 
     layout + ": another seed changes ParticleDiameter");
   OPAL_CHECK(countDifferences(whole, other->GetOutput(), "DomainId") > 0, layout + ": another seed changes the domains");
 
+  // One source builds every piece of a split: the layout it keeps between
+  // pieces (vtkOpalSource) gives the whole run's values.
   for (int pieces : { 2, 3 })
   {
     long long covered = 0;
+    auto source = make(7);
     for (int piece = 0; piece < pieces; ++piece)
     {
-      auto source = make(7);
       source->UpdatePiece(piece, pieces, 0);
       vtkImageData* part = source->GetOutput();
       const std::string which = " of piece " + std::to_string(piece) + " of " + std::to_string(pieces);
@@ -55,6 +58,13 @@ void checkDeterminism(const std::string& layout, const SourceMaker& make, const 
     }
     OPAL_CHECK(covered >= whole->GetNumberOfPoints(), layout + ": the pieces cover the volume");
   }
+  // A changed setting rebuilds the kept layout.
+  auto reseeded = make(7);
+  reseeded->Update();
+  reseeded->SetSeed(8);
+  reseeded->Update();
+  OPAL_CHECK(countDifferences(other->GetOutput(), reseeded->GetOutput(), "DomainId") == 0,
+    layout + ": a source given another seed lays its domains out anew");
 }
 // The memory check is the piece's (§2.7, §8.2): 4000^3 voxels (2.4 TB of
 // arrays) are refused whole, and a small piece of them builds.
