@@ -249,10 +249,8 @@ int vtkOpalSpectralRender::RequestData(
 
 bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
 {
-  int whole[6];
-  inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   const auto start = std::chrono::steady_clock::now();
-  const std::string error = this->Gathered.Update(this->Controller, input, whole);
+  const std::string error = this->Gathered.Update(this->Controller, input, inputInformation);
   this->LastGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!error.empty())
   {

@@ -113,8 +113,8 @@ public:
   virtual void SetController(vtkMultiProcessController*);
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   /// Seconds the last data request spent gathering the ranks' pieces into the
-  /// whole volume (docs/design.md §8.1); 0 with one process or where no
-  /// rank's piece had changed.
+  /// whole volume (docs/design.md §8.1): where no rank's piece had changed,
+  /// only the ranks' check of that; ~0 with one process.
   vtkGetMacro(LastGatherSeconds, double);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may

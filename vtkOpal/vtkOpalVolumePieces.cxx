@@ -202,23 +202,9 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   volume->GetPointData()->AddArray(array);
   return {};
 }
-} // namespace
 
-void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformation)
-{
-  vtkMultiProcessController* controller = ranksController(given);
-  int whole[6], piece[6];
-  inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  pieceOf(controller ? controller->GetLocalProcessId() : 0, controller ? controller->GetNumberOfProcesses() : 1,
-    whole, piece);
-  // The extent alone says which: ParaView's executive would intersect it
-  // with its own split of a piece number, which left holes.
-  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
-}
-
+// Empty where the arrays the render reads of the whole volume `whole` (an
+// extent) fit in this machine's memory, else the sentence refusing them.
 std::string MemoryError(const int whole[6])
 {
   // The render's arrays with the absorption pair, and one array's exchange.
@@ -232,6 +218,7 @@ std::string MemoryError(const int whole[6])
     " on every rank, more than this machine's " + opal::formatBytes(available) + " of memory.";
 }
 
+// Collective: the whole volume from every rank's piece (GatheredVolume::Update).
 std::string Gather(
   vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume)
 {
@@ -264,7 +251,25 @@ std::string Gather(
   return {};
 }
 
-std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6])
+} // namespace
+
+void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformation)
+{
+  vtkMultiProcessController* controller = ranksController(given);
+  int whole[6], piece[6];
+  inputInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  pieceOf(controller ? controller->GetLocalProcessId() : 0, controller ? controller->GetNumberOfProcesses() : 1,
+    whole, piece);
+  // The extent alone says which: ParaView's executive would intersect it
+  // with its own split of a piece number, which left holes.
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
+}
+
+std::string GatheredVolume::Update(
+  vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation)
 {
   if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
     !vtkOpalRankAgreement::AnyRank(controller, this->From != piece || this->Time != piece->GetMTime()))
@@ -273,6 +278,8 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   }
   this->From = nullptr;
   this->Volume = nullptr;
+  int whole[6];
+  pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   // The gathered arrays (and one array's exchange) must fit on every rank.
   const std::string memory = MemoryError(whole);
   if (vtkOpalRankAgreement::AnyRank(controller, !memory.empty()))

@@ -25,28 +25,20 @@ namespace vtkOpalVolumePieces
 // extent translator, as ParaView splits image data), without ghost levels.
 VTKOPAL_EXPORT void AskForPiece(vtkMultiProcessController* controller, vtkInformation* inputInformation);
 
-// Empty where the arrays the render reads of the whole volume `whole` (an
-// extent) fit in this machine's memory, else the sentence refusing them.
-VTKOPAL_EXPORT std::string MemoryError(const int whole[6]);
-
-// Collective (every rank calls it together): the whole volume, `whole`,
-// from every rank's piece, with the render's point arrays
-// (ScatteringCoefficient, DomainId, SurfaceDistance and, where present, the
-// absorption pair) and this piece's field data; the piece itself with one
-// process. Empty string, else (on every rank alike) the reason: the ranks'
-// pieces differ in an array.
-VTKOPAL_EXPORT std::string Gather(
-  vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume);
-
 // The whole volume gathered from the ranks' pieces, kept until a rank's piece
 // changes: its owner's data request updates it, its frames read it.
 class VTKOPAL_EXPORT GatheredVolume
 {
 public:
-  // Collective: gathers again where any rank's piece (not null) changed since
-  // the last Update, after checking that the whole fits on every rank;
-  // nothing to do with one process. Empty, else (alike on every rank) the reason.
-  std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, const int whole[6]);
+  // Collective (every rank calls it together): gathers again where any
+  // rank's piece (not null; `pieceInformation` its pipeline information,
+  // which gives the whole extent) changed since the last Update, after
+  // checking that the whole fits on every rank: the render's point arrays
+  // (ScatteringCoefficient, DomainId, SurfaceDistance and, where present,
+  // the absorption pair) placed at each piece's extent, with this piece's
+  // field data. Nothing to do with one process. Empty, else (alike on every
+  // rank) the reason: the whole does not fit, or the pieces differ in an array.
+  std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation);
   // The whole volume of `piece`: the piece itself with one process; nullptr
   // where the last Update failed or was given another piece.
   vtkImageData* Of(vtkMultiProcessController* controller, vtkImageData* piece) const;

@@ -159,9 +159,7 @@ int vtkOpalSpectralRepresentation::RequestUpdateExtent(
 vtkImageData* vtkOpalSpectralRepresentation::WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation)
 {
   vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
-  int whole[6];
-  pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  const std::string error = this->Gathered->Update(ranks, piece, whole);
+  const std::string error = this->Gathered->Update(ranks, piece, pieceInformation);
   if (!error.empty())
   {
     vtkErrorMacro(<< error);
