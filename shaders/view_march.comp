@@ -396,11 +396,15 @@ float guardedLog(float g)
 }
 
 // The nodes' sums G turned into log G in place, once per resampling rather
-// than four logs per bin; false (nodes unchanged) where nothing scattered
-// (node 0, the longest wavelength's, holds the largest sum).
+// than four logs per bin; false (nodes unchanged) where nothing scattered.
+// Any node may hold the light: a body that absorbs red (a negative
+// absorption exponent) can leave the longest wavelength's sum 0 where the
+// blue nodes' are not.
 bool nodesToLogs(inout float nodes[SPECTRAL_NODES])
 {
-  if (!(nodes[0] > 0.0))
+  float largest = 0.0;
+  for (int k = 0; k < SPECTRAL_NODES; ++k) largest = max(largest, nodes[k]);
+  if (!(largest > 0.0))
   {
     return false;
   }
