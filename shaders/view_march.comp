@@ -549,9 +549,10 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
 
 // The light scattered more than once gathered since the last flush, into the
 // bins through the view transmittance of the crossings in front; restarts.
+// Any node may hold the light (nodesToLogs).
 void flushScatteredLight()
 {
-  if (SCATTERED_LIGHT && scatteredNodes.x > 0.0)
+  if (SCATTERED_LIGHT && any(greaterThan(scatteredNodes, vec4(0.0))))
   {
     vec4 logNodes = vec4(guardedLog(scatteredNodes.x), guardedLog(scatteredNodes.y), guardedLog(scatteredNodes.z),
       guardedLog(scatteredNodes.w));
