@@ -4,7 +4,8 @@
 // camera; a new light, rotation or refractive index reruns the light pass; an
 // aborted light pass leaves no stale field behind; abort is an explicit status;
 // the volume uploaded through staging buffers (the path of a GPU with
-// dedicated memory, forced on lavapipe) renders the same image; so does a
+// dedicated memory, forced on lavapipe) renders the same image, a volume too
+// large for one staging round too; so does a
 // build of only the render's arrays (opal-render's, VolumeArrays::Render).
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
@@ -44,8 +45,8 @@ std::string stages(const opal::FrameStages& ran)
   return "ran:" + s;
 }
 // The path of a GPU with dedicated memory, forced on lavapipe.
-void checkStagingTransfers(
-  const opal::RenderVolume& volume, const opal::RenderParameters& p, const opal::RenderImage& expected)
+void checkStagingTransfers(const opal::RenderVolume& volume, const opal::RenderParameters& p,
+  const opal::RenderImage& expected, const std::string& rounds = "one copy")
 {
   opal::VulkanOptions staging;
   staging.Validation = true;
@@ -53,7 +54,7 @@ void checkStagingTransfers(
   opaltest::SceneRenderer throughStaging(staging);
   const opal::RenderImage image = throughStaging.render(volume, p);
   OPAL_CHECK(identical(expected, image),
-    "a volume uploaded and an image read back through staging buffers (one copy) give the same image");
+    "a volume uploaded and an image read back through staging buffers (" + rounds + ") give the same image");
   const auto messages = throughStaging.context().validationMessages();
   OPAL_CHECK(messages.empty(),
     "the validation layer is silent about the staging copies" + (messages.empty() ? "" : ": " + messages.front()));
@@ -205,6 +206,14 @@ int TestOpalRenderSession(int, char*[])
   checkScatteredLightStages(session, moved);
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
+  // After the frame ticket (which renders the session's volume): fields of
+  // 8.5 M voxels (68 MB of ScatteringCoefficient and DomainId, as of
+  // SurfaceDistance) go up in two rounds of VulkanBuffer::FillRoundBytes.
+  opal::ModelParameters large = model;
+  large.Dimensions = { 256, 128, 260 };
+  const auto largeVolume = opal::buildVolume(large);
+  checkStagingTransfers(largeVolume->renderVolume(), moved, renderer->render(largeVolume->renderVolume(), moved),
+    "fields in two rounds");
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

@@ -37,19 +37,13 @@ void forEachVoxel(const RenderVolume& volume, Function&& f)
   });
 }
 
-// SurfaceDistance as the shaders read it (SurfaceDistanceBinding): each
-// voxel's value and its +x neighbour's, the last voxel of a row repeating its
+// SurfaceDistance as the shaders read it (SurfaceDistanceBinding) at voxel
+// i: its value and its +x neighbour's, the last voxel of a row repeating its
 // own, so that a trilinear read takes four loads instead of eight.
-std::vector<float> surfaceDistancePairs(const RenderVolume& volume)
+gpu::vec2 surfaceDistancePair(const RenderVolume& volume, std::size_t i)
 {
-  const std::size_t voxels = volume.voxelCount();
   const auto rowLength = static_cast<std::size_t>(volume.Dimensions[0]);
-  std::vector<float> pairs(2 * voxels);
-  forEachVoxel(volume, [&](std::size_t i) {
-    pairs[2 * i] = volume.SurfaceDistance[i];
-    pairs[2 * i + 1] = volume.SurfaceDistance[(i + 1) % rowLength == 0 ? i : i + 1];
-  });
-  return pairs;
+  return gpu::vec2(volume.SurfaceDistance[i], volume.SurfaceDistance[(i + 1) % rowLength == 0 ? i : i + 1]);
 }
 
 // Skin cells take their source's values (docs/design.md §3.3).
@@ -60,6 +54,32 @@ void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
   {
     cells[static_cast<std::size_t>(cell.Index)] = cells[static_cast<std::size_t>(cell.Source)];
   }
+}
+
+// Writes a per-voxel field of T into `buffer` from value(i), each skin cell
+// (in index order, skinCells) taking its source's value: round by round
+// (VulkanBuffer::fill), each round's voxels spread over the threads, so the
+// whole field is never built on the host (docs/design.md §3.7).
+template <typename T, typename Value>
+void fillVoxelField(VulkanBuffer& buffer, std::size_t voxels, const std::vector<SkinCell>& skin, Value&& value)
+{
+  constexpr std::size_t Block = 4096;
+  buffer.fill(voxels * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
+    T* values = static_cast<T*>(into);
+    const std::size_t begin = first / sizeof(T), end = begin + count / sizeof(T);
+    parallelFor(0, static_cast<int>((end - begin + Block - 1) / Block), [&](int from, int to) {
+      for (std::size_t i = begin + from * Block; i < std::min(end, begin + to * Block); ++i)
+      {
+        values[i - begin] = value(i);
+      }
+    });
+    auto cell = std::lower_bound(skin.begin(), skin.end(), begin,
+      [](const SkinCell& c, std::size_t index) { return static_cast<std::size_t>(c.Index) < index; });
+    for (; cell != skin.end() && static_cast<std::size_t>(cell->Index) < end; ++cell)
+    {
+      values[static_cast<std::size_t>(cell->Index) - begin] = value(static_cast<std::size_t>(cell->Source));
+    }
+  });
 }
 
 // The coupled-wave model's settings (docs/design.md §7.2): the crystal's mean
@@ -310,11 +330,10 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->FieldPlacement = placement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
-  std::vector<gpu::VoxelCell> cells(voxels);
-  forEachVoxel(volume, [&](std::size_t i) { cells[i] = gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
-  fillSkin(cells, skin);
   uploaded->Cells = deviceLocalBuffer(
-    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", cells.data(), placement);
+    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", nullptr, placement);
+  fillVoxelField<gpu::VoxelCell>(*uploaded->Cells, voxels, skin,
+    [&volume](std::size_t i) { return gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->Medium.Absorption = absorptionCells(volume, skin);
@@ -322,8 +341,10 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->LightAbsorption = deviceLocalBuffer(context,
     absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
     placement);
-  uploaded->SurfaceDistance = deviceLocalBuffer(context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)",
-    surfaceDistancePairs(volume).data(), placement);
+  uploaded->SurfaceDistance =
+    deviceLocalBuffer(context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", nullptr, placement);
+  fillVoxelField<gpu::vec2>(
+    *uploaded->SurfaceDistance, voxels, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); });
   uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field", nullptr, placement);
   uploaded->LightShadow =
     deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);
@@ -338,8 +359,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.empty() ? nullptr : records.data());
   uploaded->Medium.Geometry = VolumeGeometry(volume);
   uploaded->Medium.Scattering.resize(voxels);
-  std::transform(cells.begin(), cells.end(), uploaded->Medium.Scattering.begin(),
-    [](const gpu::VoxelCell& cell) { return cell.scattering; });
+  forEachVoxel(volume, [&](std::size_t i) { uploaded->Medium.Scattering[i] = volume.ScatteringCoefficient[i]; });
+  fillSkin(uploaded->Medium.Scattering, skin);
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
   uploaded->ScatteredLight =
     deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);

@@ -147,31 +147,36 @@ VulkanBuffer::~VulkanBuffer()
 
 void VulkanBuffer::upload(const void* source, std::uint64_t bytes)
 {
-  if (this->Mapped)
-  {
-    std::memcpy(this->Mapped, source, bytes);
-    return;
-  }
-  this->uploadThroughStaging(source, bytes);
+  this->fill(bytes, [source](std::uint64_t first, std::uint64_t count, void* into) {
+    std::memcpy(into, static_cast<const char*>(source) + first, count);
+  });
 }
 
-void VulkanBuffer::uploadThroughStaging(const void* source, std::uint64_t bytes)
+void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
 {
-  if (bytes == 0)
+  if (this->Mapped || bytes == 0)
   {
+    if (bytes > 0)
+    {
+      write(0, bytes, this->Mapped);
+    }
     return;
   }
-  VulkanBuffer staging(this->Context, bytes, this->What + " (staging)", BufferPlacement::HostVisible);
-  std::memcpy(staging.Mapped, source, bytes);
-  this->Context.submitAndWait([&](VkCommandBuffer commands) {
-    const VkBufferCopy region{ 0, 0, bytes };
-    vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
-    auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-      &barrier, 0, nullptr, 0, nullptr);
-  });
+  VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + " (staging)", BufferPlacement::HostVisible);
+  for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
+  {
+    const std::uint64_t count = std::min(bytes - first, FillRoundBytes);
+    write(first, count, staging.Mapped);
+    this->Context.submitAndWait([&](VkCommandBuffer commands) {
+      const VkBufferCopy region{ 0, first, count };
+      vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
+      auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+        &barrier, 0, nullptr, 0, nullptr);
+    });
+  }
 }
 
 } // namespace opal

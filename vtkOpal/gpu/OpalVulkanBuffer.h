@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -54,16 +55,23 @@ public:
   {
     return static_cast<T*>(this->Mapped);
   }
-  // Copies `bytes` from the host into the buffer's start: directly where it
-  // is mapped, else through a staging buffer (waits for the copy).
+  // Copies `bytes` from the host into the buffer's start (fill).
   void upload(const void* source, std::uint64_t bytes);
+  // Writes the buffer's first `bytes` as write(first, count, into) gives
+  // them: bytes [first, first + count) of the content, into `into`. Directly
+  // into the mapped memory, else in rounds through a staging buffer of at most
+  // FillRoundBytes (waiting for each copy), so that a volume's field never
+  // needs a whole host copy besides its source (docs/design.md §3.7).
+  using ContentWriter = std::function<void(std::uint64_t first, std::uint64_t count, void* into)>;
+  void fill(std::uint64_t bytes, const ContentWriter& write);
+  // A round's bytes: a multiple of every field's value (at most 16 bytes).
+  static constexpr std::uint64_t FillRoundBytes = std::uint64_t(64) << 20;
   // Records: the whole buffer set to zero on the device, then a barrier so
   // that the next dispatch (or indirect dispatch) sees it.
   void recordClear(VkCommandBuffer commands) const;
 
 private:
   void allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what);
-  void uploadThroughStaging(const void* source, std::uint64_t bytes);
 
   VulkanContext& Context;
   std::uint64_t Size;
