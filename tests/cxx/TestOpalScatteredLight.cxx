@@ -4,15 +4,18 @@
 // or is absorbed, within the Monte Carlo error of the roulette), the
 // refractive boundary keeping light inside (total internal reflection: a
 // stone of index 1.45 holds more scattered light than an index-matched one),
-// determinism for a seed, and an optical depth beyond the budget: a warning
-// naming the shortfall and a finite field, never NaN.
+// determinism for a seed, the solve shared by processes equal to one
+// process's bit for bit (docs/design.md §8.1), and an optical depth beyond the
+// budget: a warning naming the shortfall and a finite field, never NaN.
 #include "OpalEllipsoidScene.h"
 #include "OpalScatteredLight.h"
 #include "OpalTestHarness.h"
 
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -47,6 +50,34 @@ double fieldMean(const opal::ScatteredLight& field, int node)
   return sum / static_cast<double>(field.MeanRadiancePerScale.size());
 }
 
+// The solve dealt to `shares` shares, each traced on its own and the scores
+// put together, as the ranks of an MPI render do.
+opal::ScatteredLight sharedSolve(
+  const opal::ScatteringMedium& medium, const opal::ScatteredLightRequest& request, int shares)
+{
+  std::vector<std::vector<double>> scores;
+  for (int share = 0; share < shares; ++share)
+  {
+    scores.push_back(*opal::traceScatteredLightShare(medium, request, share, shares, nullptr));
+  }
+  return opal::scatteredLightFromShares(medium, request, scores);
+}
+
+template <typename Work>
+bool refuses(Work&& work, const std::string& naming)
+{
+  try
+  {
+    work();
+  }
+  catch (const std::invalid_argument& e)
+  {
+    std::cout << "refused: " << e.what() << std::endl;
+    return std::string(e.what()).find(naming) != std::string::npos;
+  }
+  return false;
+}
+
 bool allFinite(const opal::ScatteredLight& field)
 {
   for (const auto& values : field.MeanRadiancePerScale)
@@ -70,6 +101,20 @@ int TestOpalScatteredLight(int, char*[])
   OPAL_CHECK(allFinite(*clear), "the field is finite and not negative");
   const auto again = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
   OPAL_CHECK(again->MeanRadiancePerScale == clear->MeanRadiancePerScale, "the same seed gives the same field");
+
+  // Shared by 2, 3 and 5 processes, and by more processes than the solve has tasks: the same field.
+  for (const int shares : { 2, 3, 5, 20 })
+  {
+    const opal::ScatteredLight shared = sharedSolve(medium, requestFor(medium, 1.45, 4096), shares);
+    OPAL_CHECK(shared.MeanRadiancePerScale == clear->MeanRadiancePerScale && shared.Escaped == clear->Escaped,
+      "a solve shared by " + std::to_string(shares) + " equals one process's bit for bit");
+  }
+  const opal::ScatteredLightRequest small = requestFor(medium, 1.45, 64);
+  OPAL_CHECK(refuses([&] { opal::traceScatteredLightShare(medium, small, 2, 2, nullptr); }, "share 2 of 2"),
+    "a share that does not exist is refused");
+  std::vector<std::vector<double>> oneMissing{ *opal::traceScatteredLightShare(medium, small, 0, 2, nullptr), {} };
+  OPAL_CHECK(refuses([&] { opal::scatteredLightFromShares(medium, small, oneMissing); }, "share 1 of 2 holds 0"),
+    "scores of the wrong size are refused, naming the share");
 
   // Total internal reflection keeps the scattered light inside longer.
   const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);

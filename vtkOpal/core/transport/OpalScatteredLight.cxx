@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace opal
 {
@@ -517,6 +518,46 @@ void fieldFromTallies(const ScatteringMedium& medium, const TallyGrid& tally,
         }
   });
 }
+
+// The share that traces task t: tasks interleave the nodes (t % nodes), so
+// dealing (t / nodes + t % nodes) % shares gives each share every node alike
+// where it can (the blue nodes cost the most).
+int taskShare(int task, int shares)
+{
+  return (task / ScatteredLightNodes + task % ScatteredLightNodes) % shares;
+}
+
+std::vector<int> tasksOfShare(int share, int shares)
+{
+  std::vector<int> tasks;
+  for (int t = 0; t < ScatteredLightNodes * TasksPerNode; ++t)
+  {
+    if (taskShare(t, shares) == share)
+    {
+      tasks.push_back(t);
+    }
+  }
+  return tasks;
+}
+
+// A task's score packed: its four powers, then its tally.
+constexpr std::size_t PackedPowers = 4;
+
+void packScore(const TaskScore& score, std::vector<double>& packed)
+{
+  packed.insert(packed.end(), { score.Entered, score.Escaped, score.Absorbed, score.GivenUp });
+  packed.insert(packed.end(), score.Tally.begin(), score.Tally.end());
+}
+
+const double* unpackScore(const double* packed, std::size_t tallySize, TaskScore& score)
+{
+  score.Entered = packed[0];
+  score.Escaped = packed[1];
+  score.Absorbed = packed[2];
+  score.GivenUp = packed[3];
+  score.Tally.assign(packed + PackedPowers, packed + PackedPowers + tallySize);
+  return packed + PackedPowers + tallySize;
+}
 } // namespace
 
 std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, double longestNm)
@@ -535,29 +576,34 @@ std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, 
   return scales;
 }
 
-std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,
-  const ScatteredLightRequest& request, const std::function<bool(double)>& keepGoing)
+std::optional<std::vector<double>> traceScatteredLightShare(const ScatteringMedium& medium,
+  const ScatteredLightRequest& request, int share, int shares, const std::function<bool(double)>& keepGoing)
 {
+  if (shares < 1 || share < 0 || share >= shares)
+  {
+    throw std::invalid_argument("The scattered light's share " + std::to_string(share) + " of " +
+      std::to_string(shares) + " does not exist.");
+  }
   const TallyGrid tally(medium.Geometry);
   std::vector<NodeTransport> nodes;
   for (int m = 0; m < ScatteredLightNodes; ++m)
   {
     nodes.emplace_back(medium, request, tally, request.NodeScales[m]);
   }
-  constexpr int Tasks = ScatteredLightNodes * TasksPerNode;
-  std::vector<TaskScore> scores(Tasks);
+  const std::vector<int> tasks = tasksOfShare(share, shares);
+  std::vector<TaskScore> scores(tasks.size());
   for (TaskScore& score : scores) score.Tally.assign(tally.size(), 0.0);
   const std::int64_t photons = std::max<std::int64_t>(1, request.Photons);
   for (int round = 0; round < Rounds; ++round)
   {
-    // Task t runs node t % nodes: each thread's contiguous tasks hold every node.
-    parallelFor(0, Tasks, [&](int begin, int end) {
-      for (int t = begin; t < end; ++t)
+    parallelFor(0, static_cast<int>(tasks.size()), [&](int begin, int end) {
+      for (int k = begin; k < end; ++k)
       {
+        const int t = tasks[static_cast<std::size_t>(k)];
         const int m = t % ScatteredLightNodes, part = round * TasksPerNode + t / ScatteredLightNodes;
         const std::int64_t first = photons * part / (Rounds * TasksPerNode);
         const std::int64_t last = photons * (part + 1) / (Rounds * TasksPerNode);
-        for (std::int64_t i = first; i < last; ++i) nodes[m].trace(photons * m + i, photons, scores[t]);
+        for (std::int64_t i = first; i < last; ++i) nodes[m].trace(photons * m + i, photons, scores[k]);
       }
     });
     if (keepGoing && !keepGoing(double(round + 1) / Rounds))
@@ -565,10 +611,34 @@ std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium
       return std::nullopt;
     }
   }
+  std::vector<double> packed;
+  packed.reserve(tasks.size() * (PackedPowers + tally.size()));
+  for (const TaskScore& score : scores) packScore(score, packed);
+  return packed;
+}
+
+ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const ScatteredLightRequest& request,
+  const std::vector<std::vector<double>>& shares)
+{
+  const TallyGrid tally(medium.Geometry);
+  const int count = static_cast<int>(shares.size());
+  std::vector<TaskScore> scores(ScatteredLightNodes * TasksPerNode);
+  for (int s = 0; s < count; ++s)
+  {
+    const std::vector<int> tasks = tasksOfShare(s, count);
+    if (shares[s].size() != tasks.size() * (PackedPowers + tally.size()))
+    {
+      throw std::invalid_argument("The scattered light's share " + std::to_string(s) + " of " +
+        std::to_string(count) + " holds " + std::to_string(shares[s].size()) + " values, not the " +
+        std::to_string(tasks.size() * (PackedPowers + tally.size())) + " of its tasks' tallies.");
+    }
+    const double* packed = shares[s].data();
+    for (const int t : tasks) packed = unpackScore(packed, tally.size(), scores[t]);
+  }
   ScatteredLight field;
   std::array<std::vector<double>, ScatteredLightNodes> tallies;
   for (auto& t : tallies) t.assign(tally.size(), 0.0);
-  for (int t = 0; t < Tasks; ++t)
+  for (std::size_t t = 0; t < scores.size(); ++t)
   {
     const TaskScore& score = scores[t];
     std::transform(score.Tally.begin(), score.Tally.end(), tallies[t % ScatteredLightNodes].begin(),
@@ -587,6 +657,17 @@ std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium
       "and the scattered light is short by that share.";
   }
   return field;
+}
+
+std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,
+  const ScatteredLightRequest& request, const std::function<bool(double)>& keepGoing)
+{
+  std::optional<std::vector<double>> scores = traceScatteredLightShare(medium, request, 0, 1, keepGoing);
+  if (!scores)
+  {
+    return std::nullopt;
+  }
+  return scatteredLightFromShares(medium, request, { std::move(*scores) });
 }
 
 } // namespace opal

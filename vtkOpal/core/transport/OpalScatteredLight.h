@@ -79,4 +79,16 @@ std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, 
 std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,
   const ScatteredLightRequest& request, const std::function<bool(double)>& keepGoing);
 
+// The solve shared by several processes (docs/design.md §8.1): its photon
+// tasks are dealt to `shares` shares, and share `share` traces its own and
+// returns their scores packed (nullopt if `keepGoing` returned false). The
+// field from every share's scores, in share order, equals solveScatteredLight's
+// bit for bit: each task traces the same photons, and the tasks are summed in
+// the same order. Throws std::invalid_argument for a share that does not exist
+// or scores of the wrong size.
+std::optional<std::vector<double>> traceScatteredLightShare(const ScatteringMedium& medium,
+  const ScatteredLightRequest& request, int share, int shares, const std::function<bool(double)>& keepGoing);
+ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const ScatteredLightRequest& request,
+  const std::vector<std::vector<double>>& shares);
+
 } // namespace opal
