@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 namespace vtkOpalRankAgreement
 {
@@ -55,6 +56,50 @@ int Ranks(vtkMultiProcessController* controller)
   return ranksController(controller) ? controller->GetNumberOfProcesses() : 1;
 }
 
+std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine)
+{
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  controller->AllGather(&mine, lengths.data(), 1);
+  return lengths;
+}
+
+bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
+  std::vector<char>& bytes)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
+  // The window holds a round of every rank: no larger than the longest bytes need.
+  const vtkIdType round =
+    std::max<vtkIdType>(1, std::min<vtkIdType>({ vtkIdType(64) << 20, (VTK_INT_MAX - 1) / ranks, longest }));
+  std::vector<vtkIdType> offsets(ranks, 0);
+  for (int r = 1; r < ranks; ++r)
+  {
+    offsets[r] = offsets[r - 1] + lengths[r - 1];
+  }
+  bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  std::vector<char> window(static_cast<std::size_t>(round * ranks));
+  const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
+  for (vtkIdType start = 0; start < longest; start += round)
+  {
+    std::vector<vtkIdType> counts(ranks), places(ranks);
+    for (int r = 0; r < ranks; ++r)
+    {
+      counts[r] = std::clamp<vtkIdType>(lengths[r] - start, 0, round);
+      places[r] = r * round;
+    }
+    const vtkIdType count = std::clamp<vtkIdType>(mineLength - start, 0, round);
+    if (!controller->AllGatherV(count > 0 ? mine + start : mine, window.data(), count, counts.data(), places.data()))
+    {
+      return false;
+    }
+    for (int r = 0; r < ranks; ++r)
+    {
+      std::copy_n(&window[places[r]], counts[r], &bytes[offsets[r] + start]);
+    }
+  }
+  return true;
+}
+
 std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& mine)
 {
   vtkMultiProcessController* controller = ranksController(given);
@@ -63,22 +108,18 @@ std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& m
     return { mine };
   }
   const std::string bytes = encode(mine);
-  const int ranks = controller->GetNumberOfProcesses();
-  std::vector<vtkIdType> lengths(ranks), offsets(ranks);
-  const vtkIdType length = static_cast<vtkIdType>(bytes.size());
-  controller->AllGather(&length, lengths.data(), 1);
-  vtkIdType total = 0;
-  for (int r = 0; r < ranks; ++r)
+  const std::vector<vtkIdType> lengths = GatherLengths(controller, static_cast<vtkIdType>(bytes.size()));
+  std::vector<char> received;
+  if (!GatherBytes(controller, bytes.data(), lengths, received))
   {
-    offsets[r] = total;
-    total += lengths[r];
+    throw std::runtime_error("The ranks could not exchange their views of the render.");
   }
-  std::vector<char> received(static_cast<std::size_t>(total));
-  controller->AllGatherV(bytes.data(), received.data(), length, lengths.data(), offsets.data());
   std::vector<RankView> views;
-  for (int r = 0; r < ranks; ++r)
+  vtkIdType offset = 0;
+  for (const vtkIdType length : lengths)
   {
-    views.push_back(decode(received.data() + offsets[r]));
+    views.push_back(decode(received.data() + offset));
+    offset += length;
   }
   return views;
 }

@@ -4,6 +4,8 @@
 // another has left (every rank of a data request calls both, whatever it found).
 #pragma once
 
+#include "vtkType.h"
+
 #include <string>
 #include <vector>
 
@@ -26,6 +28,16 @@ struct RankView
 // This rank's number and the number of ranks.
 int Rank(vtkMultiProcessController* controller);
 int Ranks(vtkMultiProcessController* controller);
+
+// Collective, over the controller's processes (more than one): every rank's
+// `mine`, in rank order.
+std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine);
+// Collective, likewise: every rank's `lengths[r]` bytes from `mine` into
+// `bytes` (the ranks' bytes one after another), in rounds of at most 64 MiB
+// per rank: MPI's counts and displacements are ints. False where an exchange
+// failed (alike on every rank).
+bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
+  std::vector<char>& bytes);
 
 // Every rank's view, in rank order: this rank's alone with one process.
 std::vector<RankView> Gather(vtkMultiProcessController* controller, const RankView& mine);

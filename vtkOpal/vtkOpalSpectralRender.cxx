@@ -6,6 +6,7 @@
 #include "OpalVulkanError.h"
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalSharedScatteredLight.h"
 #include "vtkOpalRenderOutput.h"
 #include "vtkOpalVolumePieces.h"
 
@@ -221,19 +222,20 @@ int vtkOpalSpectralRender::RequestData(
   }
   this->LastFailure.reset();
   const int* extent = request.Extent.data();
-  RenderOutcome outcome = RenderOutcome::Rendered;
   this->LastErrorText.clear();
-  if (!this->GatherVolume(input, inputVector[0]->GetInformationObject(0)))
-  {
-    outcome = RenderOutcome::Failed;
-  }
-  else if (extent[1] < extent[0] || extent[3] < extent[2])
+  this->LastScatteredLightShares = 0;
+  vtkInformation* inputInformation = inputVector[0]->GetInformationObject(0);
+  RenderOutcome outcome =
+    this->GatherVolume(input, inputInformation) ? RenderOutcome::Rendered : RenderOutcome::Failed;
+  const bool renders = extent[1] >= extent[0] && extent[3] >= extent[2];
+  outcome = this->ShareScatteredLight(outcome, renders, inputInformation, input);
+  if (outcome == RenderOutcome::Rendered && !renders)
   {
     output->Initialize();
   }
-  else
+  else if (outcome == RenderOutcome::Rendered)
   {
-    outcome = this->RenderExtent(inputVector[0]->GetInformationObject(0), input, extent, output);
+    outcome = this->RenderExtent(inputInformation, input, extent, output);
   }
   outcome = this->AgreeOnOutcome(outcome);
   if (outcome != RenderOutcome::Rendered)
@@ -363,29 +365,11 @@ void vtkOpalSpectralRender::SayError(const std::string& message)
   vtkErrorMacro(<< message);
 }
 
-vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
-  vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output)
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::Guarded(const std::function<RenderOutcome()>& work)
 {
-  // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputInformation, input);
-  opal::RenderParameters& p = resolved.Parameters;
-  p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
   try
   {
-    if (!this->UploadVolume(this->VolumeOf(input)))
-    {
-      return RenderOutcome::Failed;
-    }
-    const opal::RenderFrame frame = this->Session().render(resolved, [this](double fraction) {
-      this->UpdateProgress(fraction);
-      return !this->GetAbortExecute();
-    });
-    if (this->Publish(frame, output))
-    {
-      return RenderOutcome::Rendered;
-    }
-    // An aborted frame was not a failure of its input: asked for again, it renders.
-    return frame.Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
+    return work();
   }
   catch (const opal::DeviceLostError& e)
   {
@@ -401,6 +385,59 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
     this->SayError(e.what());
   }
   return RenderOutcome::Failed;
+}
+
+std::function<bool(double)> vtkOpalSpectralRender::RequestProgress()
+{
+  return [this](double fraction) {
+    this->UpdateProgress(fraction);
+    return !this->GetAbortExecute();
+  };
+}
+
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareScatteredLight(
+  RenderOutcome sofar, bool renders, vtkInformation* inputInformation, vtkImageData* input)
+{
+  if (vtkOpalRankAgreement::Ranks(this->Controller) < 2)
+  {
+    return sofar;
+  }
+  const RenderOutcome uploaded = sofar == RenderOutcome::Rendered && renders
+    ? this->Guarded([&] { return this->UploadVolume(this->VolumeOf(input)) ? sofar : RenderOutcome::Failed; })
+    : sofar;
+  const bool ready = uploaded == RenderOutcome::Rendered && renders;
+  const opal::ResolvedFrame frame = ready ? this->GetResolvedFrame(inputInformation, input) : opal::ResolvedFrame{};
+  return this->Guarded([&] {
+    this->LastScatteredLightShares = vtkOpalSharedScatteredLight::Solve(this->Controller, ready ? this->RenderSession.get() : nullptr,
+      uploaded != RenderOutcome::Rendered, frame, this->RequestProgress());
+    return uploaded;
+  });
+}
+
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
+  vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output)
+{
+  // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
+  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputInformation, input);
+  opal::RenderParameters& p = resolved.Parameters;
+  p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
+  return this->Guarded([&] {
+    if (!this->UploadVolume(this->VolumeOf(input)))
+    {
+      return RenderOutcome::Failed;
+    }
+    const opal::RenderFrame frame = this->Session().render(resolved, this->RequestProgress());
+    if (frame.Ran.ScatteredLight && this->LastScatteredLightShares == 0)
+    {
+      this->LastScatteredLightShares = 1; // solved alone, in the frame
+    }
+    if (this->Publish(frame, output))
+    {
+      return RenderOutcome::Rendered;
+    }
+    // An aborted frame was not a failure of its input: asked for again, it renders.
+    return frame.Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
+  });
 }
 
 bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData* output)

@@ -57,6 +57,7 @@
 #include "vtkOpalVolumePieces.h" // for the gathered volume
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -116,6 +117,11 @@ public:
   /// whole volume (docs/design.md §8.1): where no rank's piece had changed,
   /// only the ranks' check of that; ~0 with one process.
   vtkGetMacro(LastGatherSeconds, double);
+  /// How many ranks traced the every-order field (ScatteringOrders all) that
+  /// this rank's last data request solved (docs/design.md §8.1): under MPI the
+  /// ranks share the photons, one process solves alone (1); 0 where the
+  /// request solved none (single scattering, or a field held from before).
+  vtkGetMacro(LastScatteredLightShares, int);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -197,6 +203,16 @@ private:
     Aborted,
     DeviceLost, // said in an error; not the request's failure: asked again, it renders on a new device
   };
+  // `work`'s outcome, or the failure of the exception it threw, said in an
+  // error (a lost device dropped, DropLostDevice).
+  RenderOutcome Guarded(const std::function<RenderOutcome()>& work);
+  // The data request's progress, false once it is asked to abort.
+  std::function<bool(double)> RequestProgress();
+  // Under MPI, collective, every rank between the gather and its frame:
+  // the ranks that render (`renders`, so far `sofar`) upload the volume, and
+  // they share every order's photon solve (vtkOpalSharedScatteredLight).
+  RenderOutcome ShareScatteredLight(
+    RenderOutcome sofar, bool renders, vtkInformation* inputInformation, vtkImageData* input);
   // Renders the update extent of the input into `output`.
   RenderOutcome RenderExtent(
     vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output);
@@ -269,6 +285,7 @@ private:
   vtkImageData* VolumeOf(vtkImageData* input) const;
   vtkOpalVolumePieces::GatheredVolume Gathered;
   double LastGatherSeconds = 0;
+  int LastScatteredLightShares = 0;
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

@@ -99,44 +99,6 @@ void placeRows(const std::vector<char>& bytes, const std::vector<int>& extents, 
   }
 }
 
-// Every rank's `lengths[r]` bytes from `mine` into `bytes` (the ranks' pieces
-// one after another), in rounds of at most 64 MiB per rank: MPI's counts and
-// displacements are ints. False where an exchange failed (alike on every rank).
-bool gatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
-  std::vector<char>& bytes)
-{
-  const int ranks = controller->GetNumberOfProcesses();
-  const vtkIdType round = std::min<vtkIdType>(vtkIdType(64) << 20, (VTK_INT_MAX - 1) / ranks);
-  std::vector<vtkIdType> offsets(ranks, 0);
-  for (int r = 1; r < ranks; ++r)
-  {
-    offsets[r] = offsets[r - 1] + lengths[r - 1];
-  }
-  bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
-  std::vector<char> window(static_cast<std::size_t>(round * ranks));
-  const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
-  const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
-  for (vtkIdType start = 0; start < longest; start += round)
-  {
-    std::vector<vtkIdType> counts(ranks), places(ranks);
-    for (int r = 0; r < ranks; ++r)
-    {
-      counts[r] = std::clamp<vtkIdType>(lengths[r] - start, 0, round);
-      places[r] = r * round;
-    }
-    const vtkIdType count = std::clamp<vtkIdType>(mineLength - start, 0, round);
-    if (!controller->AllGatherV(count > 0 ? mine + start : mine, window.data(), count, counts.data(), places.data()))
-    {
-      return false;
-    }
-    for (int r = 0; r < ranks; ++r)
-    {
-      std::copy_n(&window[places[r]], counts[r], &bytes[offsets[r] + start]);
-    }
-  }
-  return true;
-}
-
 // The array as sent: itself where its values lie in one block, else an
 // ordinary copy (a numpy or implicit array).
 vtkSmartPointer<vtkDataArray> contiguous(vtkDataArray* array)
@@ -180,9 +142,8 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(agreed[0]));
   array->SetNumberOfComponents(agreed[1]);
   const vtkIdType tupleBytes = agreed[1] * array->GetDataTypeSize();
-  std::vector<vtkIdType> lengths(ranks);
-  const vtkIdType length = mine && !empty ? mine->GetNumberOfValues() * mine->GetDataTypeSize() : 0;
-  controller->AllGather(&length, lengths.data(), 1);
+  const std::vector<vtkIdType> lengths = vtkOpalRankAgreement::GatherLengths(
+    controller, mine && !empty ? mine->GetNumberOfValues() * mine->GetDataTypeSize() : 0);
   for (int r = 0; r < ranks; ++r)
   {
     if (lengths[r] != pointsIn(&extents[6 * r]) * tupleBytes)
@@ -191,7 +152,7 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
     }
   }
   std::vector<char> bytes;
-  if (!gatherBytes(controller, mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr,
+  if (!vtkOpalRankAgreement::GatherBytes(controller, mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr,
         lengths, bytes))
   {
     return std::string("The ranks could not exchange the volume's ") + name + ".";

@@ -10,7 +10,7 @@ tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too). The grains case renders the pinfire preset's grains; the fire
 case the fire-opal preset (an absorbing body, coupled-wave fcc, every order)
-lit low from the side.
+lit low from the side, its every-order photon solve shared by the ranks.
 The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
@@ -64,8 +64,14 @@ else:
     arguments = ["48", "24", "60"] + (["96", "72"] + renders[kind] if kind in renders else []) + \
         (["--voronoi"] if kind == "voronoi" else [])
     writer = os.path.join(here, "opal_write_pipeline.py")
-    run([config.PVBATCH, writer, serial] + arguments)
-    run(mpiexec + [writer, parallel] + arguments)
+    alone = run([config.PVBATCH, writer, serial] + arguments).stdout
+    together = run(mpiexec + [writer, parallel] + arguments).stdout
+    if kind == "fire":
+        # Every order: the ranks share the photon solve (each traces a share,
+        # all build the field from every share's scores, docs/design.md §8.1).
+        check("every-order field traced by 1 rank(s)" in alone, "one process solves the every-order field alone:\n" + alone)
+        check(f"every-order field traced by {ranks} rank(s)" in together,
+              f"the {ranks} ranks share the every-order solve:\n" + together)
 
 
 def read(reader_class, path):

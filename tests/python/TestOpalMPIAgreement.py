@@ -2,7 +2,9 @@
 Ranks whose settings differ, a rank without a Vulkan device and a rank whose
 settings are refused each give one clear error on every rank, no image piece
 on any rank, and no hang (each run is bounded; a hang fails the test);
-ranks that agree render.
+ranks that agree render. With every order of scattering the ranks share the
+photon solve; a rank without a device, or one aborting inside the shared
+solve, leaves every rank without an image piece, and none hangs.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -52,4 +54,15 @@ check(len(images) == ranks and all(points > 0 for points in images.values()),
 expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
 expect_refused("information", "ViewAngle")
 expect_refused("same", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
+
+output = run_ranks("every-order")
+shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares (\d+)", output)}
+check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
+      f"every order: ranks that agree render their pieces:\n{output[-3000:]}")
+check(shares == {r: ranks for r in range(ranks)}, f"every order: all {ranks} ranks traced the field together: {shares}")
+expect_refused("every-order", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
+output = run_ranks("abort")
+images = images_of(output)
+check(len(images) == ranks and all(points == 0 for points in images.values()),
+      f"an abort in the shared solve on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

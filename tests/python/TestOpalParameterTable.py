@@ -34,6 +34,7 @@ PROXIES = {
         "DeviceIndex": "the Vulkan device, not the frame",
         "DeviceMemoryLimit": "the device's memory limit, not the frame",
         "LastGatherSeconds": "what the last update measured (information only), not a setting",
+        "LastScatteredLightShares": "what the last update did (information only), not a setting",
     }),
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",

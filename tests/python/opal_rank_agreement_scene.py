@@ -1,8 +1,11 @@
 """pvbatch --symmetric helper: every rank renders a small opal, rank 1 with
 `StepSize` 0.5 in the settings case, a bad `ViewAngle` in the information
-case. Each rank then prints whether it holds an image piece ("rank R image
-POINTS"), so the driver sees that none holds part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information"""
+case; with every order of scattering in the every-order case, and in the
+abort case with rank 1 asking to abort at its first progress (inside the
+ranks' shared photon solve). Each rank then prints whether it holds an image
+piece and how many ranks traced its every-order field ("rank R image POINTS
+shares S"), so the driver sees that none holds part of a failed image.
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -15,10 +18,16 @@ LoadPlugin(config.PLUGIN, remote=False, ns=globals())
 rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
 volume = OpalVolume(Dimensions=[40, 20, 50], DomainCount=30)  # noqa: F821 (from the plugin)
 render = OpalSpectralRender(Input=volume, ImageSize=[48, 36])  # noqa: F821
+if case in ("every-order", "abort"):
+    render.ScatteringOrders = "all"
+if rank == 1 and case == "abort":
+    render.GetClientSideObject().AddObserver("ProgressEvent", lambda filter, _: filter.SetAbortExecute(1))
 if rank == 1 and case == "settings":
     render.StepSize = 0.5
 if rank == 1 and case == "information":
     render.ViewAngle = 200
 render.UpdatePipeline()
 image = render.GetClientSideObject().GetOutputDataObject(0)
-print(f"rank {rank} image {image.GetNumberOfPoints()}", flush=True)
+render.UpdatePropertyInformation()
+shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
+print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares}", flush=True)

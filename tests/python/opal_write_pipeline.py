@@ -30,3 +30,6 @@ if len(arguments) > 6:
     result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]], **light)  # noqa: F821
 # Inline binary: Debian's VTK 9.2 with its patched expat cannot read appended XML data.
 SaveData(output, proxy=result, DataMode="Binary")
+if len(arguments) > 6:
+    result.UpdatePropertyInformation()
+    print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")

@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <exception>
+#include <optional>
+#include <stdexcept>
 #include <functional>
 #include <vector>
 
@@ -125,26 +128,92 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
 bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
 {
   this->ScatteredLight.reset();
+  const std::optional<opal::ScatteredLight> field = solveScatteredLight(this->Volume->Medium,
+    scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
+  if (!field)
+  {
+    return false;
+  }
+  this->holdScatteredLight(setup, *field);
+  return true;
+}
+
+// A preview (the live view's drag, where a headlight moves with the eye)
+// reads the field the session holds, solved for an earlier light; the final
+// frame solves for its own (docs/design.md §3.10).
+bool RenderSession::scatteredLightServes(const FrameSetup& setup) const
+{
+  return this->ScatteredLight && (setup.Preview || *this->ScatteredLight == scatteredLightKey(setup));
+}
+
+ScatteredLightRequest RenderSession::scatteredLightRequest(const FrameSetup& setup)
+{
   ScatteredLightRequest request;
   request.Light = setup.Camera.Light;
   request.LightStrength = setup.Block.apexDistanceSquared;
   request.RefractiveIndex = setup.Parameters.RefractiveIndex;
   request.NodeScales = scatteredLightScales(setup.Bins.front().Lambda, setup.Bins.back().Lambda);
   request.Photons = setup.Parameters.ScatteringPhotons;
-  const std::optional<opal::ScatteredLight> field = solveScatteredLight(
-    this->Volume->Medium, request, [&progress](double done) { return progress.report(0.2 * done); });
-  if (!field)
-  {
-    return false;
-  }
+  return request;
+}
+
+void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field)
+{
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
   v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context,
-    field->MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
-  v.ScatteredLight->upload(field->MeanRadiancePerScale.data(), field->MeanRadiancePerScale.size() * sizeof(gpu::vec4));
+    field.MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
+  v.ScatteredLight->upload(field.MeanRadiancePerScale.data(), field.MeanRadiancePerScale.size() * sizeof(gpu::vec4));
   this->bindBuffers();
-  this->ScatteredLightWarning = field->Warning;
+  this->ScatteredLightWarning = field.Warning;
   this->ScatteredLight = scatteredLightKey(setup);
+}
+
+bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const
+{
+  if (!this->Volume || frame.Parameters.ScatteringOrders != ScatteringOrdersKind::All)
+  {
+    return false;
+  }
+  return !this->scatteredLightServes(this->setUpFrame(frame));
+}
+
+bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares,
+  const ScoresExchange& exchange, const RenderProgress& callback)
+{
+  const auto start = Clock::now();
+  std::optional<FrameSetup> setup;
+  std::optional<std::vector<double>> mine;
+  std::exception_ptr failure;
+  try
+  {
+    this->cancelFrame();
+    this->ScatteredLight.reset();
+    if (!this->Volume)
+    {
+      throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
+    }
+    setup = this->setUpFrame(frame);
+    Progress progress(callback);
+    mine = traceScatteredLightShare(this->Volume->Medium, scatteredLightRequest(*setup), share, shares,
+      [&progress](double done) { return progress.report(0.2 * done); });
+  }
+  catch (...)
+  {
+    failure = std::current_exception();
+    mine.reset();
+  }
+  const std::optional<std::vector<std::vector<double>>> scores = exchange(mine);
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (!mine || !scores)
+  {
+    return false;
+  }
+  this->holdScatteredLight(*setup, scatteredLightFromShares(this->Volume->Medium, scatteredLightRequest(*setup), *scores));
+  this->PendingScatteredSeconds = secondsSince(start);
   return true;
 }
 

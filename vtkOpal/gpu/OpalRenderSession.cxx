@@ -314,6 +314,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->Volume.reset();
   this->LightField.reset();
   this->ScatteredLight.reset();
+  this->PendingScatteredSeconds = -1;
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, refused up front if too large.
@@ -466,16 +467,15 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   timings.LightPass = secondsSince(lightStart);
   const auto scatteredStart = Clock::now();
   const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
-  // A preview (the live view's drag, where a headlight moves with the eye)
-  // reads the field the session holds, solved for an earlier light; the
-  // final frame solves for its own (docs/design.md §3.10).
-  const bool heldServes = this->ScatteredLight && (setup.Preview || *this->ScatteredLight == scatteredLightKey(setup));
-  frame.Ran.ScatteredLight = everyOrder && !heldServes;
+  frame.Ran.ScatteredLight = everyOrder && !this->scatteredLightServes(setup);
   if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
   {
     return frame;
   }
   timings.ScatteredLight = secondsSince(scatteredStart);
+  // A field the processes solved together for this frame (solveScatteredLightShared).
+  frame.Ran.ScatteredLight = frame.Ran.ScatteredLight || (everyOrder && this->PendingScatteredSeconds >= 0);
+  timings.ScatteredLight += std::max(0.0, std::exchange(this->PendingScatteredSeconds, -1.0));
 
   const auto marchStart = Clock::now();
   double exposure = setup.Parameters.Exposure;

@@ -23,6 +23,7 @@
 #include <memory>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace opal
 {
@@ -30,6 +31,8 @@ namespace opal
 class ComputePipeline;
 class StorageBufferBindings;
 class VulkanBuffer;
+struct ScatteredLight;
+struct ScatteredLightRequest;
 struct WavelengthBin;
 
 // Which stages a frame ran; the others reused what the session kept.
@@ -89,6 +92,23 @@ public:
   RenderFrame render(const RenderParameters& parameters, const RenderProgress& progress = nullptr);
   // Renders a frame resolved by resolveFrame (what the VTK filter renders).
   RenderFrame render(const ResolvedFrame& frame, const RenderProgress& progress = nullptr);
+
+  // Every order's scattered light (docs/design.md §3.10) solved by several
+  // processes together, before their frames (§8.1). needsScatteredLight:
+  // whether `frame` would solve it (every order, and no field held serves
+  // it). solveScatteredLightShared traces share `share` of `shares` of the
+  // photons, hands its scores to `exchange`, which gives back every share's
+  // in share order (nullopt where any share failed), and holds the field for
+  // the frames that follow, which then reuse it. `exchange` is called exactly
+  // once whatever happens before it (a failed or aborted trace passes
+  // nullopt), so that no process waits in an exchange another left; an
+  // exception met before it is rethrown after it. False if the trace was
+  // aborted or a share failed: a frame then solves on its own.
+  using ScoresExchange =
+    std::function<std::optional<std::vector<std::vector<double>>>(const std::optional<std::vector<double>>& mine)>;
+  bool needsScatteredLight(const ResolvedFrame& frame) const;
+  bool solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares, const ScoresExchange& exchange,
+    const RenderProgress& progress = nullptr);
 
   // Whether the frame's eye is inside the opal (which render refuses); false
   // without a volume. It reads only the host copy of the volume's surface,
@@ -160,6 +180,9 @@ private:
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
+  bool scatteredLightServes(const FrameSetup& setup) const;
+  static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
+  void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);
   // What a march covers: a rectangle (x, y, width, height) of an image of
@@ -214,6 +237,7 @@ private:
   std::string ScatteredLightWarning;                           // the solve's shortfall, if any
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
+  double PendingScatteredSeconds = -1; // >= 0: solveScatteredLightShared solved the field the next frame reads
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
   // Each pass's work per submit, from its last submit's cost (docs/design.md
   // §3.7); until measured, what took a fraction of a second on lavapipe.

@@ -1,0 +1,25 @@
+// Every order's photon solve shared by the ranks of an MPI render
+// (docs/design.md §8.1): each rank holds the whole volume, so each could solve
+// the scattered light alone; together each traces a share of the photons and
+// every rank builds the field from all the shares' scores, equal bit for bit
+// to one process's (opal::traceScatteredLightShare).
+#pragma once
+
+#include "OpalRenderSession.h"
+
+class vtkMultiProcessController;
+
+namespace vtkOpalSharedScatteredLight
+{
+// Collective over the controller's ranks: every rank of a data request calls
+// it once, between the volume's gather and its frame, whatever it found.
+// `session` is this rank's, its volume uploaded for `frame`, or nullptr where
+// the rank renders nothing or `failed` the request already. Where two or more
+// ranks need a new field, they trace their shares and each holds the field,
+// which its frame then reuses; otherwise nothing happens, and a frame that
+// needs the field solves it alone. Returns the shares that traced the field
+// this rank now holds (0: none was shared). An exception from the session is
+// rethrown only once no rank can wait for this one.
+int Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
+  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress);
+} // namespace vtkOpalSharedScatteredLight
