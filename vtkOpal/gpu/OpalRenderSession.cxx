@@ -24,19 +24,6 @@ using namespace sessiondetail;
 
 namespace
 {
-// Calls f(i) for every voxel index i, the z-slices spread over the threads.
-template <typename Function>
-void forEachVoxel(const RenderVolume& volume, Function&& f)
-{
-  const auto slice = static_cast<std::size_t>(volume.Dimensions[0]) * static_cast<std::size_t>(volume.Dimensions[1]);
-  parallelFor(0, volume.Dimensions[2], [&](int kBegin, int kEnd) {
-    for (std::size_t i = static_cast<std::size_t>(kBegin) * slice; i < static_cast<std::size_t>(kEnd) * slice; ++i)
-    {
-      f(i);
-    }
-  });
-}
-
 // SurfaceDistance as the shaders read it (SurfaceDistanceBinding) at voxel
 // i: its value and its +x neighbour's, the last voxel of a row repeating its
 // own, so that a trilinear read takes four loads instead of eight.
@@ -46,39 +33,44 @@ gpu::vec2 surfaceDistancePair(const RenderVolume& volume, std::size_t i)
   return gpu::vec2(volume.SurfaceDistance[i], volume.SurfaceDistance[(i + 1) % rowLength == 0 ? i : i + 1]);
 }
 
-// Skin cells take their source's values (docs/design.md §3.3).
-template <typename Cell>
-void fillSkin(std::vector<Cell>& cells, const std::vector<SkinCell>& skin)
+// Writes value(i) for the voxels i in [begin, end) into values[i - begin],
+// spread over the threads in blocks, each skin cell among them (in index
+// order, skinCells) taking its source's value (docs/design.md §3.3).
+template <typename T, typename Value>
+void writeVoxels(T* values, std::size_t begin, std::size_t end, const std::vector<SkinCell>& skin, Value&& value)
 {
-  for (const SkinCell& cell : skin)
+  constexpr std::size_t Block = 4096;
+  parallelFor(0, static_cast<int>((end - begin + Block - 1) / Block), [&](int from, int to) {
+    for (std::size_t i = begin + from * Block; i < std::min(end, begin + to * Block); ++i)
+    {
+      values[i - begin] = value(i);
+    }
+  });
+  auto cell = std::lower_bound(skin.begin(), skin.end(), begin,
+    [](const SkinCell& c, std::size_t index) { return static_cast<std::size_t>(c.Index) < index; });
+  for (; cell != skin.end() && static_cast<std::size_t>(cell->Index) < end; ++cell)
   {
-    cells[static_cast<std::size_t>(cell.Index)] = cells[static_cast<std::size_t>(cell.Source)];
+    values[static_cast<std::size_t>(cell->Index) - begin] = value(static_cast<std::size_t>(cell->Source));
   }
 }
 
-// Writes a per-voxel field of T into `buffer` from value(i), each skin cell
-// (in index order, skinCells) taking its source's value: round by round
-// (VulkanBuffer::fill), each round's voxels spread over the threads, so the
-// whole field is never built on the host (docs/design.md §3.7).
+// A per-voxel field of T on the host (writeVoxels over every voxel).
+template <typename T, typename Value>
+std::vector<T> voxelValues(std::size_t voxels, const std::vector<SkinCell>& skin, Value&& value)
+{
+  std::vector<T> values(voxels);
+  writeVoxels(values.data(), 0, voxels, skin, value);
+  return values;
+}
+
+// A per-voxel field of T written into `buffer` round by round
+// (VulkanBuffer::fill), so the whole field is never built on the host
+// (docs/design.md §3.7).
 template <typename T, typename Value>
 void fillVoxelField(VulkanBuffer& buffer, std::size_t voxels, const std::vector<SkinCell>& skin, Value&& value)
 {
-  constexpr std::size_t Block = 4096;
   buffer.fill(voxels * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
-    T* values = static_cast<T*>(into);
-    const std::size_t begin = first / sizeof(T), end = begin + count / sizeof(T);
-    parallelFor(0, static_cast<int>((end - begin + Block - 1) / Block), [&](int from, int to) {
-      for (std::size_t i = begin + from * Block; i < std::min(end, begin + to * Block); ++i)
-      {
-        values[i - begin] = value(i);
-      }
-    });
-    auto cell = std::lower_bound(skin.begin(), skin.end(), begin,
-      [](const SkinCell& c, std::size_t index) { return static_cast<std::size_t>(c.Index) < index; });
-    for (; cell != skin.end() && static_cast<std::size_t>(cell->Index) < end; ++cell)
-    {
-      values[static_cast<std::size_t>(cell->Index) - begin] = value(static_cast<std::size_t>(cell->Source));
-    }
+    writeVoxels(static_cast<T*>(into), first / sizeof(T), (first + count) / sizeof(T), skin, value);
   });
 }
 
@@ -168,13 +160,10 @@ std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::ve
   {
     return {};
   }
-  std::vector<gpu::vec2> cells(volume.voxelCount());
-  forEachVoxel(volume, [&](std::size_t i) {
+  return voxelValues<gpu::vec2>(volume.voxelCount(), skin, [&volume](std::size_t i) {
     const float absorption = volume.AbsorptionCoefficient[i];
-    cells[i] = volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
+    return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
   });
-  fillSkin(cells, skin);
-  return cells;
 }
 
 // The absorption cells on the device; without absorption a placeholder,
@@ -359,9 +348,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
   uploaded->Medium.Geometry = VolumeGeometry(volume);
-  uploaded->Medium.Scattering.resize(voxels);
-  forEachVoxel(volume, [&](std::size_t i) { uploaded->Medium.Scattering[i] = volume.ScatteringCoefficient[i]; });
-  fillSkin(uploaded->Medium.Scattering, skin);
+  uploaded->Medium.Scattering =
+    voxelValues<float>(voxels, skin, [&volume](std::size_t i) { return volume.ScatteringCoefficient[i]; });
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
   uploaded->ScatteredLight =
     deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);
