@@ -64,13 +64,13 @@ std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkI
 }
 
 bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
-  std::vector<char>& bytes)
+  std::vector<char>& bytes, vtkIdType roundBytes)
 {
   const int ranks = controller->GetNumberOfProcesses();
   const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
   // The window holds a round of every rank: no larger than the longest bytes need.
   const vtkIdType round =
-    std::max<vtkIdType>(1, std::min<vtkIdType>({ vtkIdType(64) << 20, (VTK_INT_MAX - 1) / ranks, longest }));
+    std::max<vtkIdType>(1, std::min<vtkIdType>({ roundBytes, (VTK_INT_MAX - 1) / ranks, longest }));
   std::vector<vtkIdType> offsets(ranks, 0);
   for (int r = 1; r < ranks; ++r)
   {

@@ -4,6 +4,7 @@
 // another has left (every rank of a data request calls both, whatever it found).
 #pragma once
 
+#include "vtkOpalModule.h" // for the export macro
 #include "vtkType.h"
 
 #include <string>
@@ -31,13 +32,14 @@ int Ranks(vtkMultiProcessController* controller);
 
 // Collective, over the controller's processes (more than one): every rank's
 // `mine`, in rank order.
-std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine);
+VTKOPAL_EXPORT std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine);
 // Collective, likewise: every rank's `lengths[r]` bytes from `mine` into
-// `bytes` (the ranks' bytes one after another), in rounds of at most 64 MiB
-// per rank: MPI's counts and displacements are ints. False where an exchange
-// failed (alike on every rank).
-bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
-  std::vector<char>& bytes);
+// `bytes` (the ranks' bytes one after another), in rounds of at most
+// `roundBytes` (64 MiB) per rank: MPI's counts and displacements are ints.
+// False where an exchange failed (alike on every rank).
+constexpr vtkIdType RoundBytes = vtkIdType(64) << 20;
+VTKOPAL_EXPORT bool GatherBytes(vtkMultiProcessController* controller, const char* mine,
+  const std::vector<vtkIdType>& lengths, std::vector<char>& bytes, vtkIdType roundBytes = RoundBytes);
 
 // Every rank's view, in rank order: this rank's alone with one process.
 std::vector<RankView> Gather(vtkMultiProcessController* controller, const RankView& mine);
