@@ -20,6 +20,8 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <exception>
+#include <functional>
 #include <future>
 #include <memory>
 #include <iostream>
@@ -90,20 +92,21 @@ std::vector<OutputName> outputNames(const Outputs& outputs)
 
 // Builds the volume with only the arrays the render reads
 // (VolumeArrays::Render: no description), warning about a small shape or
-// domains that could not be placed; throws on failure.
-opal::BuiltVolume buildRenderVolume(const opal::ModelParameters& model)
+// domains that could not be placed; nothing where `keepBuilding` said stop.
+std::optional<opal::BuiltVolume> buildRenderVolume(
+  const opal::ModelParameters& model, const std::function<bool()>& keepBuilding)
 {
   ProgressBar volumeBar("volume");
   std::optional<opal::BuiltVolume> volume = opal::buildVolume(
     model,
-    [&volumeBar](double fraction) {
+    [&](double fraction) {
       volumeBar.show(fraction);
-      return true;
+      return keepBuilding();
     },
     opal::VolumeArrays::Render);
   if (!volume)
   {
-    throw std::runtime_error("the volume could not be built");
+    return std::nullopt;
   }
   if (const std::string small = opal::smallShapeWarning(model); !small.empty())
   {
@@ -115,7 +118,7 @@ opal::BuiltVolume buildRenderVolume(const opal::ModelParameters& model)
               << volume->Layout.requestedCount() << " domains could be placed within MaxPlacementAttempts."
               << std::endl;
   }
-  return std::move(*volume);
+  return volume;
 }
 
 // Renders on the session's worker (its frame ticket) while this thread shows
@@ -155,9 +158,38 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   vulkan.MemoryLimitBytes = static_cast<std::uint64_t>(std::max(0, options.deviceMemoryLimit())) << 20;
   std::future<std::unique_ptr<opal::RenderSession>> starting =
     std::async(std::launch::async, [vulkan] { return std::make_unique<opal::RenderSession>(vulkan); });
-  const opal::BuiltVolume volume = buildRenderVolume(model);
-  const std::unique_ptr<opal::RenderSession> session = starting.get();
-  session->setVolume(volume.renderVolume());
+  // Once started, the device refuses a volume whose fields cannot fit
+  // before the volume is built (a 10 um stone: minutes), or before it is
+  // uploaded where the build finished first.
+  std::unique_ptr<opal::RenderSession> session;
+  std::exception_ptr refused;
+  const std::uint64_t voxels = static_cast<std::uint64_t>(model.Dimensions[0]) *
+    static_cast<std::uint64_t>(model.Dimensions[1]) * static_cast<std::uint64_t>(model.Dimensions[2]);
+  auto checkDevice = [&](bool wait) {
+    if (!session && !refused && (wait || starting.wait_for(std::chrono::seconds(0)) == std::future_status::ready))
+    {
+      try
+      {
+        session = starting.get();
+        session->checkVolumeFits(voxels, model.absorbs(), parameters);
+      }
+      catch (...)
+      {
+        refused = std::current_exception();
+      }
+    }
+    return !refused;
+  };
+  const std::optional<opal::BuiltVolume> volume = buildRenderVolume(model, [&] { return checkDevice(false); });
+  if (!checkDevice(true))
+  {
+    std::rethrow_exception(refused);
+  }
+  if (!volume)
+  {
+    throw std::runtime_error("the volume could not be built");
+  }
+  session->setVolume(volume->renderVolume());
   opal::RenderFrame frame = renderInBackground(*session, parameters); // its image is moved out below
   deviceName = session->context().deviceName();
   // With OPAL_VULKAN_VALIDATION set, what the validation layer said is shown, and fails the run.

@@ -585,14 +585,24 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
 
 // Memory budget: refuse up front what cannot fit, with the estimate: on the
 // device, the volume (already there) and the images; on the host, the arrays.
+void RenderSession::checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters)
+{
+  const std::uint64_t bytes = volumeDeviceBytes(voxels, absorbs, parameters);
+  if (bytes > this->context().memoryBudget())
+  {
+    throw VulkanError("the volume's fields for this render need about " + formatBytes(bytes) +
+        " of device memory, more than " + this->Context->memoryBudgetText() + "; use fewer voxels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
+}
+
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const std::uint64_t wavelengths = setup.Bins.size();
   const std::uint64_t pixels = setup.Pixels;
   const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
-  const std::uint64_t volumeBytes = static_cast<std::uint64_t>(this->Volume->Shape.voxelCount()) *
-    (deviceBytesPerVoxel(this->Volume->Absorbs) + (conservesEnergy(setup.Parameters) ? sizeof(gpu::LightShadow) : 0) +
-      (setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
+  const std::uint64_t volumeBytes =
+    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters);
   const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
       (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum)) +
     pixels * (3 * 4 + 4) +

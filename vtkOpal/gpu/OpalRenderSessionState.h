@@ -33,6 +33,14 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
+// The device fields of a volume of `voxels` for frames with `p`: the
+// volume's own, the Bragg shadows with energy conservation (docs/design.md
+// §7.2) and the every-order field (§3.10).
+inline std::uint64_t volumeDeviceBytes(std::uint64_t voxels, bool absorbs, const RenderParameters& p)
+{
+  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
+                    (p.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
+}
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);
 
