@@ -94,7 +94,7 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
     }
     for (int r = 0; r < ranks; ++r)
     {
-      std::copy_n(&window[places[r]], counts[r], &bytes[offsets[r] + start]);
+      std::copy_n(window.data() + places[r], counts[r], bytes.data() + offsets[r] + start);
     }
   }
   return true;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <numeric>
+#include <stdexcept>
 
 namespace vtkOpalSharedScatteredLight
 {
@@ -21,16 +22,31 @@ enum ShareCode
   Failed = 2,    // has failed the request: no rank exchanges scores
 };
 
+// What a solver sends first in the exchange of scores.
+enum ShareState : char
+{
+  ShareFailed = 0,
+  ShareTraced = 1,
+  ShareAborted = 2,
+};
+
+// The scores every solver sent, in rank order, which is their share order;
+// nullopt where a share failed or was aborted (`Aborted` says which).
+struct Exchanged
+{
+  std::optional<std::vector<std::vector<double>>> Scores;
+  bool Aborted = false;
+};
+
 // Collective: this rank's scores sent (`mine` nullptr: a bystander sends
-// nothing; nullopt: its share failed), every solver's received in rank order,
-// which is their share order; nullopt where any solver's share failed.
-std::optional<std::vector<std::vector<double>>> exchangeScores(vtkMultiProcessController* controller,
-  const std::vector<int>& solvers, const std::optional<std::vector<double>>* mine)
+// nothing; nullopt: its share stopped, `aborted` or failed), every solver's received.
+Exchanged exchangeScores(vtkMultiProcessController* controller, const std::vector<int>& solvers,
+  const std::optional<std::vector<double>>* mine, bool aborted)
 {
   std::vector<char> bytes;
   if (mine)
   {
-    bytes.push_back(*mine ? 1 : 0);
+    bytes.push_back(*mine ? ShareTraced : aborted ? ShareAborted : ShareFailed);
     const std::size_t size = *mine ? (*mine)->size() * sizeof(double) : 0;
     bytes.resize(1 + size);
     if (size > 0)
@@ -43,32 +59,39 @@ std::optional<std::vector<std::vector<double>>> exchangeScores(vtkMultiProcessCo
   std::vector<char> all;
   if (!vtkOpalRankAgreement::GatherBytes(controller, bytes.data(), lengths, all))
   {
-    return std::nullopt;
+    throw std::runtime_error("The ranks could not exchange the every-order solve's scores.");
   }
   std::vector<vtkIdType> offsets(lengths.size(), 0);
   std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  Exchanged exchanged;
   std::vector<std::vector<double>> scores;
   for (const int rank : solvers)
   {
     const char* sent = all.data() + offsets[rank];
-    if (lengths[rank] < 1 || sent[0] != 1)
+    const char state = lengths[rank] > 0 ? sent[0] : static_cast<char>(ShareFailed);
+    exchanged.Aborted = exchanged.Aborted || state == ShareAborted;
+    if (state != ShareTraced)
     {
-      return std::nullopt;
+      continue;
     }
     scores.emplace_back(static_cast<std::size_t>(lengths[rank] - 1) / sizeof(double));
     std::memcpy(scores.back().data(), sent + 1, scores.back().size() * sizeof(double));
   }
-  return scores;
+  if (scores.size() == solvers.size())
+  {
+    exchanged.Scores = std::move(scores);
+  }
+  return exchanged;
 }
 } // namespace
 
-int Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
-  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress)
+Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
+  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted)
 {
   namespace agreement = vtkOpalRankAgreement;
   if (agreement::Ranks(controller) < 2)
   {
-    return 0;
+    return {};
   }
   int code = failed ? Failed : Bystander;
   std::exception_ptr failure;
@@ -99,18 +122,22 @@ int Solve(vtkMultiProcessController* controller, opal::RenderSession* session, b
   }
   if (agreement::FirstWith(views, Failed) >= 0 || solvers.size() < 2)
   {
-    return 0;
+    return {};
   }
   const auto share = std::find(solvers.begin(), solvers.end(), agreement::Rank(controller));
+  Exchanged exchanged;
   if (share == solvers.end())
   {
-    exchangeScores(controller, solvers, nullptr);
-    return 0;
+    exchanged = exchangeScores(controller, solvers, nullptr, false);
+    return { 0, exchanged.Aborted };
   }
   const bool solved = session->solveScatteredLightShared(frame, static_cast<int>(share - solvers.begin()),
     static_cast<int>(solvers.size()),
-    [&](const std::optional<std::vector<double>>& mine) { return exchangeScores(controller, solvers, &mine); },
+    [&](const std::optional<std::vector<double>>& mine) {
+      exchanged = exchangeScores(controller, solvers, &mine, aborted());
+      return exchanged.Scores;
+    },
     progress);
-  return solved ? static_cast<int>(solvers.size()) : 0;
+  return { solved ? static_cast<int>(solvers.size()) : 0, exchanged.Aborted };
 }
 } // namespace vtkOpalSharedScatteredLight

@@ -7,6 +7,8 @@
 
 #include "OpalRenderSession.h"
 
+#include <functional>
+
 class vtkMultiProcessController;
 
 namespace vtkOpalSharedScatteredLight
@@ -17,9 +19,15 @@ namespace vtkOpalSharedScatteredLight
 // the rank renders nothing or `failed` the request already. Where two or more
 // ranks need a new field, they trace their shares and each holds the field,
 // which its frame then reuses; otherwise nothing happens, and a frame that
-// needs the field solves it alone. Returns the shares that traced the field
-// this rank now holds (0: none was shared). An exception from the session is
+// needs the field solves it alone. A rank whose share stops where `aborted`
+// says so aborts the request on every rank; one whose share fails (it says
+// why) leaves the others to solve alone. An exception from the session is
 // rethrown only once no rank can wait for this one.
-int Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
-  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress);
+struct Result
+{
+  int Shares = 0;       // the ranks that traced the field this rank now holds (0: none was shared)
+  bool Aborted = false; // a rank aborted its share: every rank's request aborts
+};
+Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
+  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted);
 } // namespace vtkOpalSharedScatteredLight

@@ -227,15 +227,20 @@ int vtkOpalSpectralRender::RequestData(
   vtkInformation* inputInformation = inputVector[0]->GetInformationObject(0);
   RenderOutcome outcome =
     this->GatherVolume(input, inputInformation) ? RenderOutcome::Rendered : RenderOutcome::Failed;
-  const bool renders = extent[1] >= extent[0] && extent[3] >= extent[2];
-  outcome = this->ShareScatteredLight(outcome, renders, inputInformation, input);
-  if (outcome == RenderOutcome::Rendered && !renders)
+  // This rank's piece of the image, resolved once for the shared solve and the frame; none where it is empty.
+  std::optional<opal::ResolvedFrame> piece;
+  if (extent[1] >= extent[0] && extent[3] >= extent[2])
+  {
+    piece = this->ResolvePiece(inputInformation, input, extent);
+  }
+  outcome = this->ShareScatteredLight(outcome, piece ? &*piece : nullptr, input);
+  if (outcome == RenderOutcome::Rendered && !piece)
   {
     output->Initialize();
   }
   else if (outcome == RenderOutcome::Rendered)
   {
-    outcome = this->RenderExtent(inputInformation, input, extent, output);
+    outcome = this->RenderExtent(*piece, input, output);
   }
   outcome = this->AgreeOnOutcome(outcome);
   if (outcome != RenderOutcome::Rendered)
@@ -395,38 +400,47 @@ std::function<bool(double)> vtkOpalSpectralRender::RequestProgress()
   };
 }
 
+opal::ResolvedFrame vtkOpalSpectralRender::ResolvePiece(
+  vtkInformation* inputInformation, vtkImageData* input, const int extent[6]) const
+{
+  // The requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
+  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputInformation, input);
+  opal::RenderParameters& p = resolved.Parameters;
+  p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
+  return resolved;
+}
+
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareScatteredLight(
-  RenderOutcome sofar, bool renders, vtkInformation* inputInformation, vtkImageData* input)
+  RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input)
 {
   if (vtkOpalRankAgreement::Ranks(this->Controller) < 2)
   {
     return sofar;
   }
-  const RenderOutcome uploaded = sofar == RenderOutcome::Rendered && renders
+  const RenderOutcome uploaded = sofar == RenderOutcome::Rendered && piece
     ? this->Guarded([&] { return this->UploadVolume(this->VolumeOf(input)) ? sofar : RenderOutcome::Failed; })
     : sofar;
-  const bool ready = uploaded == RenderOutcome::Rendered && renders;
-  const opal::ResolvedFrame frame = ready ? this->GetResolvedFrame(inputInformation, input) : opal::ResolvedFrame{};
+  const bool ready = uploaded == RenderOutcome::Rendered && piece;
   return this->Guarded([&] {
-    this->LastScatteredLightShares = vtkOpalSharedScatteredLight::Solve(this->Controller, ready ? this->RenderSession.get() : nullptr,
-      uploaded != RenderOutcome::Rendered, frame, this->RequestProgress());
-    return uploaded;
+    const vtkOpalSharedScatteredLight::Result shared = vtkOpalSharedScatteredLight::Solve(this->Controller,
+      ready ? this->RenderSession.get() : nullptr, uploaded != RenderOutcome::Rendered,
+      ready ? *piece : opal::ResolvedFrame{}, this->RequestProgress(),
+      [this] { return this->GetAbortExecute() != 0; });
+    this->LastScatteredLightShares = shared.Shares;
+    // A rank that aborted its share aborts the request on every rank (said by none).
+    return shared.Aborted ? RenderOutcome::Aborted : uploaded;
   });
 }
 
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
-  vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output)
+  const opal::ResolvedFrame& piece, vtkImageData* input, vtkImageData* output)
 {
-  // Render the requested rows and columns (VTK's bottom-up rows to the renderer's top-down).
-  opal::ResolvedFrame resolved = this->GetResolvedFrame(inputInformation, input);
-  opal::RenderParameters& p = resolved.Parameters;
-  p.ImageRegion = { extent[0], p.ImageSize[1] - 1 - extent[3], extent[1] - extent[0] + 1, extent[3] - extent[2] + 1 };
   return this->Guarded([&] {
     if (!this->UploadVolume(this->VolumeOf(input)))
     {
       return RenderOutcome::Failed;
     }
-    const opal::RenderFrame frame = this->Session().render(resolved, this->RequestProgress());
+    const opal::RenderFrame frame = this->Session().render(piece, this->RequestProgress());
     if (frame.Ran.ScatteredLight && this->LastScatteredLightShares == 0)
     {
       this->LastScatteredLightShares = 1; // solved alone, in the frame

@@ -208,14 +208,15 @@ private:
   RenderOutcome Guarded(const std::function<RenderOutcome()>& work);
   // The data request's progress, false once it is asked to abort.
   std::function<bool(double)> RequestProgress();
+  // The update extent's piece of the image, resolved against this input.
+  opal::ResolvedFrame ResolvePiece(vtkInformation* inputInformation, vtkImageData* input, const int extent[6]) const;
   // Under MPI, collective, every rank between the gather and its frame:
-  // the ranks that render (`renders`, so far `sofar`) upload the volume, and
-  // they share every order's photon solve (vtkOpalSharedScatteredLight).
-  RenderOutcome ShareScatteredLight(
-    RenderOutcome sofar, bool renders, vtkInformation* inputInformation, vtkImageData* input);
-  // Renders the update extent of the input into `output`.
-  RenderOutcome RenderExtent(
-    vtkInformation* inputInformation, vtkImageData* input, const int extent[6], vtkImageData* output);
+  // the ranks that render a piece (nullptr: none; so far `sofar`) upload the
+  // volume, and they share every order's photon solve
+  // (vtkOpalSharedScatteredLight).
+  RenderOutcome ShareScatteredLight(RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input);
+  // Renders this rank's piece of the image into `output`.
+  RenderOutcome RenderExtent(const opal::ResolvedFrame& piece, vtkImageData* input, vtkImageData* output);
 
   // Ends the session (its background frame first), keeping its frame counts.
   void EndSession();

@@ -4,7 +4,8 @@ settings are refused each give one clear error on every rank, no image piece
 on any rank, and no hang (each run is bounded; a hang fails the test);
 ranks that agree render. With every order of scattering the ranks share the
 photon solve; a rank without a device, or one aborting inside the shared
-solve, leaves every rank without an image piece, and none hangs.
+solve (which aborts every rank's request), leaves every rank without an image
+piece, and none hangs.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -63,6 +64,8 @@ check(shares == {r: ranks for r in range(ranks)}, f"every order: all {ranks} ran
 expect_refused("every-order", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
 output = run_ranks("abort")
 images = images_of(output)
+shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares (\d+)", output)}
 check(len(images) == ranks and all(points == 0 for points in images.values()),
       f"an abort in the shared solve on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
+check(shares == {r: 0 for r in range(ranks)}, f"and every rank aborts with it, none solving alone: {shares}")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

@@ -175,7 +175,9 @@ bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const
   {
     return false;
   }
-  return !this->scatteredLightServes(this->setUpFrame(frame));
+  const FrameSetup setup = this->setUpFrame(frame);
+  this->checkMemoryBudget(setup);
+  return !this->scatteredLightServes(setup);
 }
 
 bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares,

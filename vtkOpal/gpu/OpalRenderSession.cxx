@@ -307,13 +307,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, refused up front if too large.
-  const std::uint64_t bytes = static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs);
-  if (bytes > this->Context->memoryBudget())
-  {
-    throw VulkanError("the volume needs about " + formatBytes(bytes) + " of device memory, more than " +
-        this->Context->memoryBudgetText() + "; use fewer voxels",
-      VK_ERROR_OUT_OF_DEVICE_MEMORY);
-  }
+  this->requireDeviceMemory(
+    static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs), "the volume needs", "", "use fewer voxels");
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
   const BufferPlacement placement = fieldPlacement(context, voxels);
@@ -434,6 +429,8 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   }
   RenderFrame frame;
   RenderTimings& timings = frame.Image.Timings;
+  // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.
+  const double sharedSolveSeconds = std::exchange(this->PendingScatteredSeconds, -1.0);
   const auto setupStart = Clock::now();
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;
@@ -462,8 +459,8 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   }
   timings.ScatteredLight = secondsSince(scatteredStart);
   // A field the processes solved together for this frame (solveScatteredLightShared).
-  frame.Ran.ScatteredLight = frame.Ran.ScatteredLight || (everyOrder && this->PendingScatteredSeconds >= 0);
-  timings.ScatteredLight += std::max(0.0, std::exchange(this->PendingScatteredSeconds, -1.0));
+  frame.Ran.ScatteredLight = frame.Ran.ScatteredLight || (everyOrder && sharedSolveSeconds >= 0);
+  timings.ScatteredLight += std::max(0.0, sharedSolveSeconds);
 
   const auto marchStart = Clock::now();
   double exposure = setup.Parameters.Exposure;
@@ -585,15 +582,22 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
 
 // Memory budget: refuse up front what cannot fit, with the estimate: on the
 // device, the volume (already there) and the images; on the host, the arrays.
-void RenderSession::checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters)
+void RenderSession::requireDeviceMemory(
+  std::uint64_t bytes, const std::string& needs, const std::string& detail, const std::string& remedy) const
 {
-  const std::uint64_t bytes = volumeDeviceBytes(voxels, absorbs, parameters);
-  if (bytes > this->context().memoryBudget())
+  if (bytes > this->Context->memoryBudget())
   {
-    throw VulkanError("the volume's fields for this render need about " + formatBytes(bytes) +
-        " of device memory, more than " + this->Context->memoryBudgetText() + "; use fewer voxels",
+    throw VulkanError(needs + " about " + formatBytes(bytes) + " of device memory" + detail + ", more than " +
+        this->Context->memoryBudgetText() + "; " + remedy,
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
+}
+
+void RenderSession::checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters)
+{
+  this->context(); // throws once released
+  this->requireDeviceMemory(
+    volumeDeviceBytes(voxels, absorbs, parameters), "the volume's fields for this render need", "", "use fewer voxels");
 }
 
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
@@ -608,12 +612,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
     pixels * (3 * 4 + 4) +
     spectrumBytes;
   const std::uint64_t deviceBytes = volumeBytes + imageBytes;
-  if (deviceBytes > this->Context->memoryBudget())
-  {
-    throw VulkanError("the render needs about " + formatBytes(deviceBytes) + " of device memory (volume " +
-        formatBytes(volumeBytes) + "), more than " + this->Context->memoryBudgetText() + "; use fewer voxels or pixels",
-      VK_ERROR_OUT_OF_DEVICE_MEMORY);
-  }
+  this->requireDeviceMemory(
+    deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
   const std::uint64_t hostBytes = pixels * (3 + 12 + 12 + 4 + 4) + spectrumBytes;
   if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())
   {

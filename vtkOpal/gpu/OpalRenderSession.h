@@ -22,6 +22,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -102,7 +103,8 @@ public:
   // Every order's scattered light (docs/design.md §3.10) solved by several
   // processes together, before their frames (§8.1). needsScatteredLight:
   // whether `frame` would solve it (every order, and no field held serves
-  // it). solveScatteredLightShared traces share `share` of `shares` of the
+  // it), having checked what render() checks before any work (the frame's
+  // settings and memory: it throws alike). solveScatteredLightShared traces share `share` of `shares` of the
   // photons, hands its scores to `exchange`, which gives back every share's
   // in share order (nullopt where any share failed), and holds the field for
   // the frames that follow, which then reuse it. `exchange` is called exactly
@@ -178,6 +180,11 @@ private:
   static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
+  // Throws VulkanError (out of device memory) where `bytes` exceed the
+  // device's budget: "<needs> about <bytes> of device memory<detail>, more
+  // than <the budget>; <remedy>".
+  void requireDeviceMemory(
+    std::uint64_t bytes, const std::string& needs, const std::string& detail, const std::string& remedy) const;
   void prepareFrameBuffers(const FrameSetup& setup);
   void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
   void bindBuffers();

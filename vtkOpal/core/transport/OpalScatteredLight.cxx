@@ -620,6 +620,10 @@ std::optional<std::vector<double>> traceScatteredLightShare(const ScatteringMedi
 ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const ScatteredLightRequest& request,
   const std::vector<std::vector<double>>& shares)
 {
+  if (shares.empty())
+  {
+    throw std::invalid_argument("The scattered light needs the scores of one share or more, got none.");
+  }
   const TallyGrid tally(medium.Geometry);
   const int count = static_cast<int>(shares.size());
   std::vector<TaskScore> scores(ScatteredLightNodes * TasksPerNode);

@@ -84,8 +84,8 @@ std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium
 // returns their scores packed (nullopt if `keepGoing` returned false). The
 // field from every share's scores, in share order, equals solveScatteredLight's
 // bit for bit: each task traces the same photons, and the tasks are summed in
-// the same order. Throws std::invalid_argument for a share that does not exist
-// or scores of the wrong size.
+// the same order. Throws std::invalid_argument for a share that does not exist,
+// no scores, or scores of the wrong size.
 std::optional<std::vector<double>> traceScatteredLightShare(const ScatteringMedium& medium,
   const ScatteredLightRequest& request, int share, int shares, const std::function<bool(double)>& keepGoing);
 ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const ScatteredLightRequest& request,
