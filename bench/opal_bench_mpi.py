@@ -1,6 +1,7 @@
 """Scaling bench under MPI (run with `mpiexec -np N pvbatch --symmetric`):
 builds the opal volume (each rank its piece) and renders the 640 x 480 frame
-(each rank its piece of the image, from the whole volume), printing per rank
+(each rank its piece of the image, from the whole volume), then again with
+every order of scattering (the ranks sharing its photon solve), printing per rank
 the wall time of each, the render's stages (gather, upload, light pass,
 every-order solve, march, the rest) and the peak resident memory with the
 render session's peak of device buffers (host memory on lavapipe), and from rank 0's
@@ -108,3 +109,12 @@ if fits():
     device_mb = report(render, volume_seconds, render_seconds, peak_mb)
     if device_mb is not None:
         estimate(volume_seconds, (peak_mb - baseline_mb) * 2**20 / voxels, device_mb)
+        # Every order of scattering, the volume and its light pass kept: the
+        # ranks share the photon solve (its stage, "every order").
+        render.ScatteringOrders = "all"
+        every_order_seconds = timed(render)
+        render.UpdatePropertyInformation()
+        shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
+        if rank == 0:
+            print(f"  every order, traced by {shares} rank(s):", flush=True)
+        report(render, 0.0, every_order_seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
