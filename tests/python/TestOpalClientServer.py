@@ -48,11 +48,19 @@ def pixels(path):
     return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
+# What a server says where its display refused it a window: "bad X server
+# connection" (it aborts, and the client loses it), or, where the ranks'
+# probe for a window failed, that it cannot render remotely (the client then
+# draws what it holds: no stone).
+DISPLAY_REFUSED = ("bad X server connection",
+                   "require remote rendering which, however, is not available")
+
+
 def served(ranks):
     """The screenshot a client takes of a pvserver with `ranks` ranks. The
-    virtual display sometimes refuses a new window under load ("bad X server
-    connection", the server aborts and the client loses it): such an attempt
-    is printed with the server's log and tried again, twice at most."""
+    virtual display sometimes refuses a new window under load
+    (DISPLAY_REFUSED): such an attempt is printed with the server's log and
+    tried again, twice at most."""
     for attempt in range(3):
         try:
             return served_once(ranks, attempt)
@@ -61,7 +69,7 @@ def served(ranks):
             # Printed without loguru's "ERR|" marks, which fail the test by themselves.
             report = f"attempt {attempt + 1} with {ranks} rank(s) failed: {str(error)[:300]}\nserver log: {log[-1500:]}"
             print(report.replace("ERR|", "ERR "))
-            if "bad X server connection" not in log:
+            if not any(sign in log for sign in DISPLAY_REFUSED):
                 raise
     raise RuntimeError(f"pvserver with {ranks} rank(s): no attempt got a display")
 
@@ -81,6 +89,8 @@ def served_once(ranks, attempt):
             time.sleep(0.1)
         path = os.path.join(output, f"served{ranks}.png")
         run([config.PVPYTHON, scene, config.PLUGIN, path, str(port)], timeout=120)
+        if DISPLAY_REFUSED[1] in open(log_path).read():
+            raise RuntimeError("the server could not render remotely (its display refused it a window)")
         return pixels(path)
     finally:
         process.terminate()
