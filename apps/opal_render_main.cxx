@@ -5,6 +5,7 @@
 #include "OpalAtomicFile.h"
 #include "OpalCliFiles.h"
 #include "OpalCliSupport.h"
+#include "OpalGrid.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
 #include "OpalOutputModules.h"
@@ -163,8 +164,7 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   // uploaded where the build finished first.
   std::unique_ptr<opal::RenderSession> session;
   std::exception_ptr refused;
-  const std::uint64_t voxels = static_cast<std::uint64_t>(model.Dimensions[0]) *
-    static_cast<std::uint64_t>(model.Dimensions[1]) * static_cast<std::uint64_t>(model.Dimensions[2]);
+  const auto voxels = static_cast<std::uint64_t>(opal::Grid::fromParameters(model).voxelCount());
   auto checkDevice = [&](bool wait) {
     if (!session && !refused && (wait || starting.wait_for(std::chrono::seconds(0)) == std::future_status::ready))
     {
