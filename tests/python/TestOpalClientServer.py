@@ -8,7 +8,6 @@ Server and clients share one virtual display: the script runs itself again
 under xvfb-run (two xvfb-runs started at once can race for a display)."""
 import os
 import random
-import signal
 import socket
 import subprocess
 import sys
@@ -19,7 +18,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import opal_test_config as config
-from opal_test_support import check, child_environment, finish, on_new_display, run
+from opal_test_support import check, child_environment, finish, run
 
 ON_DISPLAY = "OPAL_CLIENT_SERVER_ON_DISPLAY"
 if not os.environ.get(ON_DISPLAY):
@@ -61,8 +60,7 @@ def served(ranks):
     """The screenshot a client takes of a pvserver with `ranks` ranks. The
     virtual display sometimes refuses a new window under load
     (DISPLAY_REFUSED): such an attempt is printed with the server's log and
-    tried again, twice at most, the server on a display of its own (the
-    shared one refused all three attempts once)."""
+    tried again, twice at most."""
     for attempt in range(3):
         try:
             return served_once(ranks, attempt)
@@ -81,15 +79,9 @@ def served_once(ranks, attempt):
     server = [config.PVSERVER, f"--server-port={port}"]
     if ranks > 1:
         server = [config.MPIEXEC, "-np", str(ranks)] + server
-    own_display = attempt > 0
-    if own_display:
-        server = on_new_display(server)
     log_path = os.path.join(output, f"pvserver{ranks}-{attempt}.log")
     with open(log_path, "w") as log:
-        # On a display of its own the server runs under xvfb-run, whose whole
-        # group (Xvfb, mpiexec, the ranks) is stopped at the end.
-        process = subprocess.Popen(server, env=child_environment(), stdout=log, stderr=subprocess.STDOUT,
-                                   start_new_session=own_display)
+        process = subprocess.Popen(server, env=child_environment(), stdout=log, stderr=subprocess.STDOUT)
     try:
         for _ in range(600):  # up to 60 s for the server to listen
             if "Accepting connection" in open(log_path).read() or process.poll() is not None:
@@ -101,13 +93,7 @@ def served_once(ranks, attempt):
             raise RuntimeError("the server could not render remotely (its display refused it a window)")
         return pixels(path)
     finally:
-        if own_display:
-            try:
-                os.killpg(process.pid, signal.SIGTERM)
-            except ProcessLookupError:
-                pass  # the whole group has ended
-        else:
-            process.terminate()
+        process.terminate()
         process.wait(timeout=30)
 
 

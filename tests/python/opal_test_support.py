@@ -22,7 +22,7 @@ def child_environment():
 _NO_DISPLAY = "bad X server connection"
 
 
-def on_new_display(command):
+def _on_new_display(command):
     """The command on a virtual display of its own: xvfb-run's under another
     number, or a client that shared its parent's display under an xvfb-run of its own."""
     if command[:1] == ["xvfb-run"] and "-n" in command:
@@ -43,7 +43,7 @@ def run(command, timeout=240):
     for _ in range(2):
         if result.returncode == 0 or _NO_DISPLAY not in result.stdout + result.stderr or not shutil.which("xvfb-run"):
             break
-        result = subprocess.run(on_new_display(command), env=child_environment(), capture_output=True, text=True,
+        result = subprocess.run(_on_new_display(command), env=child_environment(), capture_output=True, text=True,
                                 timeout=timeout)
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited {result.returncode}:\n"
