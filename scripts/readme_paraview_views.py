@@ -8,7 +8,7 @@ colours, no colour bar; the Light and Eye handles are drawn in 3-D views only,
 docs/design.md §5.3). pvbatch renders each still frame before the view draws
 it (the GUI's background frames are the GUI's alone), so the screenshots hold
 the final frames; a view without the stone fails the script.
-  xvfb-run -a pvbatch scripts/readme_paraview_views.py PLUGIN OUTPUT.png"""
+  xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvbatch scripts/readme_paraview_views.py PLUGIN OUTPUT.png"""
 import os
 import sys
 import tempfile

@@ -7,7 +7,6 @@ composites the ranks' frames by depth, which are equal.
 Server and clients share one virtual display: the script runs itself again
 under xvfb-run (two xvfb-runs started at once can race for a display)."""
 import os
-import random
 import socket
 import subprocess
 import sys
@@ -18,13 +17,12 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import opal_test_config as config
-from opal_test_support import check, child_environment, finish, run
+from opal_test_support import check, child_environment, finish, on_virtual_display, run
 
 ON_DISPLAY = "OPAL_CLIENT_SERVER_ON_DISPLAY"
 if not os.environ.get(ON_DISPLAY):
     environment = dict(child_environment(), **{ON_DISPLAY: "1"})
-    result = subprocess.run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 640x480x24",
-                             config.PVPYTHON, os.path.abspath(__file__)],
+    result = subprocess.run(on_virtual_display([config.PVPYTHON, os.path.abspath(__file__)], "640x480x24"),
                             env=environment, capture_output=True, text=True, timeout=280)
     print(result.stdout, result.stderr[-4000:] if result.returncode else "")
     sys.exit(result.returncode)
@@ -48,38 +46,14 @@ def pixels(path):
     return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
-# What a server says where its display refused it a window: "bad X server
-# connection" (it aborts, and the client loses it), or, where the ranks'
-# probe for a window failed, that it cannot render remotely (the client then
-# draws what it holds: no stone).
-DISPLAY_REFUSED = ("bad X server connection",
-                   "require remote rendering which, however, is not available")
-
-
 def served(ranks):
-    """The screenshot a client takes of a pvserver with `ranks` ranks. The
-    virtual display sometimes refuses a new window under load
-    (DISPLAY_REFUSED): such an attempt is printed with the server's log and
-    tried again, twice at most."""
-    for attempt in range(3):
-        try:
-            return served_once(ranks, attempt)
-        except RuntimeError as error:
-            log = open(os.path.join(output, f"pvserver{ranks}-{attempt}.log")).read()
-            # Printed without loguru's "ERR|" marks, which fail the test by themselves.
-            report = f"attempt {attempt + 1} with {ranks} rank(s) failed: {str(error)[:300]}\nserver log: {log[-1500:]}"
-            print(report.replace("ERR|", "ERR "))
-            if not any(sign in log for sign in DISPLAY_REFUSED):
-                raise
-    raise RuntimeError(f"pvserver with {ranks} rank(s): no attempt got a display")
-
-
-def served_once(ranks, attempt):
+    """The screenshot a client takes of a pvserver with `ranks` ranks; a
+    failed client is reported with the server's log."""
     port = free_port()
     server = [config.PVSERVER, f"--server-port={port}"]
     if ranks > 1:
         server = [config.MPIEXEC, "-np", str(ranks)] + server
-    log_path = os.path.join(output, f"pvserver{ranks}-{attempt}.log")
+    log_path = os.path.join(output, f"pvserver{ranks}.log")
     with open(log_path, "w") as log:
         process = subprocess.Popen(server, env=child_environment(), stdout=log, stderr=subprocess.STDOUT)
     try:
@@ -88,9 +62,12 @@ def served_once(ranks, attempt):
                 break
             time.sleep(0.1)
         path = os.path.join(output, f"served{ranks}.png")
-        run([config.PVPYTHON, scene, config.PLUGIN, path, str(port)], timeout=120)
-        if DISPLAY_REFUSED[1] in open(log_path).read():
-            raise RuntimeError("the server could not render remotely (its display refused it a window)")
+        try:
+            run([config.PVPYTHON, scene, config.PLUGIN, path, str(port)], timeout=120)
+        except RuntimeError as error:
+            # The server's log without loguru's "ERR|" marks, which fail the test by themselves.
+            log = open(log_path).read()[-1500:].replace("ERR|", "ERR ")
+            raise RuntimeError(f"{error}\nserver log ({ranks} rank(s)): {log}") from None
         return pixels(path)
     finally:
         process.terminate()

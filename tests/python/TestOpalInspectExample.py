@@ -2,14 +2,13 @@
 its screenshot is not blank: the render's quarter holds the opal's colours
 (saturated, bright pixels) and the chart's quarter holds a curve."""
 import os
-import random
 
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import opal_test_config as config
-from opal_test_support import check, finish, run
+from opal_test_support import check, finish, on_virtual_display, run
 
 here = os.path.dirname(os.path.abspath(__file__))
 example = os.path.join(here, "..", "..", "examples", "opal_inspect.py")
@@ -19,10 +18,7 @@ state = os.path.join(config.OUTPUT_DIRECTORY, "inspect.pvsm")
 for path in (screenshot, state):
     if os.path.exists(path):
         os.remove(path)
-# xvfb-run -a takes the first free display from -n on, racily: a random
-# start keeps two runs on one machine apart.
-run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), config.PVBATCH, example, config.PLUGIN, screenshot,
-     "--small", "--state", state])
+run(on_virtual_display([config.PVBATCH, example, config.PLUGIN, screenshot, "--small", "--state", state]))
 
 reader = vtkPNGReader()
 reader.SetFileName(screenshot)

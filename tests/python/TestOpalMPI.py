@@ -17,7 +17,6 @@ view (the live view's representation), each rank again asking for its piece
 alone, and the screenshot equals the one-process one.
 Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|pvti|view"""
 import os
-import random
 import sys
 
 import numpy
@@ -26,7 +25,7 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPImageDataReader
 
 import opal_test_config as config
-from opal_test_support import check, finish, run
+from opal_test_support import check, finish, on_virtual_display, run
 
 ranks, kind = int(sys.argv[1]), sys.argv[2]
 here = os.path.dirname(os.path.abspath(__file__))
@@ -50,13 +49,14 @@ if kind in ("pvti", "view"):
     view = ["--view"] if kind == "view" else []
     if view:
         serial, parallel = serial[:-4] + ".png", parallel[:-5] + ".png"
-        # The views need a display; a random first display number, as xvfb-run -a races.
-        display = ["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 640x480x24"]
-    else:
-        display = []
-    run(display + [config.PVBATCH, reader, whole, serial, "96", "72"] + view)
-    read_by_ranks = run(display + mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
-                                                  "--pieces-of", whole] + view).stdout
+
+    def display(command):
+        """The views need a display."""
+        return on_virtual_display(command, "640x480x24") if view else command
+
+    run(display([config.PVBATCH, reader, whole, serial, "96", "72"] + view))
+    read_by_ranks = run(display(mpiexec[:-1] + [config.PVBATCH, "--symmetric", reader, pieces, parallel, "96", "72",
+                                                "--pieces-of", whole] + view)).stdout
     check(read_by_ranks.count(" read extent ") == 2 * ranks,
           f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
 else:

@@ -5,7 +5,6 @@ RGB for the same preset and size; OpalSpectralRender's ModelRotation has a
 range for the Animation View's default keyframes (-15 to +15 degrees)."""
 import glob
 import os
-import random
 
 import numpy
 from paraview import servermanager as sm
@@ -14,7 +13,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 import opal_test_config as config
-from opal_test_support import check, finish, run
+from opal_test_support import check, finish, on_virtual_display, run
 
 here = os.path.dirname(os.path.abspath(__file__))
 example = os.path.join(here, "..", "..", "examples", "opal_tilt_movie.py")
@@ -23,8 +22,8 @@ os.makedirs(frames_dir, exist_ok=True)
 for old in glob.glob(os.path.join(frames_dir, "*.png")):
     os.remove(old)
 width, height = 64, 48
-run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), config.PVBATCH, example, config.PLUGIN,
-     os.path.join(frames_dir, "tilt.png"), "--frames", "3", "--size", str(width), str(height)])
+run(on_virtual_display([config.PVBATCH, example, config.PLUGIN, os.path.join(frames_dir, "tilt.png"),
+                        "--frames", "3", "--size", str(width), str(height)]))
 
 
 def read_png(path):

@@ -1,7 +1,6 @@
 """Helpers shared by the pvpython tests."""
 import os
 import random
-import shutil
 import subprocess
 import sys
 
@@ -17,38 +16,38 @@ def child_environment():
             if key in _KEEP or not key.startswith(("OMPI_", "PMIX_"))}
 
 
-# What a client says when the virtual display xvfb-run started cannot be
-# reached (seen now and then on a loaded machine, before any of our code runs).
-_NO_DISPLAY = "bad X server connection"
-
-
-def _on_new_display(command):
-    """The command on a virtual display of its own: xvfb-run's under another
-    number, or a client that shared its parent's display under an xvfb-run of its own."""
-    if command[:1] == ["xvfb-run"] and "-n" in command:
-        retry = list(command)
-        retry[retry.index("-n") + 1] = str(random.randint(100, 30100))
-        return retry
-    return ["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 1280x1024x24", *command]
+def on_virtual_display(command, screen="1280x1024x24"):
+    """The command on a virtual display of its own (Xvfb through xvfb-run).
+    xvfb-run -a takes the first free display from -n on, racily: a random
+    start keeps two runs on one machine apart. -noreset: Xvfb resets when its
+    last client leaves, and a client that connects during the reset is refused
+    ("bad X server connection", and ParaView aborts). ParaView's processes open
+    a window to probe the display and close it before they open their own, so
+    one rank's probe ending could refuse another rank's window: 6 of 20 runs of
+    the 3-rank view failed so without -noreset, none of 48 with it."""
+    return ["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", f"-screen 0 {screen} -noreset", *command]
 
 
 def run(command, timeout=240):
-    """Runs a child process with a clean MPI environment; raises on failure with its output.
-    A client that cannot reach its display (before any of our code runs) is run
-    again on a display of its own, twice at most: several MPI ranks opening
-    windows at once meet it more often, and a client sharing its test's display
-    met it once in a CI run."""
-    result = subprocess.run(command, env=child_environment(), capture_output=True, text=True,
-                            timeout=timeout)
-    for _ in range(2):
-        if result.returncode == 0 or _NO_DISPLAY not in result.stdout + result.stderr or not shutil.which("xvfb-run"):
-            break
-        result = subprocess.run(_on_new_display(command), env=child_environment(), capture_output=True, text=True,
+    """Runs a child process with a clean MPI environment; raises on failure
+    (or past `timeout` seconds) with its output."""
+    try:
+        result = subprocess.run(command, env=child_environment(), capture_output=True, text=True,
                                 timeout=timeout)
+    except subprocess.TimeoutExpired as expired:
+        raise RuntimeError(f"{' '.join(command)} ran past {timeout} s:\n"
+                           f"{_text(expired.stdout)[-4000:]}\n{_text(expired.stderr)[-4000:]}") from None
     if result.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} exited {result.returncode}:\n"
                            f"{result.stdout[-4000:]}\n{result.stderr[-4000:]}")
     return result
+
+
+def _text(output):
+    """What a process that ran too long had written (bytes, text or nothing)."""
+    if isinstance(output, bytes):
+        return output.decode(errors="replace")
+    return output or ""
 
 
 def run_gui_script(script, plugin, paraview, output_directory, arguments=()):
@@ -66,8 +65,7 @@ def run_gui_script(script, plugin, paraview, output_directory, arguments=()):
     os.environ["OPAL_PLUGIN"] = plugin
     gui = os.path.join(here, "..", "gui")  # the scripts' shared module, opal_gui_verdict
     os.environ["PYTHONPATH"] = os.pathsep.join(filter(None, [gui, os.environ.get("PYTHONPATH")]))
-    run(["xvfb-run", "-a", "-n", str(random.randint(100, 30100)), "-s", "-screen 0 1280x1024x24",
-         paraview, "--script=" + os.path.join(gui, script), *arguments], timeout=280)
+    run(on_virtual_display([paraview, "--script=" + os.path.join(gui, script), *arguments]), timeout=280)
     return open(verdict).read() if os.path.exists(verdict) else "no verdict written"
 
 
