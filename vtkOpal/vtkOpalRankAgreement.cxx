@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -71,11 +72,7 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
   // The window holds a round of every rank: no larger than the longest bytes need.
   const vtkIdType round =
     std::max<vtkIdType>(1, std::min<vtkIdType>({ roundBytes, (VTK_INT_MAX - 1) / ranks, longest }));
-  std::vector<vtkIdType> offsets(ranks, 0);
-  for (int r = 1; r < ranks; ++r)
-  {
-    offsets[r] = offsets[r - 1] + lengths[r - 1];
-  }
+  const std::vector<vtkIdType> offsets = RankOffsets(lengths);
   bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
   std::vector<char> window(static_cast<std::size_t>(round * ranks));
   const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
@@ -100,6 +97,13 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
   return true;
 }
 
+std::vector<vtkIdType> RankOffsets(const std::vector<vtkIdType>& lengths)
+{
+  std::vector<vtkIdType> offsets(lengths.size(), 0);
+  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  return offsets;
+}
+
 std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& mine)
 {
   vtkMultiProcessController* controller = ranksController(given);
@@ -115,11 +119,9 @@ std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& m
     throw std::runtime_error("The ranks could not exchange their views of the render.");
   }
   std::vector<RankView> views;
-  vtkIdType offset = 0;
-  for (const vtkIdType length : lengths)
+  for (const vtkIdType offset : RankOffsets(lengths))
   {
     views.push_back(decode(received.data() + offset));
-    offset += length;
   }
   return views;
 }

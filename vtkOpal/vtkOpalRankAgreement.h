@@ -40,6 +40,8 @@ VTKOPAL_EXPORT std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* c
 constexpr vtkIdType RoundBytes = vtkIdType(64) << 20;
 VTKOPAL_EXPORT bool GatherBytes(vtkMultiProcessController* controller, const char* mine,
   const std::vector<vtkIdType>& lengths, std::vector<char>& bytes, vtkIdType roundBytes = RoundBytes);
+// Where each rank's bytes begin in GatherBytes's `bytes`, from its `lengths`.
+std::vector<vtkIdType> RankOffsets(const std::vector<vtkIdType>& lengths);
 
 // Every rank's view, in rank order: this rank's alone with one process.
 std::vector<RankView> Gather(vtkMultiProcessController* controller, const RankView& mine);

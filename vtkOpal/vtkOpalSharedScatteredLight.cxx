@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
-#include <numeric>
 #include <stdexcept>
 
 namespace vtkOpalSharedScatteredLight
@@ -61,8 +60,7 @@ Exchanged exchangeScores(vtkMultiProcessController* controller, const std::vecto
   {
     throw std::runtime_error("The ranks could not exchange the every-order solve's scores.");
   }
-  std::vector<vtkIdType> offsets(lengths.size(), 0);
-  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  const std::vector<vtkIdType> offsets = vtkOpalRankAgreement::RankOffsets(lengths);
   Exchanged exchanged;
   std::vector<std::vector<double>> scores;
   for (const int rank : solvers)
