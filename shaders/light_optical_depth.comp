@@ -280,12 +280,13 @@ LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float 
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
-// workgroups of its indirect dispatch).
+// workgroups of its indirect dispatch). The list holds one layer: the layer's
+// march reads it before the next layer's sweep writes it again (a barrier
+// follows every dispatch, docs/design.md §3.7).
 void queueVoxel(int index, int y)
 {
-  int layerSize = P.gridDimensions.x * P.gridDimensions.z;
   uint slot = atomicAdd(queues[y].count, 1u);
-  ENTRY_VOXEL_AT(y * layerSize + int(slot)) = uint(index);
+  ENTRY_VOXEL_AT(int(slot)) = uint(index);
   if (slot % uint(LightPassGroupSize) == 0u)
   {
     uvec2 grid = dispatchGrid(slot / uint(LightPassGroupSize) + 1u);
@@ -399,8 +400,7 @@ int voxelOfInvocation()
   }
   if (LIGHT_PASS_MODE == LightPassMarchQueued)
   {
-    int layerSize = nx * P.gridDimensions.z;
-    return local < int(queues[work.layer].count) ? int(ENTRY_VOXEL_AT(work.layer * layerSize + local)) : -1;
+    return local < int(queues[work.layer].count) ? int(ENTRY_VOXEL_AT(local)) : -1;
   }
   return local < nx * P.gridDimensions.z ? local % nx + nx * (work.layer + ny * (local / nx)) : -1;
 }

@@ -49,7 +49,7 @@ OPAL_CONSTANT int PixelSpectrumBinding = 9;    // wavelengthCount floats per pix
 OPAL_CONSTANT int PixelRadianceBinding = 10;   // 3 floats per pixel: linear sRGB
 OPAL_CONSTANT int PixelRGB8Binding = 11;       // uint per pixel: 8-bit sRGB, R in the low byte
 OPAL_CONSTANT int LightEntryQueuesBinding = 12; // DispatchQueue per layer of the grid
-OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel: the queued voxels, a layer's together
+OPAL_CONSTANT int LightEntryVoxelsBinding = 13; // uint per voxel of a layer: the layer being swept's queued voxels
 OPAL_CONSTANT int PixelMirrorBinding = 14;     // PixelMirror per pixel
 OPAL_CONSTANT int HighlightQueueBinding = 15;  // one DispatchQueue, its count: the pixels queued for the highlight
 // Absorption (docs/design.md §3.9), read only by the passes specialised on it

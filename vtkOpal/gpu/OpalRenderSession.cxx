@@ -333,8 +333,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field", nullptr, placement);
   uploaded->LightShadow =
     deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);
+  const std::size_t layerVoxels = static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[2];
   uploaded->EntryVoxels =
-    deviceLocalBuffer(context, voxels * sizeof(std::uint32_t), "light entry voxels", nullptr, placement);
+    deviceLocalBuffer(context, layerVoxels * sizeof(std::uint32_t), "light entry voxels (a layer)", nullptr, placement);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
   // The light pass's queues, emptied on the device before every sweep.
   uploaded->EntryQueues = deviceLocalBuffer(

@@ -24,10 +24,11 @@ namespace sessiondetail
 {
 constexpr std::uint32_t PushConstantBytes = 32;   // the largest push-constant struct of the contract
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
-// On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8),
-// the light field's pair and a place in the light pass's entry queue; with
-// absorption also its two coefficients and their light field's pair.
-constexpr std::uint64_t DeviceBytesPerVoxel = sizeof(gpu::VoxelCell) + 8 + sizeof(gpu::LightFieldPair) + 4;
+// On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8)
+// and the light field's pair; with absorption also its two coefficients and
+// their light field's pair. (Besides: the light pass's entry queue, 4 bytes
+// per voxel of one layer.)
+constexpr std::uint64_t DeviceBytesPerVoxel = sizeof(gpu::VoxelCell) + 8 + sizeof(gpu::LightFieldPair);
 constexpr std::uint64_t AbsorptionBytesPerVoxel = 8 + sizeof(gpu::LightFieldPair);
 inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
