@@ -4,14 +4,17 @@
 // or is absorbed, within the Monte Carlo error of the roulette), the
 // refractive boundary keeping light inside (total internal reflection: a
 // stone of index 1.45 holds more scattered light than an index-matched one),
-// determinism for a seed, the solve shared by processes equal to one
+// determinism for a seed, any range of voxels equal to the whole field there
+// (the device takes it in rounds), the solve shared by processes equal to one
 // process's bit for bit (docs/design.md §8.1), and an optical depth beyond the
 // budget: a warning naming the shortfall and a finite field, never NaN.
 #include "OpalEllipsoidScene.h"
 #include "OpalScatteredLight.h"
 #include "OpalTestHarness.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -39,15 +42,24 @@ opal::ScatteredLightRequest requestFor(const opal::ScatteringMedium& medium, dou
   return request;
 }
 
-// The field's mean over the voxels that scatter, per node.
-double fieldMean(const opal::ScatteredLight& field, int node)
+// The whole field, every voxel of `medium` (the medium solved).
+std::vector<opal::ScatteredLight::Values> valuesOf(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
+{
+  std::vector<opal::ScatteredLight::Values> values(medium.Scattering.size());
+  field.meanRadiance(medium, 0, values.size(), values.data());
+  return values;
+}
+
+// The field's mean over the voxels, per node.
+double fieldMean(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium, int node)
 {
   double sum = 0;
-  for (const auto& values : field.MeanRadiancePerScale)
+  const std::vector<opal::ScatteredLight::Values> all = valuesOf(field, medium);
+  for (const auto& values : all)
   {
     sum += values[static_cast<std::size_t>(node)];
   }
-  return sum / static_cast<double>(field.MeanRadiancePerScale.size());
+  return sum / static_cast<double>(all.size());
 }
 
 // The solve dealt to `shares` shares, each traced on its own and the scores
@@ -78,9 +90,9 @@ bool refuses(Work&& work, const std::string& naming)
   return false;
 }
 
-bool allFinite(const opal::ScatteredLight& field)
+bool allFinite(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
 {
-  for (const auto& values : field.MeanRadiancePerScale)
+  for (const auto& values : valuesOf(field, medium))
     for (const float v : values)
       if (!std::isfinite(v) || v < 0)
         return false;
@@ -98,15 +110,24 @@ int TestOpalScatteredLight(int, char*[])
   const auto clear = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
   OPAL_CHECK(clear && clear->Warning.empty() && clear->GivenUp == 0, "the paper's body is within the budget");
   OPAL_CHECK(std::fabs(clear->Escaped / clear->Entered - 1) < 1e-9, "without absorption what enters leaves");
-  OPAL_CHECK(allFinite(*clear), "the field is finite and not negative");
+  OPAL_CHECK(allFinite(*clear, medium), "the field is finite and not negative");
   const auto again = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
-  OPAL_CHECK(again->MeanRadiancePerScale == clear->MeanRadiancePerScale, "the same seed gives the same field");
+  const std::vector<opal::ScatteredLight::Values> clearValues = valuesOf(*clear, medium);
+  OPAL_CHECK(valuesOf(*again, medium) == clearValues, "the same seed gives the same field");
+  // Any voxels on their own, as the device's rounds ask for them: the same values.
+  const std::size_t first = clearValues.size() / 3, count = clearValues.size() / 4 + 5;
+  std::vector<opal::ScatteredLight::Values> part(count);
+  clear->meanRadiance(medium, first, count, part.data());
+  OPAL_CHECK(std::equal(part.begin(), part.end(), clearValues.begin() + static_cast<std::ptrdiff_t>(first)),
+    "the values of a range of voxels equal the whole field's there");
+  OPAL_CHECK(refuses([&] { clear->meanRadiance(medium, clearValues.size() - 1, 2, part.data()); }, "asked for voxels"),
+    "voxels beyond the medium are refused");
 
   // Shared by 2, 3 and 5 processes, and by more processes than the solve has tasks: the same field.
   for (const int shares : { 2, 3, 5, 20 })
   {
     const opal::ScatteredLight shared = sharedSolve(medium, requestFor(medium, 1.45, 4096), shares);
-    OPAL_CHECK(shared.MeanRadiancePerScale == clear->MeanRadiancePerScale && shared.Escaped == clear->Escaped,
+    OPAL_CHECK(valuesOf(shared, medium) == clearValues && shared.Escaped == clear->Escaped,
       "a solve shared by " + std::to_string(shares) + " equals one process's bit for bit");
   }
   const opal::ScatteredLightRequest small = requestFor(medium, 1.45, 64);
@@ -120,9 +141,9 @@ int TestOpalScatteredLight(int, char*[])
   const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);
   for (int m = 0; m < opal::ScatteredLightNodes; ++m)
   {
-    std::cout << "node " << m << ": field mean " << fieldMean(*clear, m) << " at index 1.45, "
-              << fieldMean(*matched, m) << " index-matched" << std::endl;
-    OPAL_CHECK(fieldMean(*clear, m) > 1.2 * fieldMean(*matched, m), "a refracting boundary holds scattered light in");
+    std::cout << "node " << m << ": field mean " << fieldMean(*clear, medium, m) << " at index 1.45, "
+              << fieldMean(*matched, medium, m) << " index-matched" << std::endl;
+    OPAL_CHECK(fieldMean(*clear, medium, m) > 1.2 * fieldMean(*matched, medium, m), "a refracting boundary holds scattered light in");
   }
 
   // Absorbing: grey 0.1/mm everywhere and 2/mm in the lowest millimetre (a backing).
@@ -140,7 +161,7 @@ int TestOpalScatteredLight(int, char*[])
             << absorbing->Absorbed / absorbing->Entered << ", balance " << balance << std::endl;
   OPAL_CHECK(std::fabs(balance) < 0.01, "with absorption what enters leaves or is absorbed (roulette: within 1%)");
   OPAL_CHECK(absorbing->Absorbed > 0.1 * absorbing->Entered, "the absorption and the backing take their share");
-  OPAL_CHECK(fieldMean(*absorbing, 0) < fieldMean(*clear, 0), "absorption dims the scattered light");
+  OPAL_CHECK(fieldMean(*absorbing, medium, 0) < fieldMean(*clear, medium, 0), "absorption dims the scattered light");
 
   // An optical depth beyond the budget: said, and the field it has is finite.
   medium.Absorption.clear();
@@ -152,7 +173,7 @@ int TestOpalScatteredLight(int, char*[])
   std::cout << "opaque: " << opaque->Warning << std::endl;
   OPAL_CHECK(!opaque->Warning.empty() && opaque->Warning.find("budget") != std::string::npos,
     "a solve beyond its budget says so");
-  OPAL_CHECK(allFinite(*opaque), "and gives a finite field");
+  OPAL_CHECK(allFinite(*opaque, medium), "and gives a finite field");
 
   // Cancelled: no field.
   OPAL_CHECK(!opal::solveScatteredLight(medium, requestFor(medium, 1.0, 64), [](double) { return false; }),

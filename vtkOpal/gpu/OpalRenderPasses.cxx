@@ -161,9 +161,14 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
 {
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
-  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context,
-    field.MeanRadiancePerScale.size() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
-  v.ScatteredLight->upload(field.MeanRadiancePerScale.data(), field.MeanRadiancePerScale.size() * sizeof(gpu::vec4));
+  const std::uint64_t bytes = v.Medium.Scattering.size() * sizeof(gpu::vec4);
+  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light field", v.FieldPlacement);
+  static_assert(sizeof(opal::ScatteredLight::Values) == sizeof(gpu::vec4));
+  // Evaluated round by round where it goes: the field is never whole on the host (docs/design.md §3.10).
+  v.ScatteredLight->fill(bytes, [&](std::uint64_t first, std::uint64_t count, void* into) {
+    field.meanRadiance(v.Medium, first / sizeof(gpu::vec4), count / sizeof(gpu::vec4),
+      static_cast<opal::ScatteredLight::Values*>(into));
+  });
   this->bindBuffers();
   this->ScatteredLightWarning = field.Warning;
   this->ScatteredLight = scatteredLightKey(setup);

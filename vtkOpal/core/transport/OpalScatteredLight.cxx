@@ -484,41 +484,6 @@ std::vector<double> insideVolumes(const ScatteringMedium& medium, const TallyGri
   return volumes;
 }
 
-// The field at voxel centres with scattering: the kernel estimate of the
-// eight tally nodes around each, over 4 pi s.
-void fieldFromTallies(const ScatteringMedium& medium, const TallyGrid& tally,
-  const std::array<std::vector<double>, ScatteredLightNodes>& tallies,
-  const std::array<double, ScatteredLightNodes>& scales, ScatteredLight& field)
-{
-  const std::vector<double> volumes = insideVolumes(medium, tally);
-  const VolumeGeometry& g = medium.Geometry;
-  const glm::ivec3 dims = g.dimensions();
-  field.MeanRadiancePerScale.assign(medium.Scattering.size(), {});
-  parallelFor(0, dims.z, [&](int kBegin, int kEnd) {
-    for (int k = kBegin; k < kEnd; ++k)
-      for (int j = 0; j < dims.y; ++j)
-        for (int i = 0; i < dims.x; ++i)
-        {
-          const std::size_t v = static_cast<std::size_t>(i) +
-            static_cast<std::size_t>(dims.x) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims.y) * k);
-          if (!(medium.Scattering[v] > 0))
-          {
-            continue;
-          }
-          double volume = 0;
-          std::array<double, ScatteredLightNodes> sums{};
-          tally.forEachNode(g.origin() + glm::dvec3(i, j, k) * g.spacing(), [&](std::size_t n, double w) {
-            volume += w * volumes[n];
-            for (int m = 0; m < ScatteredLightNodes; ++m) sums[m] += w * tallies[m][n];
-          });
-          for (int m = 0; m < ScatteredLightNodes && volume > 0; ++m)
-          {
-            field.MeanRadiancePerScale[v][m] = static_cast<float>(sums[m] / volume / (4.0 * Pi * scales[m]));
-          }
-        }
-  });
-}
-
 // The share that traces task t: tasks interleave the nodes (t % nodes), so
 // dealing (t / nodes + t % nodes) % shares gives each share every node alike
 // where it can (the blue nodes cost the most).
@@ -640,7 +605,10 @@ ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const Sc
     for (const int t : tasks) packed = unpackScore(packed, tally.size(), scores[t]);
   }
   ScatteredLight field;
-  std::array<std::vector<double>, ScatteredLightNodes> tallies;
+  field.Voxels = medium.Scattering.size();
+  field.NodeVolumes = insideVolumes(medium, tally);
+  field.Scales = request.NodeScales;
+  std::array<std::vector<double>, ScatteredLightNodes>& tallies = field.NodeTallies;
   for (auto& t : tallies) t.assign(tally.size(), 0.0);
   for (std::size_t t = 0; t < scores.size(); ++t)
   {
@@ -652,7 +620,6 @@ ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const Sc
     field.Absorbed += score.Absorbed;
     field.GivenUp += score.GivenUp;
   }
-  fieldFromTallies(medium, tally, tallies, request.NodeScales, field);
   if (field.GivenUp > ReportedShortfall * field.Entered)
   {
     field.Warning = "The every-order scattering solve gave up " +
@@ -661,6 +628,44 @@ ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const Sc
       "and the scattered light is short by that share.";
   }
   return field;
+}
+
+void ScatteredLight::meanRadiance(
+  const ScatteringMedium& medium, std::size_t first, std::size_t count, Values* into) const
+{
+  if (medium.Scattering.size() != this->Voxels || first > this->Voxels || count > this->Voxels - first)
+  {
+    throw std::invalid_argument("The scattered light of " + std::to_string(this->Voxels) +
+      " voxels was asked for voxels " + std::to_string(first) + " to " + std::to_string(first + count) +
+      " of a medium of " + std::to_string(medium.Scattering.size()) + ".");
+  }
+  const TallyGrid tally(medium.Geometry);
+  const VolumeGeometry& g = medium.Geometry;
+  const glm::ivec3 dims = g.dimensions();
+  const std::size_t row = static_cast<std::size_t>(dims.x), layer = row * static_cast<std::size_t>(dims.y);
+  const int blocks = static_cast<int>(std::min<std::size_t>(count, 256));
+  parallelFor(0, blocks, [&](int begin, int end) {
+    for (std::size_t v = first + count * begin / blocks; v < first + count * end / blocks; ++v)
+    {
+      Values& values = into[v - first];
+      values = {};
+      if (!(medium.Scattering[v] > 0))
+      {
+        continue;
+      }
+      const glm::dvec3 p = g.origin() + glm::dvec3(v % row, v % layer / row, v / layer) * g.spacing();
+      double volume = 0;
+      std::array<double, ScatteredLightNodes> sums{};
+      tally.forEachNode(p, [&](std::size_t n, double w) {
+        volume += w * this->NodeVolumes[n];
+        for (int m = 0; m < ScatteredLightNodes; ++m) sums[m] += w * this->NodeTallies[m][n];
+      });
+      for (int m = 0; m < ScatteredLightNodes && volume > 0; ++m)
+      {
+        values[m] = static_cast<float>(sums[m] / volume / (4.0 * Pi * this->Scales[m]));
+      }
+    }
+  });
 }
 
 std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,

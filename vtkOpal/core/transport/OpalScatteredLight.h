@@ -19,6 +19,7 @@
 #include "OpalVolumeGeometry.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -60,15 +61,31 @@ struct ScatteredLightRequest
 // Per voxel and node: the mean radiance of the scattered light, fluence /
 // (4 pi), divided by the node's s (nearly constant in s where the stone is
 // thin, so the march's interpolation over the nodes is smooth; §3.10). Zero
-// in voxels without scattering.
+// in voxels without scattering. Held as the solve's tallies on the coarse
+// grid: meanRadiance gives any voxels' values from them, so the field is
+// written where it goes (the device's rounds) and never whole on the host.
 struct ScatteredLight
 {
-  std::vector<std::array<float, ScatteredLightNodes>> MeanRadiancePerScale;
+  using Values = std::array<float, ScatteredLightNodes>;
+  // The values of `count` voxels of `medium` (the medium solved) from voxel
+  // `first` on (x fastest) into `into`, over the threads: each the kernel
+  // estimate of the eight tally nodes around it. Throws std::invalid_argument
+  // for another medium's size or voxels beyond it.
+  void meanRadiance(const ScatteringMedium& medium, std::size_t first, std::size_t count, Values* into) const;
+
   // Of the power that entered the stone (sum over nodes): what left, what was
   // absorbed, and what the collision budget gave up (the solve's shortfall).
   double Entered = 0, Escaped = 0, Absorbed = 0, GivenUp = 0;
   // Empty, or a sentence saying the solve ran out of its budget and by how much.
   std::string Warning;
+
+private:
+  friend ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium,
+    const ScatteredLightRequest& request, const std::vector<std::vector<double>>& shares);
+  std::size_t Voxels = 0;
+  std::vector<double> NodeVolumes; // the inside volume each tally node's weights give it
+  std::array<std::vector<double>, ScatteredLightNodes> NodeTallies;
+  std::array<double, ScatteredLightNodes> Scales{};
 };
 
 // The nodes' s for a wavelength table spanning [shortest, longest] nm.
