@@ -187,8 +187,13 @@ private:
 
   // The session for the current device settings, created on first use.
   opal::RenderSession& Session();
-  // Uploads the input volume unless the session already holds this version of it.
+  // Uploads the input volume unless the session already holds this version
+  // of it. Under MPI the gathered volume's arrays are released after the
+  // upload (the device holds their values; docs/design.md §8.1): an upload
+  // that needs them again fails, saying that the render's update gathers them.
   bool UploadVolume(vtkImageData* input);
+  // Whether the session of the current device settings holds this version of `volume`.
+  bool HoldsUploadedVolume(vtkImageData* volume) const;
   // `parameters` resolved against this input (GetResolvedFrame).
   opal::ResolvedFrame Resolve(
     const opal::RenderParameters& parameters, vtkInformation* inputInformation, vtkImageData* input) const;
@@ -277,7 +282,8 @@ private:
   // rendered says which rank failed, and why).
   RenderOutcome AgreeOnOutcome(RenderOutcome mine);
   // Under MPI, collective: the whole volume gathered from the ranks' pieces
-  // (vtkOpalVolumePieces), again where any rank's piece changed; false, said
+  // (vtkOpalVolumePieces), again where any rank's piece changed or a rank
+  // whose device no longer holds it needs the released arrays; false, said
   // in an error, where the pieces differ or the whole does not fit.
   bool GatherVolume(vtkImageData* input, vtkInformation* inputInformation);
   // The volume the render reads for this input: the input itself with one

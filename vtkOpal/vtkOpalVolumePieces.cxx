@@ -230,15 +230,17 @@ void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformat
 }
 
 std::string GatheredVolume::Update(
-  vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation)
+  vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation, bool needsArrays)
 {
+  const bool changed = this->From != piece || this->Time != piece->GetMTime();
   if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
-    !vtkOpalRankAgreement::AnyRank(controller, this->From != piece || this->Time != piece->GetMTime()))
+    !vtkOpalRankAgreement::AnyRank(controller, changed || (this->ArraysReleased && needsArrays)))
   {
     return {};
   }
   this->From = nullptr;
   this->Volume = nullptr;
+  this->ArraysReleased = false;
   int whole[6];
   pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   // The gathered arrays (and one array's exchange) must fit on every rank.
@@ -256,6 +258,15 @@ std::string GatheredVolume::Update(
   this->From = piece;
   this->Time = piece->GetMTime();
   return {};
+}
+
+void GatheredVolume::ReleaseArrays()
+{
+  if (this->Volume && this->From)
+  {
+    this->Volume->GetPointData()->Initialize();
+    this->ArraysReleased = true;
+  }
 }
 
 vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImageData* piece) const

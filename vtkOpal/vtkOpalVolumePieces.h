@@ -26,19 +26,28 @@ namespace vtkOpalVolumePieces
 VTKOPAL_EXPORT void AskForPiece(vtkMultiProcessController* controller, vtkInformation* inputInformation);
 
 // The whole volume gathered from the ranks' pieces, kept until a rank's piece
-// changes: its owner's data request updates it, its frames read it.
+// changes: its owner's data request updates it, its frames read it. Its
+// point arrays may be released once a device holds their values
+// (docs/design.md §8.1).
 class VTKOPAL_EXPORT GatheredVolume
 {
 public:
   // Collective (every rank calls it together): gathers again where any
   // rank's piece (not null; `pieceInformation` its pipeline information,
-  // which gives the whole extent) changed since the last Update, after
+  // which gives the whole extent) changed since the last Update, or any rank
+  // `needsArrays` whose arrays were released, after
   // checking that the whole fits on every rank: the render's point arrays
   // (ScatteringCoefficient, DomainId, SurfaceDistance and, where present,
   // the absorption pair) placed at each piece's extent, with this piece's
   // field data. Nothing to do with one process. Empty, else (alike on every
   // rank) the reason: the whole does not fit, or the pieces differ in an array.
-  std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation);
+  std::string Update(
+    vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation, bool needsArrays);
+  // Drops the gathered point arrays, keeping the geometry and field data (Of
+  // still gives the volume, without them); nothing with one process.
+  void ReleaseArrays();
+  // Whether the volume's arrays were released since it was gathered.
+  bool Released() const { return this->ArraysReleased; }
   // The whole volume of `piece`: the piece itself with one process; nullptr
   // where the last Update failed or was given another piece.
   vtkImageData* Of(vtkMultiProcessController* controller, vtkImageData* piece) const;
@@ -47,5 +56,6 @@ private:
   vtkSmartPointer<vtkImageData> Volume;
   vtkImageData* From = nullptr; // the piece it was gathered from, in its version
   vtkMTimeType Time = 0;
+  bool ArraysReleased = false;
 };
 } // namespace vtkOpalVolumePieces

@@ -156,10 +156,12 @@ int vtkOpalSpectralRepresentation::RequestUpdateExtent(
 
 // Under MPI, collective (every rank's view updates together): the ranks'
 // pieces gathered into the whole volume, again where any rank's piece changed.
+// Its arrays are kept: the frames, on the session's worker, may upload them
+// at any time, where no exchange may run.
 vtkImageData* vtkOpalSpectralRepresentation::WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation)
 {
   vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
-  const std::string error = this->Gathered->Update(ranks, piece, pieceInformation);
+  const std::string error = this->Gathered->Update(ranks, piece, pieceInformation, true);
   if (!error.empty())
   {
     vtkErrorMacro(<< error);

@@ -65,7 +65,7 @@ else:
         (["--voronoi"] if kind == "voronoi" else [])
     writer = os.path.join(here, "opal_write_pipeline.py")
     alone = run([config.PVBATCH, writer, serial] + arguments).stdout
-    together = run(mpiexec + [writer, parallel] + arguments).stdout
+    together = run(mpiexec + [writer, parallel] + arguments + (["--again"] if kind == "render" else [])).stdout
     if kind == "fire":
         # Every order: the ranks share the photon solve (each traces a share,
         # all build the field from every share's scores, docs/design.md §8.1).
@@ -106,6 +106,14 @@ if kind in ("volume", "voronoi"):
 else:
     exact = ["RGB"]
     close = ["Radiance", "XYZ", "DominantBraggWavelength", "Depth"]
+if kind == "render":
+    # A new device session after the render: the ranks gather the arrays they
+    # released after the first upload again (docs/design.md §8.1), and render the same image.
+    again_data = read(vtkXMLPImageDataReader, parallel.replace(".pvti", "-again.pvti")).GetOutput()
+    again_rgb = again_data.GetPointData().GetArray("RGB")
+    check(again_rgb is not None and numpy.array_equal(vtk_to_numpy(again_rgb),
+                                                      vtk_to_numpy(parallel_data.GetPointData().GetArray("RGB"))),
+          "rendered again on a new device session, the ranks' image is the same")
 for name in exact + close:
     a = serial_data.GetPointData().GetArray(name)
     b = parallel_data.GetPointData().GetArray(name)

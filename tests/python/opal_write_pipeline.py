@@ -3,8 +3,11 @@ result (a .pvti under MPI, one piece per rank). With --voronoi the volume is
 of Voronoi grains with correlated scattering diameters; --preset NAME starts
 from a preset (its grid replaced by the one given; the render takes the
 preset's Bragg model and planes); --side-light puts the light low to the side
-(the per-voxel light march instead of the sweep from above).
-Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light]"""
+(the per-voxel light march instead of the sweep from above); --again renders
+once more with a new device session, which holds no volume (under MPI the
+render gathers the arrays it released after the first upload), into
+OUTPUT-again.pvti.
+Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light] [--again]"""
 import sys
 
 from paraview.simple import LoadPlugin, SaveData
@@ -14,12 +17,13 @@ import opal_test_config as config
 arguments = list(sys.argv)
 voronoi = "--voronoi" in arguments
 side_light = "--side-light" in arguments
+again = "--again" in arguments
 preset = {}
 if "--preset" in arguments:
     at = arguments.index("--preset")
     preset = dict(Preset=arguments[at + 1])
     del arguments[at:at + 2]
-arguments = [a for a in arguments if a not in ("--voronoi", "--side-light")]
+arguments = [a for a in arguments if a not in ("--voronoi", "--side-light", "--again")]
 output, dimensions = arguments[1], [int(v) for v in arguments[2:5]]
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationLength=0.8) if voronoi else {}
@@ -33,3 +37,6 @@ SaveData(output, proxy=result, DataMode="Binary")
 if len(arguments) > 6:
     result.UpdatePropertyInformation()
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")
+if again:
+    result.DeviceMemoryLimit = 16000  # MB: a new session
+    SaveData(output.replace(".pvti", "-again.pvti"), proxy=result, DataMode="Binary")
