@@ -214,6 +214,15 @@ int TestOpalRenderSession(int, char*[])
   const auto largeVolume = opal::buildVolume(large);
   checkStagingTransfers(largeVolume->renderVolume(), moved, renderer->render(largeVolume->renderVolume(), moved),
     "fields in two rounds");
+  // Every order in an absorbing body: the solve reads its medium back from
+  // the device's cells and absorption cells (two rounds through staging).
+  large.BodyAbsorption = 0.05;
+  const auto absorbingVolume = opal::buildVolume(large);
+  opal::RenderParameters everyOrder = moved;
+  everyOrder.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  everyOrder.ScatteringPhotons = 2000;
+  checkStagingTransfers(absorbingVolume->renderVolume(), everyOrder,
+    renderer->render(absorbingVolume->renderVolume(), everyOrder), "every order, its medium read back in two rounds");
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

@@ -122,13 +122,41 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
   return *pass;
 }
 
+// The medium the every-order solve reads: its fields read back from the
+// device's cells (and absorption cells) by the first solve, then kept with
+// the volume, so a session that renders single scattering never holds them
+// on the host (4 bytes per voxel, 12 with absorption; docs/design.md §3.10).
+const ScatteringMedium& RenderSession::scatteringMedium()
+{
+  DeviceVolume& v = *this->Volume;
+  const std::size_t voxels = v.Shape.voxelCount();
+  if (v.Medium.Scattering.size() == voxels)
+  {
+    return v.Medium;
+  }
+  v.Medium.Scattering.resize(voxels);
+  v.Cells->read(voxels * sizeof(gpu::VoxelCell), [&v](std::uint64_t first, std::uint64_t count, const void* from) {
+    const auto* cells = static_cast<const gpu::VoxelCell*>(from);
+    float* scattering = v.Medium.Scattering.data() + first / sizeof(gpu::VoxelCell);
+    for (std::size_t i = 0; i < count / sizeof(gpu::VoxelCell); ++i) scattering[i] = cells[i].scattering;
+  });
+  if (v.Absorbs)
+  {
+    v.Medium.Absorption.resize(voxels);
+    v.AbsorptionCells->read(voxels * sizeof(glm::vec2), [&v](std::uint64_t first, std::uint64_t count, const void* from) {
+      std::memcpy(reinterpret_cast<char*>(v.Medium.Absorption.data()) + first, from, count);
+    });
+  }
+  return v.Medium;
+}
+
 // The light scattered more than once (docs/design.md §3.10), solved on the
 // host for the frame's light and uploaded; nothing is held while it runs, so
 // an aborted solve leaves no stale field.
 bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
 {
   this->ScatteredLight.reset();
-  const std::optional<opal::ScatteredLight> field = solveScatteredLight(this->Volume->Medium,
+  const std::optional<opal::ScatteredLight> field = solveScatteredLight(this->scatteringMedium(),
     scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
   if (!field)
   {
@@ -161,12 +189,13 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
 {
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
-  const std::uint64_t bytes = v.Medium.Scattering.size() * sizeof(gpu::vec4);
+  const std::uint64_t bytes = v.Shape.voxelCount() * sizeof(gpu::vec4);
   v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light field", v.FieldPlacement);
   static_assert(sizeof(opal::ScatteredLight::Values) == sizeof(gpu::vec4));
   // Evaluated round by round where it goes: the field is never whole on the host (docs/design.md §3.10).
+  const ScatteringMedium& medium = this->scatteringMedium();
   v.ScatteredLight->fill(bytes, [&](std::uint64_t first, std::uint64_t count, void* into) {
-    field.meanRadiance(v.Medium, first / sizeof(gpu::vec4), count / sizeof(gpu::vec4),
+    field.meanRadiance(medium, first / sizeof(gpu::vec4), count / sizeof(gpu::vec4),
       static_cast<opal::ScatteredLight::Values*>(into));
   });
   this->bindBuffers();
@@ -202,7 +231,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     }
     setup = this->setUpFrame(frame);
     Progress progress(callback);
-    mine = traceScatteredLightShare(this->Volume->Medium, scatteredLightRequest(*setup), share, shares,
+    mine = traceScatteredLightShare(this->scatteringMedium(), scatteredLightRequest(*setup), share, shares,
       [&progress](double done) { return progress.report(0.2 * done); });
   }
   catch (...)
@@ -219,7 +248,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   {
     return false;
   }
-  this->holdScatteredLight(*setup, scatteredLightFromShares(this->Volume->Medium, scatteredLightRequest(*setup), *scores));
+  this->holdScatteredLight(*setup, scatteredLightFromShares(this->scatteringMedium(), scatteredLightRequest(*setup), *scores));
   this->PendingScatteredSeconds = secondsSince(start);
   return true;
 }

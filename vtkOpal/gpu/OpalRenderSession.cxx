@@ -54,15 +54,6 @@ void writeVoxels(T* values, std::size_t begin, std::size_t end, const std::vecto
   }
 }
 
-// A per-voxel field of T on the host (writeVoxels over every voxel).
-template <typename T, typename Value>
-std::vector<T> voxelValues(std::size_t voxels, const std::vector<SkinCell>& skin, Value&& value)
-{
-  std::vector<T> values(voxels);
-  writeVoxels(values.data(), 0, voxels, skin, value);
-  return values;
-}
-
 // A per-voxel field of T written into `buffer` round by round
 // (VulkanBuffer::fill), so the whole field is never built on the host
 // (docs/design.md §3.7).
@@ -151,32 +142,24 @@ std::unique_ptr<VulkanBuffer> deviceLocalBuffer(VulkanContext& context, std::uin
   return buffer;
 }
 
-// AbsorptionCoefficient as the shaders read it (AbsorptionCellBinding): per
-// voxel (coloured, grey) mu_a at 550 nm, a voxel of exponent 0 grey, the
-// skin filled like the cells (docs/design.md §3.9); empty without absorption.
-std::vector<gpu::vec2> absorptionCells(const RenderVolume& volume, const std::vector<SkinCell>& skin)
+// AbsorptionCoefficient on the device as the shaders read it
+// (AbsorptionCellBinding): per voxel (coloured, grey) mu_a at 550 nm, a voxel
+// of exponent 0 grey, the skin filled like the cells (docs/design.md §3.9).
+// Without absorption a placeholder, bound but never read (the passes without ABSORPTION).
+std::unique_ptr<VulkanBuffer> absorptionBuffer(
+  VulkanContext& context, const RenderVolume& volume, const std::vector<SkinCell>& skin, BufferPlacement placement)
 {
   if (!volume.absorbs())
   {
-    return {};
+    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
   }
-  return voxelValues<gpu::vec2>(volume.voxelCount(), skin, [&volume](std::size_t i) {
+  auto buffer = deviceLocalBuffer(
+    context, volume.voxelCount() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", nullptr, placement);
+  fillVoxelField<gpu::vec2>(*buffer, volume.voxelCount(), skin, [&volume](std::size_t i) {
     const float absorption = volume.AbsorptionCoefficient[i];
     return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
   });
-}
-
-// The absorption cells on the device; without absorption a placeholder,
-// bound but never read (the passes without ABSORPTION).
-std::unique_ptr<VulkanBuffer> absorptionBuffer(
-  VulkanContext& context, const std::vector<gpu::vec2>& cells, BufferPlacement placement)
-{
-  if (cells.empty())
-  {
-    return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
-  }
-  return deviceLocalBuffer(
-    context, cells.size() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", cells.data(), placement);
+  return buffer;
 }
 
 // The halves of a device address, as the shaders read it.
@@ -321,8 +304,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
     [&volume](std::size_t i) { return gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
-  uploaded->Medium.Absorption = absorptionCells(volume, skin);
-  uploaded->AbsorptionCells = absorptionBuffer(context, uploaded->Medium.Absorption, placement);
+  uploaded->AbsorptionCells = absorptionBuffer(context, volume, skin, placement);
   uploaded->LightAbsorption = deviceLocalBuffer(context,
     absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
     placement);
@@ -343,9 +325,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
-  uploaded->Medium.Geometry = VolumeGeometry(volume);
-  uploaded->Medium.Scattering =
-    voxelValues<float>(voxels, skin, [&volume](std::size_t i) { return volume.ScatteringCoefficient[i]; });
+  uploaded->Medium.Geometry = VolumeGeometry(volume); // its fields read back by the first every-order solve
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
   uploaded->ScatteredLight =
     deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);

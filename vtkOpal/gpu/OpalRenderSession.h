@@ -34,6 +34,7 @@ class StorageBufferBindings;
 class VulkanBuffer;
 struct ScatteredLight;
 struct ScatteredLightRequest;
+struct ScatteringMedium;
 struct WavelengthBin;
 
 // Which stages a frame ran; the others reused what the session kept.
@@ -193,6 +194,7 @@ private:
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
+  const ScatteringMedium& scatteringMedium();
   bool scatteredLightServes(const FrameSetup& setup) const;
   static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
   void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);

@@ -72,8 +72,9 @@ inline float srgbToLinear(double encoded)
 struct RenderSession::DeviceVolume
 {
   RenderVolume Shape; // dimensions, origin, spacing and domain count; no field pointers
-  // The host's copy of the medium (skin filled) and its geometry: the
-  // every-order solve runs on it (docs/design.md §3.10).
+  // The medium's geometry and, once an every-order solve needed them
+  // (scatteringMedium), the host's copy of its fields (skin filled): the
+  // solve runs on it (docs/design.md §3.10).
   ScatteringMedium Medium;
   std::unique_ptr<VulkanBuffer> Cells, SurfaceDistance, DomainTable;
   std::unique_ptr<VulkanBuffer> LightField;

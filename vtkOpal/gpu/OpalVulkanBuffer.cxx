@@ -179,4 +179,32 @@ void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
   }
 }
 
+void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
+{
+  if (this->Mapped || bytes == 0)
+  {
+    if (bytes > 0)
+    {
+      reader(0, bytes, this->Mapped);
+    }
+    return;
+  }
+  VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + " (read-back staging)",
+    BufferPlacement::HostVisible);
+  for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
+  {
+    const std::uint64_t count = std::min(bytes - first, FillRoundBytes);
+    this->Context.submitAndWait([&](VkCommandBuffer commands) {
+      barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_TRANSFER_READ_BIT);
+      const VkBufferCopy region{ first, 0, count };
+      vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
+      barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+        VK_ACCESS_HOST_READ_BIT);
+    });
+    reader(first, count, staging.Mapped);
+  }
+}
+
 } // namespace opal

@@ -64,6 +64,12 @@ public:
   // needs a whole host copy besides its source (docs/design.md §3.7).
   using ContentWriter = std::function<void(std::uint64_t first, std::uint64_t count, void* into)>;
   void fill(std::uint64_t bytes, const ContentWriter& write);
+  // Reads the buffer's first `bytes` as read(first, count, from) takes them:
+  // bytes [first, first + count) of the content at `from`. Directly from the
+  // mapped memory, else in rounds through a staging buffer of at most
+  // FillRoundBytes, as fill writes them.
+  using ContentReader = std::function<void(std::uint64_t first, std::uint64_t count, const void* from)>;
+  void read(std::uint64_t bytes, const ContentReader& reader) const;
   // A round's bytes: a multiple of every field's value (at most 16 bytes).
   static constexpr std::uint64_t FillRoundBytes = std::uint64_t(64) << 20;
   // Records: the whole buffer set to zero on the device, then a barrier so
