@@ -8,8 +8,9 @@ render session's peak of device buffers (host memory on lavapipe), and from rank
 figures an estimate for the 10 um stone (16 x 8 x 20 mm, 1600 x 800 x 2000
 voxels). A run whose ranks would together need more than this machine's
 memory is skipped, saying so: each rank holds its piece of the volume's
-arrays and the render's arrays and device fields of the whole volume, ~39 /
-ranks + 83 bytes per voxel (fitted to 320 x 160 x 400 on 1, 2 and 4 ranks).
+arrays and the device fields of the whole volume (and the gathered arrays
+until their upload), ~54 / ranks + 64 bytes per voxel (fitted to 320 x 160 x
+400 on 1, 2 and 4 ranks, the process included).
 Usage: opal_bench_mpi.py PLUGIN NX NY NZ"""
 import os
 import resource
@@ -25,7 +26,7 @@ plugin, dimensions = sys.argv[1], [int(v) for v in sys.argv[2:5]]
 LoadPlugin(plugin, remote=False, ns=globals())
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-PIECE_BYTES, WHOLE_BYTES = 39, 83
+PIECE_BYTES, WHOLE_BYTES = 54, 64
 voxels = dimensions[0] * dimensions[1] * dimensions[2]
 size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels"
 
@@ -94,7 +95,7 @@ def estimate(volume_seconds, bytes_per_voxel, device_mb):
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
           f"{bytes_per_voxel:.0f} bytes per voxel here ({device_mb * 2**20 / voxels:.0f} of them device buffers, "
           f"the image's included), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
-          f"(the render's arrays and device fields of the whole volume on every rank)", flush=True)
+          f"(the device fields of the whole volume on every rank)", flush=True)
 
 
 # No rank leaves early (pvbatch under MPI must reach its end on every rank).
