@@ -100,7 +100,10 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
 std::vector<vtkIdType> RankOffsets(const std::vector<vtkIdType>& lengths)
 {
   std::vector<vtkIdType> offsets(lengths.size(), 0);
-  std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  if (!lengths.empty())
+  {
+    std::partial_sum(lengths.begin(), lengths.end() - 1, offsets.begin() + 1);
+  }
   return offsets;
 }
 

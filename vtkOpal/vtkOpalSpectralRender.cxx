@@ -163,8 +163,7 @@ int vtkOpalSpectralRender::RequestUpdateExtent(
 
 opal::RenderSession& vtkOpalSpectralRender::Session()
 {
-  if (!this->RenderSession || this->SessionDeviceIndex != this->DeviceIndex ||
-    this->SessionMemoryLimit != this->DeviceMemoryLimit)
+  if (!this->HasSessionOfSettings())
   {
     if (this->DeviceMemoryLimit < 0)
     {
@@ -182,10 +181,15 @@ opal::RenderSession& vtkOpalSpectralRender::Session()
   return *this->RenderSession;
 }
 
+bool vtkOpalSpectralRender::HasSessionOfSettings() const
+{
+  return this->RenderSession && this->SessionDeviceIndex == this->DeviceIndex &&
+    this->SessionMemoryLimit == this->DeviceMemoryLimit;
+}
+
 bool vtkOpalSpectralRender::HoldsUploadedVolume(vtkImageData* volume) const
 {
-  return volume && this->RenderSession && this->SessionDeviceIndex == this->DeviceIndex &&
-    this->SessionMemoryLimit == this->DeviceMemoryLimit && this->UploadedVolume == volume &&
+  return volume && this->HasSessionOfSettings() && this->UploadedVolume == volume &&
     this->UploadedVolumeTime == volume->GetMTime();
 }
 
@@ -535,11 +539,8 @@ bool vtkOpalSpectralRender::StartBackgroundFrame(const opal::RenderParameters& p
 bool vtkOpalSpectralRender::IsEyeInsideOpal()
 {
   vtkImageData* input = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
-  vtkImageData* volume = this->VolumeOf(input);
   // Only the volume uploaded: an input the render has not read yet is the render's to report on.
-  const bool uploaded = volume && this->RenderSession && this->UploadedVolume == volume &&
-    this->UploadedVolumeTime == volume->GetMTime();
-  return uploaded &&
+  return this->HoldsUploadedVolume(this->VolumeOf(input)) &&
     this->RenderSession->eyeInsideOpal(this->GetResolvedFrame(this->GetInputInformation(0, 0), input));
 }
 

@@ -192,7 +192,9 @@ private:
   // upload (the device holds their values; docs/design.md §8.1): an upload
   // that needs them again fails, saying that the render's update gathers them.
   bool UploadVolume(vtkImageData* input);
-  // Whether the session of the current device settings holds this version of `volume`.
+  // Whether a session exists for the current device settings (Session would keep it).
+  bool HasSessionOfSettings() const;
+  // Whether that session holds this version of `volume`.
   bool HoldsUploadedVolume(vtkImageData* volume) const;
   // `parameters` resolved against this input (GetResolvedFrame).
   opal::ResolvedFrame Resolve(

@@ -156,8 +156,9 @@ int vtkOpalSpectralRepresentation::RequestUpdateExtent(
 
 // Under MPI, collective (every rank's view updates together): the ranks'
 // pieces gathered into the whole volume, again where any rank's piece changed.
-// Its arrays are kept: the frames, on the session's worker, may upload them
-// at any time, where no exchange may run.
+// Its arrays are never released (needsArrays is moot): the representation
+// starts its frames (and their uploads) outside any data request, where no
+// rank may gather.
 vtkImageData* vtkOpalSpectralRepresentation::WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation)
 {
   vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();

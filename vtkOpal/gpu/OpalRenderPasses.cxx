@@ -134,19 +134,21 @@ const ScatteringMedium& RenderSession::scatteringMedium()
   {
     return v.Medium;
   }
-  v.Medium.Scattering.resize(voxels);
-  v.Cells->read(voxels * sizeof(gpu::VoxelCell), [&v](std::uint64_t first, std::uint64_t count, const void* from) {
+  // Read whole before it is kept: a read that throws (its staging round
+  // beyond the memory limit, say) leaves no half-read medium for a later solve.
+  std::vector<float> scattering(voxels);
+  v.Cells->read(voxels * sizeof(gpu::VoxelCell), [&scattering](std::uint64_t first, std::uint64_t count, const void* from) {
     const auto* cells = static_cast<const gpu::VoxelCell*>(from);
-    float* scattering = v.Medium.Scattering.data() + first / sizeof(gpu::VoxelCell);
-    for (std::size_t i = 0; i < count / sizeof(gpu::VoxelCell); ++i) scattering[i] = cells[i].scattering;
+    float* into = scattering.data() + first / sizeof(gpu::VoxelCell);
+    for (std::size_t i = 0; i < count / sizeof(gpu::VoxelCell); ++i) into[i] = cells[i].scattering;
   });
-  if (v.Absorbs)
-  {
-    v.Medium.Absorption.resize(voxels);
-    v.AbsorptionCells->read(voxels * sizeof(glm::vec2), [&v](std::uint64_t first, std::uint64_t count, const void* from) {
-      std::memcpy(reinterpret_cast<char*>(v.Medium.Absorption.data()) + first, from, count);
+  std::vector<glm::vec2> absorption(v.Absorbs ? voxels : 0);
+  v.AbsorptionCells->read(absorption.size() * sizeof(glm::vec2),
+    [&absorption](std::uint64_t first, std::uint64_t count, const void* from) {
+      std::memcpy(reinterpret_cast<char*>(absorption.data()) + first, from, count);
     });
-  }
+  v.Medium.Scattering = std::move(scattering);
+  v.Medium.Absorption = std::move(absorption);
   return v.Medium;
 }
 

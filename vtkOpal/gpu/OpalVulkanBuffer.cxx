@@ -45,9 +45,12 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
   // Released by the member's destructor also when a later step throws.
   this->Reservation = this->Context.reserveMemory(requirements.size);
   constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  const bool deviceLocal = placement != BufferPlacement::HostVisible;
-  const std::uint32_t type = deviceLocal ? this->Context.deviceLocalMemoryType(requirements.memoryTypeBits)
-                                         : this->Context.memoryType(requirements.memoryTypeBits, hostVisible);
+  const bool readback = placement == BufferPlacement::HostReadback;
+  const bool deviceLocal = placement != BufferPlacement::HostVisible && !readback;
+  const std::uint32_t bits = requirements.memoryTypeBits;
+  const std::uint32_t type = deviceLocal ? this->Context.deviceLocalMemoryType(bits)
+    : readback                           ? this->Context.readbackMemoryType(bits)
+                                         : this->Context.memoryType(bits, hostVisible);
   auto allocateInfo = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   allocateInfo.allocationSize = requirements.size;
   allocateInfo.memoryTypeIndex = type;
@@ -105,7 +108,7 @@ HostReadback::HostReadback(
   {
     return; // every buffer mapped
   }
-  this->Staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostVisible);
+  this->Staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostReadback);
   std::vector<std::uint64_t> offsets;
   context.submitAndWait([&](VkCommandBuffer commands) {
     barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -190,7 +193,7 @@ void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
     return;
   }
   VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + " (read-back staging)",
-    BufferPlacement::HostVisible);
+    BufferPlacement::HostReadback);
   for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
   {
     const std::uint64_t count = std::min(bytes - first, FillRoundBytes);

@@ -27,6 +27,9 @@ class VulkanContext;
 enum class BufferPlacement
 {
   HostVisible,
+  // HostVisible, in host-cached memory where the device offers it: what the
+  // host reads back (VulkanContext::readbackMemoryType).
+  HostReadback,
   DeviceLocal,
   // DeviceLocal, read by shaders through its device address rather than a
   // descriptor, so no maxStorageBufferRange bounds it (docs/design.md §3.7).
@@ -64,7 +67,7 @@ public:
   // needs a whole host copy besides its source (docs/design.md §3.7).
   using ContentWriter = std::function<void(std::uint64_t first, std::uint64_t count, void* into)>;
   void fill(std::uint64_t bytes, const ContentWriter& write);
-  // Reads the buffer's first `bytes` as read(first, count, from) takes them:
+  // Reads the buffer's first `bytes` as reader(first, count, from) takes them:
   // bytes [first, first + count) of the content at `from`. Directly from the
   // mapped memory, else in rounds through a staging buffer of at most
   // FillRoundBytes, as fill writes them.

@@ -476,6 +476,20 @@ std::uint32_t VulkanContext::deviceLocalMemoryType(std::uint32_t typeBits) const
   return this->memoryType(typeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 }
 
+std::uint32_t VulkanContext::readbackMemoryType(std::uint32_t typeBits) const
+{
+  constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  constexpr VkMemoryPropertyFlags cached = hostVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  {
+    if ((typeBits & (1u << i)) && (this->memoryTypeFlags(i) & cached) == cached)
+    {
+      return i;
+    }
+  }
+  return this->memoryType(typeBits, hostVisible);
+}
+
 MemoryReservation& MemoryReservation::operator=(MemoryReservation&& other) noexcept
 {
   if (this != &other)

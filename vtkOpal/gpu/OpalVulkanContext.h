@@ -81,6 +81,10 @@ public:
   std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
   // A device-local memory type among the allowed bits, else a host-visible one.
   std::uint32_t deviceLocalMemoryType(std::uint32_t typeBits) const;
+  // A host-visible, coherent type for what the host reads back: host-cached
+  // where the device offers it (a discrete GPU's uncached, write-combined
+  // memory reads slowly element by element).
+  std::uint32_t readbackMemoryType(std::uint32_t typeBits) const;
   VkMemoryPropertyFlags memoryTypeFlags(std::uint32_t type) const
   {
     return this->MemoryProperties.memoryTypes[type].propertyFlags;
