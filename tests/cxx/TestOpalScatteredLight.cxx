@@ -4,7 +4,8 @@
 // or is absorbed, within the Monte Carlo error of the roulette), the
 // refractive boundary keeping light inside (total internal reflection: a
 // stone of index 1.45 holds more scattered light than an index-matched one),
-// determinism for a seed, any range of voxels equal to the whole field there
+// determinism for a seed, the nodes' volumes kept with the medium giving the
+// same field, any range of voxels equal to the whole field there
 // (the device takes it in rounds), the solve shared by processes equal to one
 // process's bit for bit (docs/design.md §8.1), and an optical depth beyond the
 // budget: a warning naming the shortfall and a finite field, never NaN.
@@ -114,6 +115,14 @@ int TestOpalScatteredLight(int, char*[])
   const auto again = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
   const std::vector<opal::ScatteredLight::Values> clearValues = valuesOf(*clear, medium);
   OPAL_CHECK(valuesOf(*again, medium) == clearValues, "the same seed gives the same field");
+  // The nodes' volumes kept with the medium (as a session solving for several lights keeps them): the same field.
+  opal::ScatteringMedium kept = medium;
+  kept.NodeVolumes = opal::scatteredLightNodeVolumes(kept.Geometry);
+  const auto withKept = opal::solveScatteredLight(kept, requestFor(kept, 1.45, 4096), nullptr);
+  OPAL_CHECK(valuesOf(*withKept, kept) == clearValues, "a solve with the nodes' volumes kept gives the same field");
+  kept.NodeVolumes.pop_back();
+  OPAL_CHECK(refuses([&] { opal::solveScatteredLight(kept, requestFor(kept, 1.45, 64), nullptr); }, "NodeVolumes"),
+    "nodes' volumes of the wrong size are refused");
   // Any voxels on their own, as the device's rounds ask for them: the same values.
   const std::size_t first = clearValues.size() / 3, count = clearValues.size() / 4 + 5;
   std::vector<opal::ScatteredLight::Values> part(count);

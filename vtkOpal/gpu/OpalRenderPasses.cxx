@@ -124,7 +124,7 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
 
 // The medium the every-order solve reads: its fields read back from the
 // device's cells (and absorption cells) by the first solve, then kept with
-// the volume, so a session that renders single scattering never holds them
+// the volume with its tally nodes' volumes, so a session that renders single scattering never holds them
 // on the host (4 bytes per voxel, 12 with absorption; docs/design.md §3.10).
 const ScatteringMedium& RenderSession::scatteringMedium()
 {
@@ -147,8 +147,10 @@ const ScatteringMedium& RenderSession::scatteringMedium()
     [&absorption](std::uint64_t first, std::uint64_t count, const void* from) {
       std::memcpy(reinterpret_cast<char*>(absorption.data()) + first, from, count);
     });
+  std::vector<double> nodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry); // for every later light too
   v.Medium.Scattering = std::move(scattering);
   v.Medium.Absorption = std::move(absorption);
+  v.Medium.NodeVolumes = std::move(nodeVolumes);
   return v.Medium;
 }
 

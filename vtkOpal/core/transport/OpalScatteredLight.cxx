@@ -452,9 +452,8 @@ void NodeTransport::trace(std::int64_t photon, std::int64_t photons, TaskScore& 
 // on the thread count (one thread over 2.56 G voxels would take seconds).
 constexpr int VolumeBlocks = 64;
 
-std::vector<double> insideVolumes(const ScatteringMedium& medium, const TallyGrid& tally)
+std::vector<double> insideVolumes(const VolumeGeometry& g, const TallyGrid& tally)
 {
-  const VolumeGeometry& g = medium.Geometry;
   const glm::ivec3 dims = g.dimensions();
   const double cell = g.spacing().x * g.spacing().y * g.spacing().z;
   const int blocks = std::min(VolumeBlocks, dims.z);
@@ -524,6 +523,11 @@ const double* unpackScore(const double* packed, std::size_t tallySize, TaskScore
   return packed + PackedPowers + tallySize;
 }
 } // namespace
+
+std::vector<double> scatteredLightNodeVolumes(const VolumeGeometry& geometry)
+{
+  return insideVolumes(geometry, TallyGrid(geometry));
+}
 
 std::array<double, ScatteredLightNodes> scatteredLightScales(double shortestNm, double longestNm)
 {
@@ -606,7 +610,12 @@ ScatteredLight scatteredLightFromShares(const ScatteringMedium& medium, const Sc
   }
   ScatteredLight field;
   field.Voxels = medium.Scattering.size();
-  field.NodeVolumes = insideVolumes(medium, tally);
+  if (!medium.NodeVolumes.empty() && medium.NodeVolumes.size() != tally.size())
+  {
+    throw std::invalid_argument("The medium's NodeVolumes hold " + std::to_string(medium.NodeVolumes.size()) +
+      " values, not the tally grid's " + std::to_string(tally.size()) + ".");
+  }
+  field.NodeVolumes = medium.NodeVolumes.empty() ? insideVolumes(medium.Geometry, tally) : medium.NodeVolumes;
   field.Scales = request.NodeScales;
   std::array<std::vector<double>, ScatteredLightNodes>& tallies = field.NodeTallies;
   for (auto& t : tallies) t.assign(tally.size(), 0.0);

@@ -43,7 +43,15 @@ struct ScatteringMedium
   std::vector<float> Scattering;
   std::vector<glm::vec2> Absorption; // empty: nothing absorbs
   float AbsorptionExponent = 0.0f;
+  // The tally nodes' inside volumes (scatteredLightNodeVolumes(Geometry)):
+  // they do not depend on the light, so a caller that solves for several
+  // lights keeps them here; empty, each solve computes them.
+  std::vector<double> NodeVolumes;
 };
+
+// The inside volume each tally node's trilinear weights give it (the kernel
+// estimate's denominators, docs/design.md §3.10), of the geometry alone.
+std::vector<double> scatteredLightNodeVolumes(const VolumeGeometry& geometry);
 
 struct ScatteredLightRequest
 {
