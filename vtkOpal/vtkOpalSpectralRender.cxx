@@ -216,10 +216,7 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
   }
   this->UploadedVolume = nullptr; // until the upload succeeds
   session.setVolume(volume);
-  if (vtkOpalRankAgreement::Ranks(this->Controller) > 1)
-  {
-    this->Gathered.ReleaseArrays(); // 12 to 20 bytes per voxel: the device holds them now
-  }
+  this->Gathered.ReleaseArrays(); // under MPI 12 to 20 bytes per voxel: the device holds them now
   this->UploadedVolume = input;
   this->UploadedVolumeTime = input->GetMTime();
   return true;

@@ -262,7 +262,7 @@ std::string GatheredVolume::Update(
 
 void GatheredVolume::ReleaseArrays()
 {
-  if (this->Volume && this->From)
+  if (this->From) // set by a gather only: nothing with one process
   {
     this->Volume->GetPointData()->Initialize();
     this->ArraysReleased = true;

@@ -14,6 +14,7 @@
 #include "OpalTestHarness.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <iostream>
@@ -51,16 +52,18 @@ std::vector<opal::ScatteredLight::Values> valuesOf(const opal::ScatteredLight& f
   return values;
 }
 
-// The field's mean over the voxels, per node.
-double fieldMean(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium, int node)
+// The field's mean over the voxels, of each node.
+std::array<double, opal::ScatteredLightNodes> fieldMeans(
+  const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
 {
-  double sum = 0;
+  std::array<double, opal::ScatteredLightNodes> sums{};
   const std::vector<opal::ScatteredLight::Values> all = valuesOf(field, medium);
   for (const auto& values : all)
-  {
-    sum += values[static_cast<std::size_t>(node)];
-  }
-  return sum / static_cast<double>(all.size());
+    for (int m = 0; m < opal::ScatteredLightNodes; ++m)
+      sums[m] += values[static_cast<std::size_t>(m)];
+  for (double& sum : sums)
+    sum /= static_cast<double>(all.size());
+  return sums;
 }
 
 // The solve dealt to `shares` shares, each traced on its own and the scores
@@ -148,11 +151,12 @@ int TestOpalScatteredLight(int, char*[])
 
   // Total internal reflection keeps the scattered light inside longer.
   const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);
+  const auto clearMeans = fieldMeans(*clear, medium), matchedMeans = fieldMeans(*matched, medium);
   for (int m = 0; m < opal::ScatteredLightNodes; ++m)
   {
-    std::cout << "node " << m << ": field mean " << fieldMean(*clear, medium, m) << " at index 1.45, "
-              << fieldMean(*matched, medium, m) << " index-matched" << std::endl;
-    OPAL_CHECK(fieldMean(*clear, medium, m) > 1.2 * fieldMean(*matched, medium, m), "a refracting boundary holds scattered light in");
+    std::cout << "node " << m << ": field mean " << clearMeans[m] << " at index 1.45, "
+              << matchedMeans[m] << " index-matched" << std::endl;
+    OPAL_CHECK(clearMeans[m] > 1.2 * matchedMeans[m], "a refracting boundary holds scattered light in");
   }
 
   // Absorbing: grey 0.1/mm everywhere and 2/mm in the lowest millimetre (a backing).
@@ -170,7 +174,7 @@ int TestOpalScatteredLight(int, char*[])
             << absorbing->Absorbed / absorbing->Entered << ", balance " << balance << std::endl;
   OPAL_CHECK(std::fabs(balance) < 0.01, "with absorption what enters leaves or is absorbed (roulette: within 1%)");
   OPAL_CHECK(absorbing->Absorbed > 0.1 * absorbing->Entered, "the absorption and the backing take their share");
-  OPAL_CHECK(fieldMean(*absorbing, medium, 0) < fieldMean(*clear, medium, 0), "absorption dims the scattered light");
+  OPAL_CHECK(fieldMeans(*absorbing, medium)[0] < clearMeans[0], "absorption dims the scattered light");
 
   // An optical depth beyond the budget: said, and the field it has is finite.
   medium.Absorption.clear();

@@ -160,13 +160,14 @@ const ScatteringMedium& RenderSession::scatteringMedium()
 bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
 {
   this->ScatteredLight.reset();
-  const std::optional<opal::ScatteredLight> field = solveScatteredLight(this->scatteringMedium(),
-    scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
+  const ScatteringMedium& medium = this->scatteringMedium();
+  const std::optional<opal::ScatteredLight> field = solveScatteredLight(
+    medium, scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
   if (!field)
   {
     return false;
   }
-  this->holdScatteredLight(setup, *field);
+  this->holdScatteredLight(setup, medium, *field);
   return true;
 }
 
@@ -189,7 +190,8 @@ ScatteredLightRequest RenderSession::scatteredLightRequest(const FrameSetup& set
   return request;
 }
 
-void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field)
+void RenderSession::holdScatteredLight(
+  const FrameSetup& setup, const ScatteringMedium& medium, const opal::ScatteredLight& field)
 {
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
@@ -197,7 +199,6 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
   v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light field", v.FieldPlacement);
   static_assert(sizeof(opal::ScatteredLight::Values) == sizeof(gpu::vec4));
   // Evaluated round by round where it goes: the field is never whole on the host (docs/design.md §3.10).
-  const ScatteringMedium& medium = this->scatteringMedium();
   v.ScatteredLight->fill(bytes, [&](std::uint64_t first, std::uint64_t count, void* into) {
     field.meanRadiance(medium, first / sizeof(gpu::vec4), count / sizeof(gpu::vec4),
       static_cast<opal::ScatteredLight::Values*>(into));
@@ -223,6 +224,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
 {
   const auto start = Clock::now();
   std::optional<FrameSetup> setup;
+  const ScatteringMedium* medium = nullptr;
   std::optional<std::vector<double>> mine;
   std::exception_ptr failure;
   try
@@ -235,7 +237,8 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     }
     setup = this->setUpFrame(frame);
     Progress progress(callback);
-    mine = traceScatteredLightShare(this->scatteringMedium(), scatteredLightRequest(*setup), share, shares,
+    medium = &this->scatteringMedium();
+    mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares,
       [&progress](double done) { return progress.report(0.2 * done); });
   }
   catch (...)
@@ -252,7 +255,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   {
     return false;
   }
-  this->holdScatteredLight(*setup, scatteredLightFromShares(this->scatteringMedium(), scatteredLightRequest(*setup), *scores));
+  this->holdScatteredLight(*setup, *medium, scatteredLightFromShares(*medium, scatteredLightRequest(*setup), *scores));
   this->PendingScatteredSeconds = secondsSince(start);
   return true;
 }

@@ -54,17 +54,6 @@ void writeVoxels(T* values, std::size_t begin, std::size_t end, const std::vecto
   }
 }
 
-// A per-voxel field of T written into `buffer` round by round
-// (VulkanBuffer::fill), so the whole field is never built on the host
-// (docs/design.md §3.7).
-template <typename T, typename Value>
-void fillVoxelField(VulkanBuffer& buffer, std::size_t voxels, const std::vector<SkinCell>& skin, Value&& value)
-{
-  buffer.fill(voxels * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
-    writeVoxels(static_cast<T*>(into), first / sizeof(T), (first + count) / sizeof(T), skin, value);
-  });
-}
-
 // The coupled-wave model's settings (docs/design.md §7.2): the crystal's mean
 // index and permittivity contrast, the layers and the plane families.
 void setCoupledWave(gpu::RenderParameterBlock& block, const RenderParameters& p, const RenderVolume& volume)
@@ -142,6 +131,20 @@ std::unique_ptr<VulkanBuffer> deviceLocalBuffer(VulkanContext& context, std::uin
   return buffer;
 }
 
+// A per-voxel field of T on the device, `placement`, written round by round
+// (VulkanBuffer::fill), so the whole field is never built on the host
+// (docs/design.md §3.7).
+template <typename T, typename Value>
+std::unique_ptr<VulkanBuffer> deviceVoxelField(VulkanContext& context, std::size_t voxels, const char* what,
+  BufferPlacement placement, const std::vector<SkinCell>& skin, Value&& value)
+{
+  auto buffer = deviceLocalBuffer(context, voxels * sizeof(T), what, nullptr, placement);
+  buffer->fill(voxels * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
+    writeVoxels(static_cast<T*>(into), first / sizeof(T), (first + count) / sizeof(T), skin, value);
+  });
+  return buffer;
+}
+
 // AbsorptionCoefficient on the device as the shaders read it
 // (AbsorptionCellBinding): per voxel (coloured, grey) mu_a at 550 nm, a voxel
 // of exponent 0 grey, the skin filled like the cells (docs/design.md §3.9).
@@ -153,13 +156,11 @@ std::unique_ptr<VulkanBuffer> absorptionBuffer(
   {
     return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
   }
-  auto buffer = deviceLocalBuffer(
-    context, volume.voxelCount() * sizeof(gpu::vec2), "AbsorptionCoefficient volume", nullptr, placement);
-  fillVoxelField<gpu::vec2>(*buffer, volume.voxelCount(), skin, [&volume](std::size_t i) {
-    const float absorption = volume.AbsorptionCoefficient[i];
-    return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
-  });
-  return buffer;
+  return deviceVoxelField<gpu::vec2>(
+    context, volume.voxelCount(), "AbsorptionCoefficient volume", placement, skin, [&volume](std::size_t i) {
+      const float absorption = volume.AbsorptionCoefficient[i];
+      return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
+    });
 }
 
 // The halves of a device address, as the shaders read it.
@@ -298,9 +299,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->FieldPlacement = placement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
-  uploaded->Cells = deviceLocalBuffer(
-    context, voxels * sizeof(gpu::VoxelCell), "ScatteringCoefficient and DomainId volume", nullptr, placement);
-  fillVoxelField<gpu::VoxelCell>(*uploaded->Cells, voxels, skin,
+  uploaded->Cells = deviceVoxelField<gpu::VoxelCell>(context, voxels, "ScatteringCoefficient and DomainId volume",
+    placement, skin,
     [&volume](std::size_t i) { return gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
@@ -308,10 +308,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->LightAbsorption = deviceLocalBuffer(context,
     absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
     placement);
-  uploaded->SurfaceDistance =
-    deviceLocalBuffer(context, voxels * 8, "SurfaceDistance volume (voxel and +x neighbour)", nullptr, placement);
-  fillVoxelField<gpu::vec2>(
-    *uploaded->SurfaceDistance, voxels, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); });
+  uploaded->SurfaceDistance = deviceVoxelField<gpu::vec2>(context, voxels,
+    "SurfaceDistance volume (voxel and +x neighbour)", placement, {},
+    [&volume](std::size_t i) { return surfaceDistancePair(volume, i); });
   uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field", nullptr, placement);
   uploaded->LightShadow =
     deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);

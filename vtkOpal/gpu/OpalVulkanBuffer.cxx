@@ -38,19 +38,33 @@ VulkanBuffer::VulkanBuffer(
   this->allocate(requirements, placement, what);
 }
 
+namespace
+{
+// The memory properties a placement asks for (VulkanContext::memoryType).
+VkMemoryPropertyFlags preferredMemory(BufferPlacement placement)
+{
+  switch (placement)
+  {
+    case BufferPlacement::DeviceLocal:
+    case BufferPlacement::DeviceAddressed:
+      return VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+    case BufferPlacement::HostReadback:
+      return HostVisibleMemory | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    case BufferPlacement::HostVisible:
+      break;
+  }
+  return HostVisibleMemory;
+}
+} // namespace
+
 // Memory of the placement's kind, bound to the buffer, mapped where the host may.
 void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what)
 {
   VkDevice device = this->Context.device();
   // Released by the member's destructor also when a later step throws.
   this->Reservation = this->Context.reserveMemory(requirements.size);
-  constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  const bool readback = placement == BufferPlacement::HostReadback;
-  const bool deviceLocal = placement != BufferPlacement::HostVisible && !readback;
-  const std::uint32_t bits = requirements.memoryTypeBits;
-  const std::uint32_t type = deviceLocal ? this->Context.deviceLocalMemoryType(bits)
-    : readback                           ? this->Context.readbackMemoryType(bits)
-                                         : this->Context.memoryType(bits, hostVisible);
+  const bool deviceLocal = placement == BufferPlacement::DeviceLocal || placement == BufferPlacement::DeviceAddressed;
+  const std::uint32_t type = this->Context.memoryType(requirements.memoryTypeBits, preferredMemory(placement));
   auto allocateInfo = vulkanStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
   allocateInfo.allocationSize = requirements.size;
   allocateInfo.memoryTypeIndex = type;
@@ -63,7 +77,7 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
   this->Memory =
     VulkanHandle<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
   checkVulkan(vkBindBufferMemory(device, this->Buffer.get(), memory, 0), "vkBindBufferMemory");
-  const bool mappable = (this->Context.memoryTypeFlags(type) & hostVisible) == hostVisible &&
+  const bool mappable = (this->Context.memoryTypeFlags(type) & HostVisibleMemory) == HostVisibleMemory &&
     !(deviceLocal && this->Context.stagingTransfers());
   if (mappable)
   {

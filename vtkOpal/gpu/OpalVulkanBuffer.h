@@ -28,7 +28,7 @@ enum class BufferPlacement
 {
   HostVisible,
   // HostVisible, in host-cached memory where the device offers it: what the
-  // host reads back (VulkanContext::readbackMemoryType).
+  // host reads back (VulkanContext::memoryType).
   HostReadback,
   DeviceLocal,
   // DeviceLocal, read by shaders through its device address rather than a

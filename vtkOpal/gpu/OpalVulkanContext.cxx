@@ -450,44 +450,20 @@ VulkanContext::~VulkanContext()
   }
 }
 
-std::uint32_t VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const
+std::uint32_t VulkanContext::memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags preferred) const
 {
-  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
+  for (const VkMemoryPropertyFlags properties : { preferred, HostVisibleMemory })
   {
-    if ((typeBits & (1u << i)) &&
-      (this->MemoryProperties.memoryTypes[i].propertyFlags & properties) == properties)
+    for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
     {
-      return i;
+      if ((typeBits & (1u << i)) && (this->memoryTypeFlags(i) & properties) == properties)
+      {
+        return i;
+      }
     }
   }
   throw VulkanError("vkGetPhysicalDeviceMemoryProperties: no host-visible, coherent memory type for a buffer",
     VK_ERROR_FEATURE_NOT_PRESENT);
-}
-
-std::uint32_t VulkanContext::deviceLocalMemoryType(std::uint32_t typeBits) const
-{
-  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
-  {
-    if ((typeBits & (1u << i)) && (this->memoryTypeFlags(i) & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT))
-    {
-      return i;
-    }
-  }
-  return this->memoryType(typeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-}
-
-std::uint32_t VulkanContext::readbackMemoryType(std::uint32_t typeBits) const
-{
-  constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  constexpr VkMemoryPropertyFlags cached = hostVisible | VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
-  for (std::uint32_t i = 0; i < this->MemoryProperties.memoryTypeCount; ++i)
-  {
-    if ((typeBits & (1u << i)) && (this->memoryTypeFlags(i) & cached) == cached)
-    {
-      return i;
-    }
-  }
-  return this->memoryType(typeBits, hostVisible);
 }
 
 MemoryReservation& MemoryReservation::operator=(MemoryReservation&& other) noexcept
@@ -538,7 +514,7 @@ std::uint64_t VulkanContext::memoryBudget() const
   }
   // The heap of the memory type a device-local buffer takes (on a discrete
   // GPU its own memory, not the host's, which the largest host-visible heap was).
-  const std::uint32_t heap = this->MemoryProperties.memoryTypes[this->deviceLocalMemoryType(~0u)].heapIndex;
+  const std::uint32_t heap = this->MemoryProperties.memoryTypes[this->memoryType(~0u, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)].heapIndex;
   if (!this->MemoryBudgets)
   {
     return this->MemoryProperties.memoryHeaps[heap].size;

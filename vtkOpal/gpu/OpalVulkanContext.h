@@ -19,6 +19,9 @@
 namespace opal
 {
 
+// Memory the host maps and reads or writes without flushes.
+constexpr VkMemoryPropertyFlags HostVisibleMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+
 struct VulkanOptions
 {
   // Device to use: an index into the physical devices, or -1 to pick the
@@ -77,14 +80,12 @@ public:
   const VkPhysicalDeviceLimits& limits() const { return this->Properties.limits; }
   std::string deviceName() const { return this->Properties.deviceName; }
 
-  // Memory type index with the given properties among the allowed type bits.
-  std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags properties) const;
-  // A device-local memory type among the allowed bits, else a host-visible one.
-  std::uint32_t deviceLocalMemoryType(std::uint32_t typeBits) const;
-  // A host-visible, coherent type for what the host reads back: host-cached
-  // where the device offers it (a discrete GPU's uncached, write-combined
-  // memory reads slowly element by element).
-  std::uint32_t readbackMemoryType(std::uint32_t typeBits) const;
+  // The first memory type among the allowed type bits with the `preferred`
+  // properties, else the first host-visible, coherent one; throws where
+  // there is neither. Device-local for the fields; host-cached for what the
+  // host reads back (a discrete GPU's uncached, write-combined memory reads
+  // slowly element by element).
+  std::uint32_t memoryType(std::uint32_t typeBits, VkMemoryPropertyFlags preferred) const;
   VkMemoryPropertyFlags memoryTypeFlags(std::uint32_t type) const
   {
     return this->MemoryProperties.memoryTypes[type].propertyFlags;
