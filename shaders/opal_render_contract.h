@@ -64,9 +64,10 @@ OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
 // written each frame by the Bragg shadow table pass and read by the march,
 // both specialised on energy conservation; else a placeholder.
 OPAL_CONSTANT int ShadowTableBinding = 19;      // a row of SHADOW_TABLE_ROW_VEC4S vec4s per domain
-// The light scattered at least once (every order, docs/design.md §3.10): per
-// voxel a vec4, its mean radiance over s at the four nodes spanning the
-// table's s; a placeholder without ScatteringOrders all.
+// The light scattered at least once (every order, docs/design.md §3.10): a
+// ScatteredLightNode per node of the solve's coarse tally grid (up to 65^3),
+// from which the march evaluates each voxel's value; a placeholder without
+// ScatteringOrders all.
 OPAL_CONSTANT int ScatteredLightBinding = 20;
 // Where a per-voxel field outgrows one storage buffer (maxStorageBufferRange),
 // the passes compiled with OPAL_VOLUME_ADDRESSES read every per-voxel field
@@ -129,6 +130,10 @@ struct OPAL_ALIGNED RenderParameterBlock
   float coherentLayers;               // CoherentLayers, the most layers N
   int latticeFamilies;                // 1: (111) only; 13: the FCC families
   int maxGroupsX;                     // the device's maxComputeWorkGroupCount[0] as the session plans with it
+  // The every-order field's tally grid (docs/design.md §3.10): its nodes per
+  // axis, and voxels per cell (node i of an axis sits at voxel i x stride).
+  OPAL_ALIGNED ivec3 scatteredLightNodes;
+  int scatteredLightStride;
 };
 
 // One wavelength bin (core/colour/OpalSpectralSampling.h): its centre and width,
@@ -171,6 +176,17 @@ struct LightShadow
   int domain;
   float lengthMm;
   float ownLengthMm;
+};
+
+// A node of the every-order field's coarse tally grid (docs/design.md §3.10):
+// the solve's tallies at the four spectral nodes, each over 4 pi s, and the
+// inside volume the node's trilinear weights give it. A voxel's value is the
+// kernel estimate of the eight nodes around its centre, sum(w tally) / sum(w volume)
+// (OpalScatteredLight's meanRadiance).
+struct OPAL_ALIGNED ScatteredLightNode
+{
+  vec4 tally;
+  float volume;
 };
 
 // One diffraction domain: the (111) lattice-plane normal (y >= 0), the
@@ -274,7 +290,7 @@ struct VolumeAddresses
   uvec2 absorptionCells;
   uvec2 lightShadow;
   uvec2 entryVoxels;
-  uvec2 scatteredLight;
+  uvec2 scatteredLight; // the every-order field's tally grid, not per voxel
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in
@@ -356,7 +372,8 @@ OPAL_CONSTANT int MarchConstantCount = 10;
 
 #ifdef __cplusplus
 static_assert(sizeof(RenderParameterBlock) % 16 == 0 && sizeof(WavelengthBinRecord) == 32 &&
-    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 16 && sizeof(PixelSum) == 48,
+    sizeof(DomainRecord) == 48 && sizeof(VoxelCell) == 8 && sizeof(LightShadow) == 12 && sizeof(LightFieldPair) == 16 && sizeof(DispatchQueue) == 16 && sizeof(PixelColour) == 16 && sizeof(PixelMirror) == 16 && sizeof(PixelBragg) == 16 && sizeof(PixelSum) == 48 &&
+    sizeof(ScatteredLightNode) == 32,
   "std140/std430 sizes of the contract's structs");
 static_assert(offsetof(LightFieldPair, voxel) == 0 && offsetof(LightFieldPair, nextVoxel) == 8 &&
     sizeof(LightFieldPair) == sizeof(LightFieldPairAsVec4),

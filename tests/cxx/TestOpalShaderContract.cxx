@@ -64,6 +64,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("P.", RenderParameterBlock, coherentLayers),
     OPAL_FIELD("P.", RenderParameterBlock, latticeFamilies),
     OPAL_FIELD("P.", RenderParameterBlock, maxGroupsX),
+    OPAL_FIELD("P.", RenderParameterBlock, scatteredLightNodes),
+    OPAL_FIELD("P.", RenderParameterBlock, scatteredLightStride),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, lambda),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, width),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),
@@ -80,6 +82,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("lightShadow[0].", LightShadow, domain),
     OPAL_FIELD("lightShadow[0].", LightShadow, lengthMm),
     OPAL_FIELD("lightShadow[0].", LightShadow, ownLengthMm),
+    OPAL_FIELD("scatteredLightNodes[0].", ScatteredLightNode, tally),
+    OPAL_FIELD("scatteredLightNodes[0].", ScatteredLightNode, volume),
     OPAL_FIELD("domains[0].", DomainRecord, latticeNormal),
     OPAL_FIELD("domains[0].", DomainRecord, planeSpacing),
     OPAL_FIELD("domains[0].", DomainRecord, orientation),
@@ -126,12 +130,12 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 }
 
 // Prefixes of the contract's structs in the shaders' reflection.
-const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "domains[0].", "pixelColour[0].",
+const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "scatteredLightNodes[0].", "domains[0].", "pixelColour[0].",
   "pixelBragg[0].", "pixelMirror[0].", "pixelSums[0].", "work.", "marchWork.", "highlightWork.", "volumeAddresses." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
-  { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
+  { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "scatteredLightNodes[0].", sizeof(ScatteredLightNode) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) },
   { "pixelSums[0].", sizeof(PixelSum) } };
 

@@ -167,7 +167,7 @@ bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progres
   {
     return false;
   }
-  this->holdScatteredLight(setup, medium, *field);
+  this->holdScatteredLight(setup, *field);
   return true;
 }
 
@@ -190,19 +190,20 @@ ScatteredLightRequest RenderSession::scatteredLightRequest(const FrameSetup& set
   return request;
 }
 
-void RenderSession::holdScatteredLight(
-  const FrameSetup& setup, const ScatteringMedium& medium, const opal::ScatteredLight& field)
+void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field)
 {
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
-  const std::uint64_t bytes = v.Shape.voxelCount() * sizeof(gpu::vec4);
-  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light field", v.FieldPlacement);
-  static_assert(sizeof(opal::ScatteredLight::Values) == sizeof(gpu::vec4));
-  // Evaluated round by round where it goes: the field is never whole on the host (docs/design.md §3.10).
-  v.ScatteredLight->fill(bytes, [&](std::uint64_t first, std::uint64_t count, void* into) {
-    field.meanRadiance(medium, first / sizeof(gpu::vec4), count / sizeof(gpu::vec4),
-      static_cast<opal::ScatteredLight::Values*>(into));
+  // The tally grid's nodes, from which the march evaluates each voxel's
+  // value: no field per voxel on the device or the host (docs/design.md §3.10).
+  const std::vector<opal::ScatteredLight::GridNode> grid = field.gridNodes();
+  std::vector<gpu::ScatteredLightNode> nodes(grid.size());
+  std::transform(grid.begin(), grid.end(), nodes.begin(), [](const opal::ScatteredLight::GridNode& n) {
+    return gpu::ScatteredLightNode{ gpu::vec4(n.Tally[0], n.Tally[1], n.Tally[2], n.Tally[3]), n.Volume };
   });
+  const std::uint64_t bytes = nodes.size() * sizeof(gpu::ScatteredLightNode);
+  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light tally grid", v.FieldPlacement);
+  v.ScatteredLight->upload(nodes.data(), bytes);
   this->bindBuffers();
   this->ScatteredLightWarning = field.Warning;
   this->ScatteredLight = scatteredLightKey(setup);
@@ -255,7 +256,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   {
     return false;
   }
-  this->holdScatteredLight(*setup, *medium, scatteredLightFromShares(*medium, scatteredLightRequest(*setup), *scores));
+  this->holdScatteredLight(*setup, scatteredLightFromShares(*medium, scatteredLightRequest(*setup), *scores));
   this->PendingScatteredSeconds = secondsSince(start);
   return true;
 }

@@ -556,6 +556,9 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.maxGroupsX = static_cast<int>(std::min<std::uint32_t>(
     this->Context->limits().maxComputeWorkGroupCount[0], static_cast<std::uint32_t>(std::numeric_limits<int>::max())));
   block.absorptionExponent = this->Volume->AbsorptionExponent;
+  const ScatteredLightGrid tallyGrid = scatteredLightGrid(geometry);
+  block.scatteredLightNodes = tallyGrid.Nodes;
+  block.scatteredLightStride = tallyGrid.Stride;
   setCoupledWave(block, p, shape);
   return setup;
 }

@@ -197,7 +197,7 @@ private:
   const ScatteringMedium& scatteringMedium();
   bool scatteredLightServes(const FrameSetup& setup) const;
   static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
-  void holdScatteredLight(const FrameSetup& setup, const ScatteringMedium& medium, const opal::ScatteredLight& field);
+  void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);
   // What a march covers: a rectangle (x, y, width, height) of an image of

@@ -35,12 +35,11 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
 // The device fields of a volume of `voxels` for frames with `p`: the
-// volume's own, the Bragg shadows with energy conservation (docs/design.md
-// §7.2) and the every-order field (§3.10).
+// volume's own and the Bragg shadows with energy conservation (docs/design.md
+// §7.2). The every-order field is its tally grid's (§3.10), a few MB at most.
 inline std::uint64_t volumeDeviceBytes(std::uint64_t voxels, bool absorbs, const RenderParameters& p)
 {
-  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
-                    (p.ScatteringOrders == ScatteringOrdersKind::All ? sizeof(gpu::vec4) : 0));
+  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0));
 }
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);
@@ -88,8 +87,8 @@ struct RenderSession::DeviceVolume
   // §7.2): made by the first light pass that needs it, a placeholder before.
   std::unique_ptr<VulkanBuffer> LightShadow;
   bool HasShadowField = false;
-  // The light scattered more than once (ScatteredLightBinding): a vec4 per
-  // voxel once a frame with every order solved it, a placeholder before.
+  // The light scattered more than once (ScatteredLightBinding): the tally
+  // grid's nodes once a frame with every order solved it, a placeholder before.
   std::unique_ptr<VulkanBuffer> ScatteredLight;
   // Where the per-voxel fields live: DeviceAddressed for a volume beyond one
   // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES

@@ -52,6 +52,20 @@ glm::dvec3 isotropicDirection(PhotonRandom& random)
   return { sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta };
 }
 
+} // namespace
+
+ScatteredLightGrid scatteredLightGrid(const VolumeGeometry& geometry)
+{
+  const glm::ivec3 dims = geometry.dimensions();
+  const int longest = std::max({ dims.x, dims.y, dims.z });
+  ScatteredLightGrid grid;
+  grid.Stride = std::max(1, (longest + TallyCellsAlongLongestSide - 1) / TallyCellsAlongLongestSide);
+  grid.Nodes = (dims - 1 + grid.Stride - 1) / grid.Stride + 1;
+  return grid;
+}
+
+namespace
+{
 // The coarse grid the flights score on: node n sits on voxel centre n * Stride.
 struct TallyGrid
 {
@@ -60,13 +74,11 @@ struct TallyGrid
   glm::dvec3 Origin{ 0.0 }, Spacing{ 1.0 }; // of the voxel grid
 
   explicit TallyGrid(const VolumeGeometry& geometry)
-    : Origin(geometry.origin())
+    : Nodes(scatteredLightGrid(geometry).Nodes)
+    , Stride(scatteredLightGrid(geometry).Stride)
+    , Origin(geometry.origin())
     , Spacing(geometry.spacing())
   {
-    const glm::ivec3 dims = geometry.dimensions();
-    const int longest = std::max({ dims.x, dims.y, dims.z });
-    this->Stride = std::max(1, (longest + TallyCellsAlongLongestSide - 1) / TallyCellsAlongLongestSide);
-    this->Nodes = (dims - 1 + this->Stride - 1) / this->Stride + 1;
   }
 
   std::size_t size() const { return static_cast<std::size_t>(this->Nodes.x) * this->Nodes.y * this->Nodes.z; }
@@ -78,7 +90,24 @@ struct TallyGrid
     const glm::dvec3 g = glm::clamp((p - this->Origin) / (this->Spacing * double(this->Stride)), glm::dvec3(0.0),
       glm::dvec3(this->Nodes - 1));
     const glm::ivec3 c0 = glm::min(glm::ivec3(glm::floor(g)), glm::max(this->Nodes - 2, glm::ivec3(0)));
-    const glm::dvec3 f = glm::clamp(g - glm::dvec3(c0), 0.0, 1.0);
+    this->visitCorners(c0, glm::clamp(g - glm::dvec3(c0), 0.0, 1.0), visit);
+  }
+
+  // The same for the centre of voxel `voxel`, its weights from the index
+  // alone: exactly 0 for a node whose cells do not reach the voxel. Weights
+  // from the position carried rounding (1e-16 where 0 was meant), which gave
+  // nodes far outside the stone inside volumes of 1e-33 mm^3 beside real
+  // tallies, and voxels next to them values 10^14 times their neighbours'.
+  template <typename Visit>
+  void forEachNodeOfVoxel(const glm::ivec3& voxel, Visit&& visit) const
+  {
+    const glm::ivec3 c0 = glm::min(voxel / this->Stride, glm::max(this->Nodes - 2, glm::ivec3(0)));
+    this->visitCorners(c0, glm::min(glm::dvec3(voxel - c0 * this->Stride) / double(this->Stride), 1.0), visit);
+  }
+
+  template <typename Visit>
+  void visitCorners(const glm::ivec3& c0, const glm::dvec3& f, Visit& visit) const
+  {
     for (int corner = 0; corner < 8; ++corner)
     {
       const glm::ivec3 o((corner & 1), (corner >> 1) & 1, (corner >> 2) & 1);
@@ -470,7 +499,7 @@ std::vector<double> insideVolumes(const VolumeGeometry& g, const TallyGrid& tall
             const glm::dvec3 p = g.origin() + glm::dvec3(i, j, k) * g.spacing();
             if (g.nearestSurfaceDistance(p) <= 0) // a voxel centre: its own value
             {
-              tally.deposit(volumes, p, cell);
+              tally.forEachNodeOfVoxel({ i, j, k }, [&](std::size_t n, double w) { volumes[n] += w * cell; });
             }
           }
     }
@@ -662,10 +691,10 @@ void ScatteredLight::meanRadiance(
       {
         continue;
       }
-      const glm::dvec3 p = g.origin() + glm::dvec3(v % row, v % layer / row, v / layer) * g.spacing();
+      const glm::ivec3 voxel(static_cast<int>(v % row), static_cast<int>(v % layer / row), static_cast<int>(v / layer));
       double volume = 0;
       std::array<double, ScatteredLightNodes> sums{};
-      tally.forEachNode(p, [&](std::size_t n, double w) {
+      tally.forEachNodeOfVoxel(voxel, [&](std::size_t n, double w) {
         volume += w * this->NodeVolumes[n];
         for (int m = 0; m < ScatteredLightNodes; ++m) sums[m] += w * this->NodeTallies[m][n];
       });
@@ -675,6 +704,20 @@ void ScatteredLight::meanRadiance(
       }
     }
   });
+}
+
+std::vector<ScatteredLight::GridNode> ScatteredLight::gridNodes() const
+{
+  std::vector<GridNode> nodes(this->NodeVolumes.size());
+  for (std::size_t n = 0; n < nodes.size(); ++n)
+  {
+    for (int m = 0; m < ScatteredLightNodes; ++m)
+    {
+      nodes[n].Tally[m] = static_cast<float>(this->NodeTallies[m][n] / (4.0 * Pi * this->Scales[m]));
+    }
+    nodes[n].Volume = static_cast<float>(this->NodeVolumes[n]);
+  }
+  return nodes;
 }
 
 std::optional<ScatteredLight> solveScatteredLight(const ScatteringMedium& medium,

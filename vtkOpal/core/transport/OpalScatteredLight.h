@@ -49,6 +49,16 @@ struct ScatteringMedium
   std::vector<double> NodeVolumes;
 };
 
+// The coarse tally grid the field is held on (docs/design.md §3.10): its
+// nodes per axis, node i of an axis at voxel i x Stride.
+struct ScatteredLightGrid
+{
+  glm::ivec3 Nodes{ 1 };
+  int Stride = 1;
+  std::size_t size() const { return static_cast<std::size_t>(this->Nodes.x) * this->Nodes.y * this->Nodes.z; }
+};
+ScatteredLightGrid scatteredLightGrid(const VolumeGeometry& geometry);
+
 // The inside volume each tally node's trilinear weights give it (the kernel
 // estimate's denominators, docs/design.md §3.10), of the geometry alone.
 std::vector<double> scatteredLightNodeVolumes(const VolumeGeometry& geometry);
@@ -70,8 +80,8 @@ struct ScatteredLightRequest
 // (4 pi), divided by the node's s (nearly constant in s where the stone is
 // thin, so the march's interpolation over the nodes is smooth; §3.10). Zero
 // in voxels without scattering. Held as the solve's tallies on the coarse
-// grid: meanRadiance gives any voxels' values from them, so the field is
-// written where it goes (the device's rounds) and never whole on the host.
+// grid, never per voxel: meanRadiance gives any voxels' values from them,
+// and the view march evaluates the same from gridNodes on the device.
 struct ScatteredLight
 {
   using Values = std::array<float, ScatteredLightNodes>;
@@ -80,6 +90,18 @@ struct ScatteredLight
   // estimate of the eight tally nodes around it. Throws std::invalid_argument
   // for another medium's size or voxels beyond it.
   void meanRadiance(const ScatteringMedium& medium, std::size_t first, std::size_t count, Values* into) const;
+
+  // A node of the tally grid (scatteredLightGrid), in single precision as
+  // the view march evaluates the field from them: its tally at each spectral
+  // node over 4 pi s, and its inside volume. A voxel's value is
+  // sum(w Tally) / sum(w Volume) over the eight nodes around it, trilinear
+  // weights w, as meanRadiance gives it.
+  struct GridNode
+  {
+    Values Tally{};
+    float Volume = 0;
+  };
+  std::vector<GridNode> gridNodes() const;
 
   // Of the power that entered the stone (sum over nodes): what left, what was
   // absorbed, and what the collision budget gave up (the solve's shortfall).
