@@ -279,8 +279,8 @@ struct DispatchQueue
   uint count;
 };
 
-// The device addresses of the per-voxel fields (low word, high word), for the
-// passes compiled with OPAL_VOLUME_ADDRESSES.
+// The device addresses of the per-voxel fields and the every-order tally
+// grid (low word, high word), for the passes compiled with OPAL_VOLUME_ADDRESSES.
 struct VolumeAddresses
 {
   uvec2 voxelCells;

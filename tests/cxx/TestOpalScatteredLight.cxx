@@ -96,8 +96,8 @@ bool refuses(Work&& work, const std::string& naming)
   return false;
 }
 
-// A voxel's value as the view march evaluates it from the tally grid's nodes
-// (view_march.comp's scatteredLightAt), in single precision.
+// A voxel's value as the view march evaluates it from the tally grid's nodes,
+// in single precision: view_march.comp's scatteredLightAt, its twin (keep them alike).
 opal::ScatteredLight::Values marchValue(const std::vector<opal::ScatteredLight::GridNode>& nodes,
   const opal::ScatteredLightGrid& grid, const glm::ivec3& cell)
 {

@@ -197,10 +197,12 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
   // The tally grid's nodes, from which the march evaluates each voxel's
   // value: no field per voxel on the device or the host (docs/design.md §3.10).
   const std::vector<opal::ScatteredLight::GridNode> grid = field.gridNodes();
-  std::vector<gpu::ScatteredLightNode> nodes(grid.size());
-  std::transform(grid.begin(), grid.end(), nodes.begin(), [](const opal::ScatteredLight::GridNode& n) {
-    return gpu::ScatteredLightNode{ gpu::vec4(n.Tally[0], n.Tally[1], n.Tally[2], n.Tally[3]), n.Volume };
-  });
+  std::vector<gpu::ScatteredLightNode> nodes(grid.size()); // zeroed, padding included
+  for (std::size_t n = 0; n < grid.size(); ++n)
+  {
+    nodes[n].tally = gpu::vec4(grid[n].Tally[0], grid[n].Tally[1], grid[n].Tally[2], grid[n].Tally[3]);
+    nodes[n].volume = grid[n].Volume;
+  }
   const std::uint64_t bytes = nodes.size() * sizeof(gpu::ScatteredLightNode);
   v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light tally grid", v.FieldPlacement);
   v.ScatteredLight->upload(nodes.data(), bytes);

@@ -170,13 +170,16 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
   return gpu::uvec2(static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32));
 }
 
-// Where a volume's per-voxel fields live (docs/design.md §3.7): bound as
-// storage buffers while the widest (the light field's 16 bytes a voxel)
-// fits the device's maxStorageBufferRange, else addressed by the shaders,
-// where the device can; refused naming both limits where it cannot.
-BufferPlacement fieldPlacement(const VulkanContext& context, std::size_t voxels)
+// Where a volume's fields live (docs/design.md §3.7): bound as storage
+// buffers while the widest (the light field's 16 bytes a voxel, or a small
+// volume's every-order tally grid, 32 bytes a node) fits the device's
+// maxStorageBufferRange, else addressed by the shaders, where the device
+// can; refused naming both limits where it cannot.
+BufferPlacement fieldPlacement(const VulkanContext& context, const RenderVolume& volume)
 {
-  const std::uint64_t widest = static_cast<std::uint64_t>(voxels) * sizeof(gpu::LightFieldPair);
+  const std::uint64_t widest = std::max<std::uint64_t>(volume.voxelCount() * sizeof(gpu::LightFieldPair),
+    scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
+      sizeof(gpu::ScatteredLightNode));
   const std::uint64_t range = context.limits().maxStorageBufferRange;
   if (widest <= range)
   {
@@ -295,7 +298,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
     static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs), "the volume needs", "", "use fewer voxels");
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  const BufferPlacement placement = fieldPlacement(context, voxels);
+  const BufferPlacement placement = fieldPlacement(context, volume);
   uploaded->FieldPlacement = placement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
@@ -326,8 +329,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.empty() ? nullptr : records.data());
   uploaded->Medium.Geometry = VolumeGeometry(volume); // its fields read back by the first every-order solve
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
-  uploaded->ScatteredLight =
-    deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);
+  uploaded->ScatteredLight = deviceLocalBuffer(
+    context, sizeof(gpu::ScatteredLightNode), "scattered light tally grid placeholder", nullptr, placement);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
   uploaded->Shape.DomainId = nullptr;

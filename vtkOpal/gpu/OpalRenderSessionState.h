@@ -34,12 +34,20 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
+// The every-order field's tally grid on the device (docs/design.md §3.10):
+// at most one node per voxel, and at most 65^3 nodes (8.8 MB).
+inline std::uint64_t scatteredLightGridBytes(std::uint64_t voxels)
+{
+  constexpr std::uint64_t side = ScatteredLightCellsAlongLongestSide + 1;
+  return std::min(voxels, side * side * side) * sizeof(gpu::ScatteredLightNode);
+}
 // The device fields of a volume of `voxels` for frames with `p`: the
-// volume's own and the Bragg shadows with energy conservation (docs/design.md
-// §7.2). The every-order field is its tally grid's (§3.10), a few MB at most.
+// volume's own, the Bragg shadows with energy conservation (§7.2) and the
+// every-order field's tally grid.
 inline std::uint64_t volumeDeviceBytes(std::uint64_t voxels, bool absorbs, const RenderParameters& p)
 {
-  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0));
+  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0)) +
+    (p.ScatteringOrders == ScatteringOrdersKind::All ? scatteredLightGridBytes(voxels) : 0);
 }
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);

@@ -20,12 +20,6 @@ constexpr int Rounds = 8;
 // Photons of a round's node run in this many tasks, interleaved over nodes so
 // that every thread gets every node's share (the blue nodes cost the most).
 constexpr int TasksPerNode = 4;
-// The tally grid's longest side in cells (0.3-0.4 mm at the paper's scale):
-// the scattered field varies over a mean free path (0.7-4 mm in the paper's
-// body) but falls faster near the surface, where a coarser kernel's one-sided
-// average brightened it (32 cells: the mean +0.8 to +1.6% against the tracer,
-// 64: -0.3 to +0.5%, at the price of more noise per pixel; docs/design.md §3.10).
-constexpr int TallyCellsAlongLongestSide = 64;
 // A share of the entered power given up above this is reported.
 constexpr double ReportedShortfall = 1e-3;
 
@@ -56,10 +50,14 @@ glm::dvec3 isotropicDirection(PhotonRandom& random)
 
 ScatteredLightGrid scatteredLightGrid(const VolumeGeometry& geometry)
 {
-  const glm::ivec3 dims = geometry.dimensions();
+  return scatteredLightGrid(geometry.dimensions());
+}
+
+ScatteredLightGrid scatteredLightGrid(const glm::ivec3& dims)
+{
   const int longest = std::max({ dims.x, dims.y, dims.z });
   ScatteredLightGrid grid;
-  grid.Stride = std::max(1, (longest + TallyCellsAlongLongestSide - 1) / TallyCellsAlongLongestSide);
+  grid.Stride = std::max(1, (longest + ScatteredLightCellsAlongLongestSide - 1) / ScatteredLightCellsAlongLongestSide);
   grid.Nodes = (dims - 1 + grid.Stride - 1) / grid.Stride + 1;
   return grid;
 }

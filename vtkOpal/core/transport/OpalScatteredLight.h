@@ -49,8 +49,16 @@ struct ScatteringMedium
   std::vector<double> NodeVolumes;
 };
 
+// The tally grid's longest side in cells (0.3-0.4 mm at the paper's scale):
+// the scattered field varies over a mean free path (0.7-4 mm in the paper's
+// body) but falls faster near the surface, where a coarser kernel's one-sided
+// average brightened it (32 cells: the mean +0.8 to +1.6% against the tracer,
+// 64: -0.3 to +0.5%, at the price of more noise per pixel; docs/design.md §3.10).
+constexpr int ScatteredLightCellsAlongLongestSide = 64;
+
 // The coarse tally grid the field is held on (docs/design.md §3.10): its
-// nodes per axis, node i of an axis at voxel i x Stride.
+// nodes per axis (at most ScatteredLightCellsAlongLongestSide + 1, and no
+// more than the voxels), node i of an axis at voxel i x Stride.
 struct ScatteredLightGrid
 {
   glm::ivec3 Nodes{ 1 };
@@ -58,6 +66,7 @@ struct ScatteredLightGrid
   std::size_t size() const { return static_cast<std::size_t>(this->Nodes.x) * this->Nodes.y * this->Nodes.z; }
 };
 ScatteredLightGrid scatteredLightGrid(const VolumeGeometry& geometry);
+ScatteredLightGrid scatteredLightGrid(const glm::ivec3& voxelDimensions);
 
 // The inside volume each tally node's trilinear weights give it (the kernel
 // estimate's denominators, docs/design.md §3.10), of the geometry alone.
@@ -89,6 +98,8 @@ struct ScatteredLight
   // `first` on (x fastest) into `into`, over the threads: each the kernel
   // estimate of the eight tally nodes around it. Throws std::invalid_argument
   // for another medium's size or voxels beyond it.
+  // The host's reference in double precision (TestOpalScatteredLight holds
+  // the march's evaluation from gridNodes to it).
   void meanRadiance(const ScatteringMedium& medium, std::size_t first, std::size_t count, Values* into) const;
 
   // A node of the tally grid (scatteredLightGrid), in single precision as
