@@ -22,6 +22,8 @@
 // With BRAGG_SHADOW (energy conservation, docs/design.md §7.2) each voxel
 // also records the Bragg shadow it sits in: the nearest other domain on its
 // path to the light and the path's length there (LightShadow).
+// LightPassScatteredField writes the light scattered more than once, each
+// voxel's value from the every-order solve's tally grid (§3.10).
 // The mode is a specialisation constant: each pipeline holds only its own code.
 #extension GL_GOOGLE_include_directive : require
 
@@ -40,23 +42,28 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldRe
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AbsorptionCellRef { vec2 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightShadowRef { LightShadow value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer EntryVoxelRef { uint value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer ScatteredLightRef { vec4 value; };
 #define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
 #define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
 #define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
 #define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
 #define ENTRY_VOXEL_AT(i) EntryVoxelRef(voxelAddress(volumeAddresses.entryVoxels, (i), 4u)).value
+#define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
 layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
+layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]
+#define SCATTERED_LIGHT_AT(i) scatteredLight[i]
 #endif
+#include "opal_scattered_light_grid.glsl"
 
 layout(std430, set = 0, binding = LightEntryQueuesBinding) buffer LightEntryQueues { DispatchQueue queues[]; };
 
@@ -394,7 +401,7 @@ int voxelOfInvocation()
 {
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   int local = passItem(LightPassGroupSize);
-  if (LIGHT_PASS_MODE == LightPassMarchTowardsLight)
+  if (LIGHT_PASS_MODE == LightPassMarchTowardsLight || LIGHT_PASS_MODE == LightPassScatteredField)
   {
     return local < work.count ? work.first + local : -1;
   }
@@ -411,6 +418,12 @@ void main()
   if (index < 0) return;
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   ivec3 c = ivec3(index % nx, (index / nx) % ny, index / (nx * ny));
+  if (LIGHT_PASS_MODE == LightPassScatteredField)
+  {
+    // Zero where nothing scatters, as the march reads it only where something does.
+    SCATTERED_LIGHT_AT(index) = VOXEL_CELL_AT(index).scattering > 0.0 ? scatteredLightAt(c) : vec4(0.0);
+    return;
+  }
   vec3 p = voxelCentre(c);
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);

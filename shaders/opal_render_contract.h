@@ -64,10 +64,10 @@ OPAL_CONSTANT int LightShadowBinding = 18;      // LightShadow per voxel
 // written each frame by the Bragg shadow table pass and read by the march,
 // both specialised on energy conservation; else a placeholder.
 OPAL_CONSTANT int ShadowTableBinding = 19;      // a row of SHADOW_TABLE_ROW_VEC4S vec4s per domain
-// The light scattered at least once (every order, docs/design.md §3.10): a
-// ScatteredLightNode per node of the solve's coarse tally grid (up to 65^3),
-// from which the march evaluates each voxel's value; a placeholder without
-// ScatteringOrders all.
+// The light scattered at least once (every order, docs/design.md §3.10): per
+// voxel a vec4, its mean radiance over s at the four nodes spanning the
+// table's s, written from the tally grid by the light pass's
+// LightPassScatteredField; a placeholder without ScatteringOrders all.
 OPAL_CONSTANT int ScatteredLightBinding = 20;
 // Where a per-voxel field outgrows one storage buffer (maxStorageBufferRange),
 // the passes compiled with OPAL_VOLUME_ADDRESSES read every per-voxel field
@@ -78,7 +78,10 @@ OPAL_CONSTANT int VolumeAddressesBinding = 21; // one VolumeAddresses
 OPAL_CONSTANT int EdgeQueueBinding = 22;        // two DispatchQueues, their counts: the select's, the second stage's
 OPAL_CONSTANT int EdgePixelsBinding = 23;       // two uints per pixel: the queued pixels, then the second stage's
 OPAL_CONSTANT int PixelSumsBinding = 24;        // PixelSum per queued pixel: its sub-rays' sums so far
-OPAL_CONSTANT int BindingCount = 25;
+// The every-order solve's coarse tally grid (up to 65^3 nodes), read by
+// LightPassScatteredField; a placeholder without ScatteringOrders all.
+OPAL_CONSTANT int ScatteredLightGridBinding = 25; // ScatteredLightNode per node
+OPAL_CONSTANT int BindingCount = 26;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -265,6 +268,7 @@ struct PixelBragg
 OPAL_CONSTANT int LightPassMarchTowardsLight = 0; // each voxel marches to the light
 OPAL_CONSTANT int LightPassSweepFromAbove = 1;    // one layer from the layer above
 OPAL_CONSTANT int LightPassMarchQueued = 2;       // the skin voxels the sweep queued: each marches to the light
+OPAL_CONSTANT int LightPassScatteredField = 3;    // each voxel's every-order field from the tally grid (§3.10)
 
 // Rare, costly work queued by one dispatch for a dispatch of its own (a CPU
 // driver runs a branch's code for every SIMD lane): the indirect dispatch's
@@ -290,11 +294,13 @@ struct VolumeAddresses
   uvec2 absorptionCells;
   uvec2 lightShadow;
   uvec2 entryVoxels;
-  uvec2 scatteredLight; // the every-order field's tally grid, not per voxel
+  uvec2 scatteredLight;
+  uvec2 scatteredLightGrid; // the every-order field's tally grid, not per voxel
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in
-// LightPassMarchTowardsLight, the layer y = layer in the other two modes.
+// LightPassMarchTowardsLight and LightPassScatteredField, the layer y = layer
+// in the other two modes.
 struct LightPassWork
 {
   int first;

@@ -53,23 +53,23 @@ layout(constant_id = MarchScatteredLightConstant) const bool SCATTERED_LIGHT = f
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightFieldRef { LightFieldPairAsVec4 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AbsorptionCellRef { vec2 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightShadowRef { LightShadow value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ScatteredLightRef { vec4 value; };
 #define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
 #define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
 #define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
 #define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ScatteredLightNodeRef { ScatteredLightNode value; };
-#define SCATTERED_LIGHT_NODE_AT(i) ScatteredLightNodeRef(voxelAddress(volumeAddresses.scatteredLight, (i), 32u)).value
+#define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
+layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
-layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { ScatteredLightNode scatteredLightNodes[]; };
-#define SCATTERED_LIGHT_NODE_AT(i) scatteredLightNodes[i]
+#define SCATTERED_LIGHT_AT(i) scatteredLight[i]
 #endif
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
@@ -547,31 +547,6 @@ vec3 scatterAlongSegment(vec3 origin, vec3 inward, float t, float segment, float
   return tauView;
 }
 
-// The light scattered more than once in voxel `cell` (docs/design.md §3.10):
-// the kernel estimate of the eight tally nodes around its centre, as
-// OpalScatteredLight's meanRadiance gives it (there in double precision).
-// Evaluated where the march reads it, the field needs no buffer per voxel.
-vec4 scatteredLightAt(ivec3 cell)
-{
-  ivec3 nodes = P.scatteredLightNodes;
-  int stride = P.scatteredLightStride;
-  ivec3 c0 = min(cell / stride, max(nodes - 2, ivec3(0)));
-  vec3 f = min(vec3(cell - c0 * stride) / float(stride), 1.0);
-  vec4 sums = vec4(0.0);
-  float volume = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    ivec3 o = ivec3(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
-    ivec3 n = min(c0 + o, nodes - 1);
-    vec3 w3 = mix(1.0 - f, f, vec3(o));
-    float w = w3.x * w3.y * w3.z;
-    ScatteredLightNode node = SCATTERED_LIGHT_NODE_AT(n.x + nodes.x * (n.y + nodes.y * n.z));
-    sums += w * node.tally;
-    volume += w * node.volume;
-  }
-  return volume > 0.0 ? sums / volume : vec4(0.0);
-}
-
 // The light scattered more than once gathered since the last flush, into the
 // bins through the view transmittance of the crossings in front; restarts.
 // Any node may hold the light (nodesToLogs).
@@ -662,7 +637,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       if (mus > 0.0)
       {
         state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView,
-          shadow.domain >= 0, SCATTERED_LIGHT ? scatteredLightAt(state.walk.cell) : vec4(0.0));
+          shadow.domain >= 0, SCATTERED_LIGHT ? SCATTERED_LIGHT_AT(v) : vec4(0.0));
       }
       else if (ABSORPTION)
       {

@@ -89,6 +89,35 @@ void checkScatteredLightStages(opal::RenderSession& session, opal::RenderParamet
   OPAL_CHECK(!single.ScatteredLight, "single scattering solves nothing (" + stages(single) + ")");
 }
 
+// The field solved ahead of its frame, in two shares put together (as MPI
+// ranks share the solve, docs/design.md §8.1), by a session that has rendered
+// nothing yet (a rank's first update), then the frame: the image a frame's
+// own solve gives, pixel for pixel. (Its field per voxel was once written
+// before the session's buffers were bound, so not at all.)
+void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& volume, opal::RenderParameters p)
+{
+  p.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  p.ScatteringPhotons = 2000;
+  p.LightPosition = { 2.0, 60.0, 1.0 };
+  const opal::RenderImage own = rendered.render(p).Image;
+  opaltest::SceneRenderer fresh(opal::VulkanOptions{}); // a session that has rendered nothing, as a rank's first update
+  opal::RenderSession& session = fresh.Session;
+  session.setVolume(volume);
+  const opal::ResolvedFrame frame = opal::resolveFrame(p);
+  std::vector<std::vector<double>> shares(2);
+  for (int share : { 1, 0 }) // share 1 traces and keeps its scores; share 0 traces and puts both together
+  {
+    const bool solved = session.solveScatteredLightShared(frame, share, 2,
+      [&shares, share](const std::optional<std::vector<double>>& mine) {
+        shares[static_cast<std::size_t>(share)] = *mine;
+        return share == 0 ? std::optional<std::vector<std::vector<double>>>(shares) : std::nullopt;
+      });
+    OPAL_CHECK(solved == (share == 0), "share " + std::to_string(share) + " of a solve ahead of its frame");
+  }
+  const opal::RenderFrame ahead = session.render(frame);
+  OPAL_CHECK(identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -204,6 +233,7 @@ int TestOpalRenderSession(int, char*[])
     "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
 
   checkScatteredLightStages(session, moved);
+  checkSharedSolve(session, volume->renderVolume(), moved);
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
   // After the frame ticket (which renders the session's volume): fields of

@@ -124,6 +124,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, lightShadow),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, entryVoxels),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, scatteredLight),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, scatteredLightGrid),
   };
 #undef OPAL_FIELD
   return table;

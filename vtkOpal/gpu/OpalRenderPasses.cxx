@@ -82,20 +82,28 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 // Every voxel marches to the light (lights low or to the side).
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
+  return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
+    [&progress](double done) { return progress.report(0.2 * done); });
+}
+
+// `pass` (a light pass's mode over voxel ranges) over every voxel, in
+// submits `pacer` sizes; `keepGoing` (the fraction done) after each, false stops.
+bool RenderSession::dispatchOverVoxels(
+  const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing)
+{
   const std::size_t voxels = this->Volume->Shape.voxelCount();
   for (std::size_t first = 0; first < voxels;)
   {
     const auto count = static_cast<std::int32_t>(
-      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(this->SlabPacer.items(), 1 << 30)), voxels - first));
+      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), 1 << 30)), voxels - first));
     const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow)
-        .dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
+      pass.dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     });
-    this->SlabPacer.measured(count, secondsSince(start));
+    pacer.measured(count, secondsSince(start));
     first += static_cast<std::size_t>(count);
-    if (!progress.report(0.2 * static_cast<double>(first) / voxels))
+    if (keepGoing && !keepGoing(static_cast<double>(first) / voxels))
     {
       return false;
     }
@@ -194,8 +202,10 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
 {
   DeviceVolume& v = *this->Volume;
   v.ScatteredLight.reset();
-  // The tally grid's nodes, from which the march evaluates each voxel's
-  // value: no field per voxel on the device or the host (docs/design.md §3.10).
+  v.ScatteredLightGrid.reset();
+  // The solve's tally grid goes to the device, and the frame's light pass
+  // writes each voxel's value from it (writeScatteredField): the host never
+  // evaluates the field per voxel (docs/design.md §3.10).
   const std::vector<opal::ScatteredLight::GridNode> grid = field.gridNodes();
   std::vector<gpu::ScatteredLightNode> nodes(grid.size()); // zeroed, padding included
   for (std::size_t n = 0; n < grid.size(); ++n)
@@ -203,12 +213,25 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
     nodes[n].tally = gpu::vec4(grid[n].Tally[0], grid[n].Tally[1], grid[n].Tally[2], grid[n].Tally[3]);
     nodes[n].volume = grid[n].Volume;
   }
-  const std::uint64_t bytes = nodes.size() * sizeof(gpu::ScatteredLightNode);
-  v.ScatteredLight = std::make_unique<VulkanBuffer>(*this->Context, bytes, "scattered light tally grid", v.FieldPlacement);
-  v.ScatteredLight->upload(nodes.data(), bytes);
+  const std::uint64_t gridBytes = nodes.size() * sizeof(gpu::ScatteredLightNode);
+  v.ScatteredLightGrid =
+    std::make_unique<VulkanBuffer>(*this->Context, gridBytes, "scattered light tally grid", v.FieldPlacement);
+  v.ScatteredLightGrid->upload(nodes.data(), gridBytes);
+  v.ScatteredLight = std::make_unique<VulkanBuffer>(
+    *this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
+  v.ScatteredFieldPending = true;
   this->bindBuffers();
   this->ScatteredLightWarning = field.Warning;
   this->ScatteredLight = scatteredLightKey(setup);
+}
+
+// The held grid's field per voxel, by the light pass (LightPassScatteredField).
+// In the frame, once its buffers are bound and its parameters (the grid's
+// shape) uploaded: a solve shared by processes holds its grid before them.
+void RenderSession::writeScatteredField()
+{
+  this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr);
+  this->Volume->ScatteredFieldPending = false;
 }
 
 bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const

@@ -329,7 +329,9 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.empty() ? nullptr : records.data());
   uploaded->Medium.Geometry = VolumeGeometry(volume); // its fields read back by the first every-order solve
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
-  uploaded->ScatteredLight = deviceLocalBuffer(
+  uploaded->ScatteredLight =
+    deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);
+  uploaded->ScatteredLightGrid = deviceLocalBuffer(
     context, sizeof(gpu::ScatteredLightNode), "scattered light tally grid placeholder", nullptr, placement);
   uploaded->Shape = volume;
   uploaded->Shape.ScatteringCoefficient = nullptr;
@@ -439,6 +441,10 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
   {
     return frame;
+  }
+  if (everyOrder && this->Volume->ScatteredFieldPending)
+  {
+    this->writeScatteredField();
   }
   timings.ScatteredLight = secondsSince(scatteredStart);
   // A field the processes solved together for this frame (solveScatteredLightShared).
@@ -741,6 +747,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::LightShadowBinding] = v.LightShadow.get();
   buffers[gpu::ShadowTableBinding] = b.ShadowTable.get();
   buffers[gpu::ScatteredLightBinding] = v.ScatteredLight.get();
+  buffers[gpu::ScatteredLightGridBinding] = v.ScatteredLightGrid.get();
   if (v.addressed())
   {
     this->addressFields(buffers);
@@ -760,7 +767,8 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
     { &addresses.surfaceDistance, v.SurfaceDistance.get() }, { &addresses.lightField, v.LightField.get() },
     { &addresses.lightAbsorption, v.LightAbsorption.get() }, { &addresses.absorptionCells, v.AbsorptionCells.get() },
     { &addresses.lightShadow, v.LightShadow.get() }, { &addresses.entryVoxels, v.EntryVoxels.get() },
-    { &addresses.scatteredLight, v.ScatteredLight.get() } };
+    { &addresses.scatteredLight, v.ScatteredLight.get() },
+    { &addresses.scatteredLightGrid, v.ScatteredLightGrid.get() } };
   for (const auto& [address, buffer] : fields)
   {
     *address = addressWords(*buffer);
@@ -768,7 +776,7 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
   v.Addresses->upload(&addresses, sizeof(addresses));
   for (int binding : { gpu::VoxelCellBinding, gpu::SurfaceDistanceBinding, gpu::LightFieldBinding,
          gpu::LightAbsorptionBinding, gpu::AbsorptionCellBinding, gpu::LightShadowBinding, gpu::LightEntryVoxelsBinding,
-         gpu::ScatteredLightBinding })
+         gpu::ScatteredLightBinding, gpu::ScatteredLightGridBinding })
   {
     buffers[static_cast<std::size_t>(binding)] = v.Addresses.get();
   }

@@ -193,11 +193,13 @@ private:
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
+  bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing);
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   const ScatteringMedium& scatteringMedium();
   bool scatteredLightServes(const FrameSetup& setup) const;
   static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
   void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);
+  void writeScatteredField();
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);
   // What a march covers: a rectangle (x, y, width, height) of an image of
@@ -259,6 +261,7 @@ private:
   SubmitPacer MarchPacer{ 1 << 17 };    // pixels
   SubmitPacer SweepPacer{ 1 << 20 };    // voxels, in whole layers
   SubmitPacer SlabPacer{ 1 << 18 };     // voxels marched to the light
+  SubmitPacer FieldPacer{ 1 << 20 };    // voxels given their every-order value
   SubmitPacer HighlightPacer{ 1 << 12 }; // queued pixels shaded
   SubmitPacer RefinePacer{ 1 << 14 };     // queued edge pixels, their first stage (PixelSamples rays each)
   SubmitPacer RefineRestPacer{ 1 << 12 }; // and their second (PixelSamples^2 - PixelSamples rays)

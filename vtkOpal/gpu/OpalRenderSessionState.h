@@ -43,11 +43,13 @@ inline std::uint64_t scatteredLightGridBytes(std::uint64_t voxels)
 }
 // The device fields of a volume of `voxels` for frames with `p`: the
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
-// every-order field's tally grid.
+// every-order field with its tally grid.
 inline std::uint64_t volumeDeviceBytes(std::uint64_t voxels, bool absorbs, const RenderParameters& p)
 {
-  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0)) +
-    (p.ScatteringOrders == ScatteringOrdersKind::All ? scatteredLightGridBytes(voxels) : 0);
+  const bool everyOrder = p.ScatteringOrders == ScatteringOrdersKind::All;
+  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
+                    (everyOrder ? sizeof(gpu::vec4) : 0)) +
+    (everyOrder ? scatteredLightGridBytes(voxels) : 0);
 }
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);
@@ -95,9 +97,12 @@ struct RenderSession::DeviceVolume
   // §7.2): made by the first light pass that needs it, a placeholder before.
   std::unique_ptr<VulkanBuffer> LightShadow;
   bool HasShadowField = false;
-  // The light scattered more than once (ScatteredLightBinding): the tally
-  // grid's nodes once a frame with every order solved it, a placeholder before.
-  std::unique_ptr<VulkanBuffer> ScatteredLight;
+  // The light scattered more than once (docs/design.md §3.10): the solve's
+  // tally grid (ScatteredLightGridBinding) and the field per voxel written
+  // from it (ScatteredLightBinding) once a frame with every order solved
+  // it, placeholders before.
+  std::unique_ptr<VulkanBuffer> ScatteredLight, ScatteredLightGrid;
+  bool ScatteredFieldPending = false; // the grid held, its field per voxel not yet written
   // Where the per-voxel fields live: DeviceAddressed for a volume beyond one
   // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES
   // read them through the address table), else DeviceLocal (docs/design.md §3.7).
