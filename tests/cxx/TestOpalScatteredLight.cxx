@@ -6,7 +6,7 @@
 // stone of index 1.45 holds more scattered light than an index-matched one),
 // determinism for a seed, the nodes' volumes kept with the medium giving the
 // same field, any range of voxels equal to the whole field there, the
-// march's single-precision evaluation from the grid's nodes equal to
+// device's single-precision evaluation from the grid's nodes equal to
 // meanRadiance within float rounding, no voxel orders of magnitude above the
 // field, the solve shared by processes equal to one process's bit for bit
 // (docs/design.md §8.1), and an optical depth beyond the budget: a warning
@@ -96,9 +96,9 @@ bool refuses(Work&& work, const std::string& naming)
   return false;
 }
 
-// A voxel's value as the view march evaluates it from the tally grid's nodes,
-// in single precision: view_march.comp's scatteredLightAt, its twin (keep them alike).
-opal::ScatteredLight::Values marchValue(const std::vector<opal::ScatteredLight::GridNode>& nodes,
+// A voxel's value as the device evaluates it from the tally grid's nodes, in
+// single precision: opal_scattered_light_grid.glsl's scatteredLightAt, its twin (keep them alike).
+opal::ScatteredLight::Values deviceValue(const std::vector<opal::ScatteredLight::GridNode>& nodes,
   const opal::ScatteredLightGrid& grid, const glm::ivec3& cell)
 {
   const glm::ivec3 c0 = glm::min(cell / grid.Stride, glm::max(grid.Nodes - 2, glm::ivec3(0)));
@@ -120,8 +120,8 @@ opal::ScatteredLight::Values marchValue(const std::vector<opal::ScatteredLight::
 }
 
 // The largest difference, relative to the voxel's largest value, between
-// meanRadiance and the march's single-precision evaluation from the nodes.
-double largestMarchDifference(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
+// meanRadiance and the device's single-precision evaluation from the nodes.
+double largestDeviceDifference(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
 {
   const std::vector<opal::ScatteredLight::Values> exact = valuesOf(field, medium);
   const std::vector<opal::ScatteredLight::GridNode> nodes = field.gridNodes();
@@ -132,11 +132,11 @@ double largestMarchDifference(const opal::ScatteredLight& field, const opal::Sca
   {
     if (!(medium.Scattering[v] > 0)) continue;
     const glm::ivec3 cell(int(v % dims.x), int(v / dims.x % dims.y), int(v / (std::size_t(dims.x) * dims.y)));
-    const opal::ScatteredLight::Values march = marchValue(nodes, grid, cell);
+    const opal::ScatteredLight::Values device = deviceValue(nodes, grid, cell);
     const float scale = *std::max_element(exact[v].begin(), exact[v].end());
     for (int m = 0; m < opal::ScatteredLightNodes; ++m)
     {
-      double d = std::fabs(double(march[m]) - exact[v][m]) / std::max(scale, 1e-30f);
+      double d = std::fabs(double(device[m]) - exact[v][m]) / std::max(scale, 1e-30f);
       largest = std::max(largest, d);
     }
   }
@@ -197,10 +197,10 @@ int TestOpalScatteredLight(int, char*[])
   // The hottest voxels, the top skin under the light, are ~60 times the mean; a node's inside volume of
   // rounding noise (weights from positions, not indices) once made voxels beside it 10^14 times their neighbours.
   OPAL_CHECK(peak < 100, "no voxel's value stands out of the field by orders of magnitude");
-  // The march's evaluation from the nodes in single precision: meanRadiance within float rounding.
-  const double marchDifference = largestMarchDifference(*clear, medium);
-  std::cout << "the march's evaluation against meanRadiance: largest relative difference " << marchDifference << std::endl;
-  OPAL_CHECK(marchDifference < 1e-5, "the grid's nodes give the march meanRadiance's values within float rounding");
+  // The device's evaluation from the nodes in single precision: meanRadiance within float rounding.
+  const double deviceDifference = largestDeviceDifference(*clear, medium);
+  std::cout << "the device's evaluation against meanRadiance: largest relative difference " << deviceDifference << std::endl;
+  OPAL_CHECK(deviceDifference < 1e-5, "the grid's nodes give the device meanRadiance's values within float rounding");
   // Any voxels on their own: the same values.
   const std::size_t first = clearValues.size() / 3, count = clearValues.size() / 4 + 5;
   std::vector<opal::ScatteredLight::Values> part(count);

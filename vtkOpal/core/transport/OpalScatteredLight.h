@@ -90,7 +90,8 @@ struct ScatteredLightRequest
 // thin, so the march's interpolation over the nodes is smooth; §3.10). Zero
 // in voxels without scattering. Held as the solve's tallies on the coarse
 // grid, never per voxel: meanRadiance gives any voxels' values from them,
-// and the view march evaluates the same from gridNodes on the device.
+// and the device writes the same from gridNodes (the light pass's
+// LightPassScatteredField).
 struct ScatteredLight
 {
   using Values = std::array<float, ScatteredLightNodes>;
@@ -99,11 +100,11 @@ struct ScatteredLight
   // estimate of the eight tally nodes around it. Throws std::invalid_argument
   // for another medium's size or voxels beyond it.
   // The host's reference in double precision (TestOpalScatteredLight holds
-  // the march's evaluation from gridNodes to it).
+  // the device's evaluation from gridNodes to it).
   void meanRadiance(const ScatteringMedium& medium, std::size_t first, std::size_t count, Values* into) const;
 
   // A node of the tally grid (scatteredLightGrid), in single precision as
-  // the view march evaluates the field from them: its tally at each spectral
+  // the device evaluates the field from them: its tally at each spectral
   // node over 4 pi s, and its inside volume. A voxel's value is
   // sum(w Tally) / sum(w Volume) over the eight nodes around it, trilinear
   // weights w, as meanRadiance gives it.
