@@ -367,7 +367,10 @@ OPAL_CONSTANT int MarchEnergyConservationConstant = 5; // bool: 1 - R behind a c
 OPAL_CONSTANT int MarchFirstWavelengthConstant = 6;    // float: the first bin's centre, nm
 OPAL_CONSTANT int MarchWavelengthStepConstant = 7;     // float: the bins' step, nm
 OPAL_CONSTANT int MarchNearestLightConstant = 8;       // bool: the preview's per-voxel light read
-OPAL_CONSTANT int MarchScatteredLightConstant = 9;  // bool: add the light scattered more than once (§3.10)
+OPAL_CONSTANT int MarchScatteredLightConstant = 9;     // int: the light scattered more than once (§3.10), one of
+OPAL_CONSTANT int MarchScatteredLightNone = 0;         //   not added (single scattering)
+OPAL_CONSTANT int MarchScatteredLightPerVoxel = 1;     //   read from the field per voxel
+OPAL_CONSTANT int MarchScatteredLightFromGrid = 2;     //   evaluated from the tally grid (the field does not fit)
 OPAL_CONSTANT int MarchConstantCount = 10;
 
 // The march reads a LightFieldPair (and the absorption's) as one vec4,

@@ -1,5 +1,5 @@
 // The every-order field from its coarse tally grid (docs/design.md §3.10),
-// for the light pass's LightPassScatteredField. Needs opal_render_bindings.glsl
+// for the light pass's LightPassScatteredField and the march's MarchScatteredLightFromGrid. Needs opal_render_bindings.glsl
 // (and, with OPAL_VOLUME_ADDRESSES, opal_volume_addresses.glsl) first.
 #ifdef OPAL_VOLUME_ADDRESSES
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ScatteredLightNodeRef { ScatteredLightNode value; };

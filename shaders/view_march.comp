@@ -35,8 +35,11 @@ layout(constant_id = MarchWavelengthStepConstant) const float WAVELENGTH_STEP = 
 // instead of trilinearly (four): a view ray averages it over ~70 voxels.
 layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false;
 // ScatteringOrders all: the light scattered more than once, a field solved per
-// light on the host, adds to the body's scattering (docs/design.md §3.10).
-layout(constant_id = MarchScatteredLightConstant) const bool SCATTERED_LIGHT = false;
+// light on the host, adds to the body's scattering (docs/design.md §3.10): read
+// from the field per voxel, or evaluated from its tally grid where the field
+// does not fit the device's memory (MarchScatteredLight*).
+layout(constant_id = MarchScatteredLightConstant) const int SCATTERED_LIGHT_MODE = 0;
+const bool SCATTERED_LIGHT = SCATTERED_LIGHT_MODE != MarchScatteredLightNone;
 
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
@@ -71,6 +74,7 @@ layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer Scatter
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define SCATTERED_LIGHT_AT(i) scatteredLight[i]
 #endif
+#include "opal_scattered_light_grid.glsl"
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };
 layout(std430, set = 0, binding = ShadowTableBinding) readonly buffer ShadowTable { vec4 shadowTable[]; };
 const int SHADOW_ROW_VEC4S = SHADOW_TABLE_ROW_VEC4S(WAVELENGTHS);
@@ -601,6 +605,14 @@ LightShadow shadowOfVoxel(int v, int domain)
 // gathers scattering in one Bragg shadow besides the unshadowed light, and
 // ends before a voxel in another (outside a crossing: inside one, the
 // domain's own scattering keeps the round's shadow).
+// The light scattered more than once in voxel v, at `cell`: the light pass
+// wrote the field per voxel with the same scatteredLightAt, so both modes
+// give the same values (docs/design.md §3.10).
+vec4 scatteredLightOf(int v, ivec3 cell)
+{
+  return SCATTERED_LIGHT_MODE == MarchScatteredLightFromGrid ? scatteredLightAt(cell) : SCATTERED_LIGHT_AT(v);
+}
+
 int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 {
   int count = 0;
@@ -637,7 +649,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
       if (mus > 0.0)
       {
         state.tauView = scatterAlongSegment(origin, inward, state.t, segment, mus, absorption, state.tauView,
-          shadow.domain >= 0, SCATTERED_LIGHT ? SCATTERED_LIGHT_AT(v) : vec4(0.0));
+          shadow.domain >= 0, SCATTERED_LIGHT ? scatteredLightOf(v, state.walk.cell) : vec4(0.0));
       }
       else if (ABSORPTION)
       {

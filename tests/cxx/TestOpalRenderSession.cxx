@@ -118,6 +118,49 @@ void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& v
   OPAL_CHECK(identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
 }
 
+// Where the device's budget cannot hold the every-order field per voxel (16
+// bytes a voxel), the march evaluates its tally grid instead
+// (docs/design.md §3.10): the light pass writes the field with the same
+// function, so the image is the field's pixel for pixel, and the field is
+// freed before a larger frame's images are made. Under a budget between a
+// small frame's needs and a large one's: the small frame reads the field,
+// the large one the grid, and so does the small one after it, beside the
+// larger image buffers the session keeps.
+void checkScatteredLightFromGrid(const opal::RenderVolume& volume, opal::RenderParameters p)
+{
+  p.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  p.ScatteringPhotons = 2000;
+  p.LightPosition = { 2.0, 60.0, 1.0 };
+  opal::RenderParameters large = p;
+  large.ImageSize = { 128, 96 };
+  opaltest::SceneRenderer whole(opal::VulkanOptions{});
+  const opal::RenderImage small = whole.render(volume, p);
+  const std::uint64_t smallPeak = whole.Session.context().memoryPeak();
+  const opal::RenderFrame wide = whole.Session.render(large);
+  const std::uint64_t widePeak = whole.Session.context().memoryPeak();
+  const std::uint64_t fieldBytes = volume.voxelCount() * 4 * sizeof(float);
+  opal::VulkanOptions options;
+  options.MemoryLimitBytes = widePeak - fieldBytes / 2;
+  OPAL_CHECK(smallPeak <= options.MemoryLimitBytes && !wide.Ran.ScatteredLightFromGrid,
+    "set-up: the small frame and its field fit the limit, the large one read the field unlimited");
+  opaltest::SceneRenderer tight(options);
+  opal::RenderSession& session = tight.Session;
+  session.setVolume(volume);
+  const opal::RenderFrame a = session.render(p);
+  OPAL_CHECK(!a.Ran.ScatteredLightFromGrid && identical(a.Image, small), "a frame whose field fits reads it");
+  const opal::RenderFrame b = session.render(large);
+  OPAL_CHECK(b.Ran.ScatteredLightFromGrid && identical(b.Image, wide.Image),
+    "a frame whose field does not fit evaluates the grid, and gives the field's image");
+  OPAL_CHECK(session.context().memoryPeak() <= widePeak - fieldBytes + 4 * sizeof(float), // its placeholder's vec4
+    "the field was freed before the larger images: peak " + std::to_string(session.context().memoryPeak()) +
+      " bytes against " + std::to_string(widePeak) + " with the field");
+  const opal::RenderFrame c = session.render(p);
+  OPAL_CHECK(c.Ran.ScatteredLightFromGrid && identical(c.Image, small),
+    "beside the kept larger images the small frame evaluates the grid too, with the same image");
+  const auto messages = session.context().validationMessages();
+  OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -234,6 +277,7 @@ int TestOpalRenderSession(int, char*[])
 
   checkScatteredLightStages(session, moved);
   checkSharedSolve(session, volume->renderVolume(), moved);
+  checkScatteredLightFromGrid(volume->renderVolume(), moved);
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
   // After the frame ticket (which renders the session's volume): fields of

@@ -201,11 +201,10 @@ ScatteredLightRequest RenderSession::scatteredLightRequest(const FrameSetup& set
 void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field)
 {
   DeviceVolume& v = *this->Volume;
-  v.ScatteredLight.reset();
-  v.ScatteredLightGrid.reset();
   // The solve's tally grid goes to the device, and the frame's light pass
-  // writes each voxel's value from it (writeScatteredField): the host never
-  // evaluates the field per voxel (docs/design.md §3.10).
+  // writes each voxel's value from it (writeScatteredField), or the march
+  // evaluates it (placeScatteredField): the host never evaluates the field
+  // per voxel (docs/design.md §3.10).
   const std::vector<opal::ScatteredLight::GridNode> grid = field.gridNodes();
   std::vector<gpu::ScatteredLightNode> nodes(grid.size()); // zeroed, padding included
   for (std::size_t n = 0; n < grid.size(); ++n)
@@ -214,15 +213,48 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
     nodes[n].volume = grid[n].Volume;
   }
   const std::uint64_t gridBytes = nodes.size() * sizeof(gpu::ScatteredLightNode);
-  v.ScatteredLightGrid =
-    std::make_unique<VulkanBuffer>(*this->Context, gridBytes, "scattered light tally grid", v.FieldPlacement);
-  v.ScatteredLightGrid->upload(nodes.data(), gridBytes);
-  v.ScatteredLight = std::make_unique<VulkanBuffer>(
-    *this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
+  // Made before the old grid goes (a few MB): a failed allocation leaves a
+  // bound grid, and no key, so the next frame solves again.
+  auto held = std::make_unique<VulkanBuffer>(*this->Context, gridBytes, "scattered light tally grid", v.FieldPlacement);
+  held->upload(nodes.data(), gridBytes);
+  v.ScatteredLightGrid = std::move(held);
   v.ScatteredFieldPending = true;
   this->bindBuffers();
   this->ScatteredLightWarning = field.Warning;
   this->ScatteredLight = scatteredLightKey(setup);
+}
+
+// The every-order field per voxel where the frame's budget holds it, else its
+// placeholder, and the march evaluates the tally grid (setUpFrame,
+// docs/design.md §3.10). Before the frame's buffers grow, so that a field the
+// budget no longer counts is freed first; a failed allocation leaves the
+// placeholder bound.
+void RenderSession::placeScatteredField(const FrameSetup& setup)
+{
+  DeviceVolume& v = *this->Volume;
+  const bool perVoxel = !setup.ScatteredLightFromGrid;
+  if (setup.Parameters.ScatteringOrders != ScatteringOrdersKind::All || perVoxel == v.HasScatteredField)
+  {
+    return;
+  }
+  v.ScatteredLight.reset();
+  v.HasScatteredField = false;
+  v.ScatteredFieldPending = true;
+  try
+  {
+    v.ScatteredLight = perVoxel
+      ? std::make_unique<VulkanBuffer>(*this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4),
+          "scattered light field", v.FieldPlacement)
+      : scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
+    v.HasScatteredField = perVoxel;
+  }
+  catch (...)
+  {
+    v.ScatteredLight = scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
+    this->bindBuffers();
+    throw;
+  }
+  this->bindBuffers();
 }
 
 // The held grid's field per voxel, by the light pass (LightPassScatteredField).
@@ -350,7 +382,8 @@ std::int32_t floatBits(double value)
 // nodes, or at every wavelength where nodes are off or would not be fewer
 // than the bins; with ABSORPTION if the volume absorbs; with the frame's
 // Bragg model. The bins' first centre and step are constants of the pipeline,
-// and whether the light field is read per voxel (the preview; docs/design.md §3.4).
+// whether the light field is read per voxel (the preview; docs/design.md §3.4)
+// and where the every-order field is read from (§3.10).
 ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
 {
   const int wavelengths = static_cast<int>(setup.Bins.size());
@@ -362,7 +395,9 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   const int energy = conservesEnergy(p) ? 1 : 0;
   const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
   const int nearestLight = setup.Preview ? 1 : 0;
-  const int scattered = p.ScatteringOrders == ScatteringOrdersKind::All ? 1 : 0;
+  const int scattered = p.ScatteringOrders != ScatteringOrdersKind::All ? gpu::MarchScatteredLightNone
+    : setup.ScatteredLightFromGrid                                    ? gpu::MarchScatteredLightFromGrid
+                                                                      : gpu::MarchScatteredLightPerVoxel;
   const bool addressed = this->Volume->addressed();
   std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{
     wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight, scattered, addressed ? 1 : 0 }];

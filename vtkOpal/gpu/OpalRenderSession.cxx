@@ -329,8 +329,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
     records.empty() ? nullptr : records.data());
   uploaded->Medium.Geometry = VolumeGeometry(volume); // its fields read back by the first every-order solve
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
-  uploaded->ScatteredLight =
-    deviceLocalBuffer(context, sizeof(gpu::vec4), "scattered light placeholder", nullptr, placement);
+  uploaded->ScatteredLight = scatteredLightPlaceholder(context, placement);
   uploaded->ScatteredLightGrid = deviceLocalBuffer(
     context, sizeof(gpu::ScatteredLightNode), "scattered light tally grid placeholder", nullptr, placement);
   uploaded->Shape = volume;
@@ -419,7 +418,9 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   const auto setupStart = Clock::now();
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;
+  frame.Ran.ScatteredLightFromGrid = setup.ScatteredLightFromGrid;
   this->checkMemoryBudget(setup);
+  this->placeScatteredField(setup);
   this->prepareFrameBuffers(setup);
   timings.Setup = secondsSince(setupStart);
   frame.Ran.Upload = this->PendingUploadSeconds >= 0;
@@ -442,7 +443,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   {
     return frame;
   }
-  if (everyOrder && this->Volume->ScatteredFieldPending)
+  if (everyOrder && !setup.ScatteredLightFromGrid && this->Volume->ScatteredFieldPending)
   {
     this->writeScatteredField();
   }
@@ -569,6 +570,10 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.scatteredLightNodes = tallyGrid.Nodes;
   block.scatteredLightStride = tallyGrid.Stride;
   setCoupledWave(block, p, shape);
+  // Beside the image buffers the session keeps: a field per voxel allocated
+  // after a larger frame's images must fit too.
+  setup.ScatteredLightFromGrid = p.ScatteringOrders == ScatteringOrdersKind::All &&
+    this->frameDeviceBytes(setup, true, true) > this->Context->memoryBudget();
   return setup;
 }
 
@@ -588,25 +593,32 @@ void RenderSession::requireDeviceMemory(
 void RenderSession::checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters)
 {
   this->context(); // throws once released
-  this->requireDeviceMemory(
-    volumeDeviceBytes(voxels, absorbs, parameters), "the volume's fields for this render need", "", "use fewer voxels");
+  this->requireDeviceMemory(volumeDeviceBytes(voxels, absorbs, parameters, false),
+    "the volume's fields for this render need", "", "use fewer voxels");
+}
+
+// The frame's device memory: the volume's fields and the images; with
+// `kept`, the image buffers at the size the session keeps them if larger
+// (they only grow, prepareFrameBuffers).
+std::uint64_t RenderSession::frameDeviceBytes(const FrameSetup& setup, bool scatteredFieldPerVoxel, bool kept) const
+{
+  const FrameBuffers& b = *this->Buffers;
+  const std::uint64_t capacity = kept ? std::max(setup.PixelCapacity, b.PixelCapacity) : setup.PixelCapacity;
+  const std::uint64_t spectrumBytes =
+    kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
+  return capacity * ImageBytesPerPixel + spectrumBytes +
+    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters, scatteredFieldPerVoxel);
 }
 
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
-  const std::uint64_t wavelengths = setup.Bins.size();
-  const std::uint64_t pixels = setup.Pixels;
-  const std::uint64_t spectrumBytes = setup.Parameters.WriteSpectrum ? pixels * wavelengths * 4 : 0;
+  const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters);
-  const std::uint64_t imageBytes = static_cast<std::uint64_t>(setup.PixelCapacity) *
-      (sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) + sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum)) +
-    pixels * (3 * 4 + 4) +
-    spectrumBytes;
-  const std::uint64_t deviceBytes = volumeBytes + imageBytes;
+    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters, fieldPerVoxel);
+  const std::uint64_t deviceBytes = this->frameDeviceBytes(setup, fieldPerVoxel, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
-  const std::uint64_t hostBytes = pixels * (3 + 12 + 12 + 4 + 4) + spectrumBytes;
+  const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();
   if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())
   {
     throw std::invalid_argument("ImageSize " + std::to_string(setup.Parameters.ImageSize[0]) + " x " +

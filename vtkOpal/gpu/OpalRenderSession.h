@@ -43,6 +43,9 @@ struct FrameStages
   bool Upload = false;    // the volume went to the device (by setVolume since the last frame)
   bool LightPass = false; // the light field was recomputed
   bool ScatteredLight = false; // the light scattered more than once was solved (ScatteringOrders all)
+  // The march evaluated that light from its tally grid: the device's budget
+  // did not hold its field per voxel (docs/design.md §3.10).
+  bool ScatteredLightFromGrid = false;
   bool Exposure = false;  // the automatic exposure's thumbnail was marched
   bool March = false;
   bool Colour = false;
@@ -180,6 +183,7 @@ private:
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
   static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
+  std::uint64_t frameDeviceBytes(const FrameSetup& setup, bool scatteredFieldPerVoxel, bool kept) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more
@@ -199,6 +203,7 @@ private:
   bool scatteredLightServes(const FrameSetup& setup) const;
   static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
   void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);
+  void placeScatteredField(const FrameSetup& setup);
   void writeScatteredField();
   void prepareShadowField();
   void runShadowTable(const FrameSetup& setup);

@@ -34,6 +34,11 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 {
   return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
 }
+// The image buffers' bytes per pixel on the device (prepareFrameBuffers):
+// XYZ, Bragg and mirror images, highlight and edge queues, the edge pixels'
+// sums, Radiance and RGB.
+constexpr std::uint64_t ImageBytesPerPixel = sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) +
+  sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum) + 3 * sizeof(float) + 4;
 // The every-order field's tally grid on the device (docs/design.md §3.10):
 // at most one node per voxel, and at most 65^3 nodes (8.8 MB).
 inline std::uint64_t scatteredLightGridBytes(std::uint64_t voxels)
@@ -43,13 +48,21 @@ inline std::uint64_t scatteredLightGridBytes(std::uint64_t voxels)
 }
 // The device fields of a volume of `voxels` for frames with `p`: the
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
-// every-order field with its tally grid.
-inline std::uint64_t volumeDeviceBytes(std::uint64_t voxels, bool absorbs, const RenderParameters& p)
+// every-order tally grid, with its field per voxel where `fieldPerVoxel`
+// (else the march evaluates the grid, §3.10).
+inline std::uint64_t volumeDeviceBytes(
+  std::uint64_t voxels, bool absorbs, const RenderParameters& p, bool fieldPerVoxel)
 {
   const bool everyOrder = p.ScatteringOrders == ScatteringOrdersKind::All;
   return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
-                    (everyOrder ? sizeof(gpu::vec4) : 0)) +
+                    (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     (everyOrder ? scatteredLightGridBytes(voxels) : 0);
+}
+// What the every-order field's binding holds where no field per voxel is:
+// one vec4 (docs/design.md §3.10).
+inline std::unique_ptr<VulkanBuffer> scatteredLightPlaceholder(VulkanContext& context, BufferPlacement placement)
+{
+  return std::make_unique<VulkanBuffer>(context, sizeof(gpu::vec4), "scattered light placeholder", placement);
 }
 static_assert(sizeof(gpu::LightPassWork) <= PushConstantBytes && sizeof(gpu::MarchWork) <= PushConstantBytes &&
   sizeof(gpu::HighlightWork) <= PushConstantBytes);
@@ -98,10 +111,11 @@ struct RenderSession::DeviceVolume
   std::unique_ptr<VulkanBuffer> LightShadow;
   bool HasShadowField = false;
   // The light scattered more than once (docs/design.md §3.10): the solve's
-  // tally grid (ScatteredLightGridBinding) and the field per voxel written
-  // from it (ScatteredLightBinding) once a frame with every order solved
-  // it, placeholders before.
+  // tally grid (ScatteredLightGridBinding) once a frame with every order
+  // solved it, and the field per voxel written from it (ScatteredLightBinding)
+  // while the frames' memory budget holds it; placeholders otherwise.
   std::unique_ptr<VulkanBuffer> ScatteredLight, ScatteredLightGrid;
+  bool HasScatteredField = false;     // ScatteredLight is the field per voxel, not its placeholder
   bool ScatteredFieldPending = false; // the grid held, its field per voxel not yet written
   // Where the per-voxel fields live: DeviceAddressed for a volume beyond one
   // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES
@@ -139,6 +153,14 @@ struct RenderSession::FrameSetup
   std::vector<WavelengthBin> Bins;
   gpu::RenderParameterBlock Block{};
   bool Preview = false; // the preview quality (Parameters hold what it implies): the march reads the light field per voxel
+  // Every order, and the device's budget cannot hold the field per voxel:
+  // the march evaluates the tally grid instead (docs/design.md §3.10).
+  bool ScatteredLightFromGrid = false;
+  // The spectrum image's bytes (WriteSpectrum), on the device and the host.
+  std::uint64_t spectrumBytes() const
+  {
+    return this->Parameters.WriteSpectrum ? std::uint64_t{ this->Pixels } * this->Bins.size() * 4 : 0;
+  }
 };
 
 // The caller's progress over the stages of a frame: light pass 20%, march
