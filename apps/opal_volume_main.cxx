@@ -47,9 +47,10 @@ void countPiece(vtkImageData* piece, const int whole[6], BuiltCounts& counts)
 {
   int extent[6];
   piece->GetExtent(extent);
-  vtkDataArray* types = piece->GetPointData()->GetArray("VoxelType");
+  counts.DomainsPlaced = static_cast<int>(piece->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
+  vtkDataArray* types = piece->GetPointData()->GetArray("VoxelType"); // none with --arrays render
   vtkIdType ijk[3];
-  for (ijk[2] = extent[4]; ijk[2] <= extent[5]; ++ijk[2])
+  for (ijk[2] = extent[4]; types && ijk[2] <= extent[5]; ++ijk[2])
     for (ijk[1] = extent[2]; ijk[1] <= extent[3]; ++ijk[1])
       for (ijk[0] = extent[0]; ijk[0] <= extent[1]; ++ijk[0])
       {
@@ -65,7 +66,6 @@ void countPiece(vtkImageData* piece, const int whole[6], BuiltCounts& counts)
           ++counts.VoxelTypes[static_cast<std::size_t>(types->GetComponent(point, 0)) % 3];
         }
       }
-  counts.DomainsPlaced = static_cast<int>(piece->GetFieldData()->GetArray("DomainsPlaced")->GetComponent(0, 0));
 }
 
 // Counts every piece the source builds (the whole grid is one piece).
@@ -130,10 +130,17 @@ void printSummary(vtkOpalSource* source, const OpalModelOptions& model, const Bu
   const opal::PresetSettings* recorded = opal::presetByIndex(model.presetIndex());
   std::printf("Opal volume (preset %s)\n", recorded ? recorded->Name : "custom");
   std::printf("  grid             %d x %d x %d voxels (%lld)\n", dims[0], dims[1], dims[2],
-    types[0] + types[1] + types[2]);
-  std::printf("  empty            %lld\n", types[0]);
-  std::printf("  scattering       %lld\n", types[1]);
-  std::printf("  diffraction      %lld\n", types[2]);
+    static_cast<long long>(dims[0]) * dims[1] * dims[2]);
+  if (source->GetOutputArrays() == vtkOpalSource::ALL_ARRAYS)
+  {
+    std::printf("  empty            %lld\n", types[0]);
+    std::printf("  scattering       %lld\n", types[1]);
+    std::printf("  diffraction      %lld\n", types[2]);
+  }
+  else
+  {
+    std::printf("  arrays           the render's only (no VoxelType to count)\n");
+  }
   if (source->GetDomainLayout() == static_cast<int>(opal::DomainLayoutKind::Voronoi))
   {
     std::printf("  voronoi cells    %d, %d ordered (domains)\n", source->GetVoronoiCellCount(), counts.DomainsPlaced);
@@ -161,6 +168,11 @@ int main(int argc, char** argv)
   CLI::Option* piecesOption = app.add_option("--pieces", pieces,
     "Pieces of a .pvti output (default 4), each built and written alone, as ParaView's ranks read them");
   piecesOption->check(CLI::Range(1, 4096));
+  std::string arrays = "all";
+  app.add_option("--arrays", arrays,
+       "Point arrays to write: all, or render (only what the render reads, 12 bytes per voxel instead of 53)")
+    ->check(CLI::IsMember({ "all", "render" }))
+    ->capture_default_str();
   app.failure_message([](const CLI::App* a, const CLI::Error& e) { return oneLineFailure("opal-volume", e.what(), a); });
   if (const int status = parseArguments(app, argc, argv); status >= 0)
   {
@@ -182,10 +194,13 @@ int main(int argc, char** argv)
   // The preset first: choosing it sets its values, which the flags then replace.
   source->SetPreset(model.presetIndex());
   source->SetModelParameters(model.parameters());
+  const bool renderOnly = arrays == "render";
+  source->SetOutputArrays(renderOnly ? vtkOpalSource::RENDER_ARRAYS : vtkOpalSource::ALL_ARRAYS);
   // A .pvti's pieces are built one at a time: the memory a piece needs.
   const opal::ModelParameters parameters = source->GetModelParameters();
   for (const std::string& error : { opal::validate(parameters),
-         opal::volumeMemoryError(parameters, opal::VolumeArrays::All, largestPiece(parameters.Dimensions, pieces)) })
+         opal::volumeMemoryError(parameters, renderOnly ? opal::VolumeArrays::Render : opal::VolumeArrays::All,
+           largestPiece(parameters.Dimensions, pieces)) })
   {
     if (!error.empty())
     {

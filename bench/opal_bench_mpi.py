@@ -10,8 +10,9 @@ voxels). A run whose ranks would together need more than this machine's
 memory is skipped, saying so: each rank holds its piece of the volume's
 arrays and the device fields of the whole volume (and the gathered arrays
 until their upload), ~54 / ranks + 64 bytes per voxel (fitted to 320 x 160 x
-400 on 1, 2 and 4 ranks, the process included).
-Usage: opal_bench_mpi.py PLUGIN NX NY NZ"""
+400 on 1, 2 and 4 ranks, the process included). ARRAYS is the volume's
+OutputArrays: all (the default) or render (only what the render reads).
+Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS]"""
 import os
 import resource
 import sys
@@ -23,12 +24,13 @@ from vtkmodules.vtkCommonCore import vtkDoubleArray
 from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
 
 plugin, dimensions = sys.argv[1], [int(v) for v in sys.argv[2:5]]
+arrays = sys.argv[5] if len(sys.argv) > 5 else "all"
 LoadPlugin(plugin, remote=False, ns=globals())
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 PIECE_BYTES, WHOLE_BYTES = 54, 64
 voxels = dimensions[0] * dimensions[1] * dimensions[2]
-size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels"
+size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels" + (", render arrays" if arrays == "render" else "")
 
 
 def fits():
@@ -101,7 +103,7 @@ def estimate(volume_seconds, bytes_per_voxel, device_mb):
 # No rank leaves early (pvbatch under MPI must reach its end on every rank).
 if fits():
     baseline_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # the process before the volume
-    volume = OpalVolume(Dimensions=dimensions)  # noqa: F821 (from the plugin)
+    volume = OpalVolume(Dimensions=dimensions, OutputArrays=arrays)  # noqa: F821 (from the plugin)
     volume_seconds = timed(volume)
     render = OpalSpectralRender(Input=volume)  # noqa: F821
     render_seconds = timed(render)

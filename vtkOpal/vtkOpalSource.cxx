@@ -32,6 +32,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <utility>
 #include <optional>
 #include <vector>
 
@@ -120,12 +121,21 @@ void vtkOpalSource::SetModelParameters(const opal::ModelParameters& p)
   this->Modified();
 }
 
+opal::VolumeArrays vtkOpalSource::arrays() const
+{
+  return this->OutputArrays == RENDER_ARRAYS ? opal::VolumeArrays::Render : opal::VolumeArrays::All;
+}
+
 std::string vtkOpalSource::Validate(const int* extent) const
 {
   if (this->Preset != opal::CustomPreset && !opal::presetByIndex(this->Preset))
   {
     return "Preset " + std::to_string(this->Preset) + " is unknown; choose one of: " +
       opal::presetNameList() + " (0-" + std::to_string(opal::presets().size()) + ").";
+  }
+  if (this->OutputArrays != ALL_ARRAYS && this->OutputArrays != RENDER_ARRAYS)
+  {
+    return "OutputArrays " + std::to_string(this->OutputArrays) + " is unknown; choose all (0) or render (1).";
   }
   const opal::ModelParameters parameters = this->GetModelParameters();
   const std::string error = opal::validate(parameters);
@@ -141,7 +151,7 @@ std::string vtkOpalSource::Validate(const int* extent) const
     voxels *= static_cast<std::uint64_t>(std::max(extent[2 * a + 1] - extent[2 * a] + 1, 0));
   }
   // An empty request (a rank without a piece) builds nothing.
-  return voxels == 0 ? std::string() : opal::volumeMemoryError(parameters, opal::VolumeArrays::All, voxels);
+  return voxels == 0 ? std::string() : opal::volumeMemoryError(parameters, this->arrays(), voxels);
 }
 
 bool vtkOpalSource::Refuses(const int* extent)
@@ -325,32 +335,65 @@ bool vtkOpalSource::FillVolume(
 {
   const int* extent = image->GetExtent();
   const vtkIdType count = image->GetNumberOfPoints();
-  auto voxelType = makePointArray<vtkUnsignedCharArray>("VoxelType", 1, count);
-  auto diameter = makePointArray<vtkFloatArray>("ParticleDiameter", 1, count);
-  auto normal = makePointArray<vtkFloatArray>("Normal", 3, count);
+  // The description's arrays only with ALL_ARRAYS; the render's always.
+  const bool describes = this->OutputArrays == ALL_ARRAYS;
+  const vtkIdType described = describes ? count : 0;
+  auto voxelType = makePointArray<vtkUnsignedCharArray>("VoxelType", 1, described);
+  auto diameter = makePointArray<vtkFloatArray>("ParticleDiameter", 1, described);
+  auto normal = makePointArray<vtkFloatArray>("Normal", 3, described);
   auto domainId = makePointArray<vtkIntArray>("DomainId", 1, count);
-  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, count);
-  auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, count);
+  auto lambdaMax = makePointArray<vtkFloatArray>("BraggLambdaMax", 1, described);
+  auto lambdaMin = makePointArray<vtkFloatArray>("BraggLambdaMin", 1, described);
   auto scattering = makePointArray<vtkFloatArray>("ScatteringCoefficient", 1, count);
   auto distance = makePointArray<vtkFloatArray>("SurfaceDistance", 1, count);
-  auto orientation = makePointArray<vtkFloatArray>("LatticeOrientation", 4, count);
+  auto orientation = makePointArray<vtkFloatArray>("LatticeOrientation", 4, described);
   // Only with a Voronoi layout, only when the model absorbs (docs/design.md §2.9, §2.10).
-  auto cellId = makePointArray<vtkIntArray>("CellId", 1, layout.hasCells() ? count : 0);
+  auto cellId = makePointArray<vtkIntArray>("CellId", 1, layout.hasCells() ? described : 0);
   const bool absorbs = parameters.absorbs();
   auto absorption = makePointArray<vtkFloatArray>("AbsorptionCoefficient", 1, absorbs ? count : 0);
   auto exponent = makePointArray<vtkFloatArray>("AbsorptionExponent", 1, absorbs ? count : 0);
-  const opal::VolumeFields fields{ voxelType->GetPointer(0), diameter->GetPointer(0), normal->GetPointer(0),
-    domainId->GetPointer(0), lambdaMax->GetPointer(0), lambdaMin->GetPointer(0), scattering->GetPointer(0),
-    distance->GetPointer(0), layout.hasCells() ? cellId->GetPointer(0) : nullptr,
-    absorbs ? absorption->GetPointer(0) : nullptr, absorbs ? exponent->GetPointer(0) : nullptr,
-    orientation->GetPointer(0) };
+  // The filler leaves out what it is given no array for.
+  auto into = [](auto& array) { return array->GetNumberOfTuples() > 0 ? array->GetPointer(0) : nullptr; };
+  const opal::VolumeFields fields{ into(voxelType), into(diameter), into(normal), into(domainId), into(lambdaMax),
+    into(lambdaMin), into(scattering), into(distance), into(cellId), into(absorption), into(exponent),
+    into(orientation) };
 
-  // Fill slab by slab in parallel, reporting progress and honouring abort between slabs.
-  const opal::VolumeFiller filler(parameters, layout);
+  if (count > 0 && !this->FillSlabs(extent, opal::VolumeFiller(parameters, layout), fields))
+  {
+    return false;
+  }
+  vtkPointData* pointData = image->GetPointData();
+  if (describes)
+  {
+    pointData->SetScalars(voxelType);
+    pointData->AddArray(diameter);
+    pointData->SetNormals(normal);
+  }
+  // In the same order whatever the choice; an empty piece names the same arrays.
+  const std::pair<vtkDataArray*, bool> arrays[] = { { domainId, true }, { lambdaMax, describes },
+    { lambdaMin, describes }, { scattering, true }, { distance, true }, { orientation, describes },
+    { cellId, describes && layout.hasCells() }, { absorption, absorbs }, { exponent, absorbs } };
+  for (const auto& [array, present] : arrays)
+  {
+    if (present)
+    {
+      pointData->AddArray(array);
+    }
+  }
+  if (!describes)
+  {
+    pointData->SetActiveScalars("ScatteringCoefficient");
+  }
+  return true;
+}
+
+bool vtkOpalSource::FillSlabs(const int* extent, const opal::VolumeFiller& filler, const opal::VolumeFields& fields)
+{
+  // Slab by slab in parallel, reporting progress and honouring abort between slabs.
   const std::array<int, 6> fillExtent{ extent[0], extent[1], extent[2], extent[3], extent[4], extent[5] };
-  const int slabs = count > 0 ? extent[5] - extent[4] + 1 : 0;
+  const int slabs = extent[5] - extent[4] + 1;
   const int chunk = std::max(1, slabs / 20);
-  for (int k = extent[4]; count > 0 && k <= extent[5]; k += chunk)
+  for (int k = extent[4]; k <= extent[5]; k += chunk)
   {
     if (this->GetAbortExecute())
     {
@@ -360,25 +403,6 @@ bool vtkOpalSource::FillVolume(
     opal::parallelFor(k, kEnd, [&](int begin, int end) { filler.fill(fillExtent, begin, end, fields); });
     this->UpdateProgress(
       LayoutProgressShare + (1 - LayoutProgressShare) * (kEnd - extent[4]) / static_cast<double>(slabs));
-  }
-  vtkPointData* pointData = image->GetPointData();
-  pointData->SetScalars(voxelType);
-  pointData->AddArray(diameter);
-  pointData->SetNormals(normal);
-  for (vtkDataArray* array : { static_cast<vtkDataArray*>(domainId), static_cast<vtkDataArray*>(lambdaMax),
-         static_cast<vtkDataArray*>(lambdaMin), static_cast<vtkDataArray*>(scattering),
-         static_cast<vtkDataArray*>(distance), static_cast<vtkDataArray*>(orientation) })
-  {
-    pointData->AddArray(array);
-  }
-  if (layout.hasCells())
-  {
-    pointData->AddArray(cellId);
-  }
-  if (absorbs)
-  {
-    pointData->AddArray(absorption);
-    pointData->AddArray(exponent);
   }
   return true;
 }
@@ -445,4 +469,5 @@ void vtkOpalSource::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   OPAL_MODEL_PARAMETERS(OPAL_VTK_PRINT)
   vtkOpalArrayCopy::print(os, indent, "Preset", this->Preset);
+  vtkOpalArrayCopy::print(os, indent, "OutputArrays", this->OutputArrays);
 }

@@ -57,6 +57,14 @@ rm -f "$shm" old_0.vti v_2.vti
 rm -f v_9.vti
 [[ $(grep -E "^  (empty|scattering|diffraction) " p.txt) == $(grep -E "^  (empty|scattering|diffraction) " v.txt) ]] ||
   fail "the pieces' voxel counts equal the one file's: $(cat p.txt v.txt)"
+# The render's arrays only: a smaller set of pieces, with just those arrays, that counts no voxel types.
+"$volume" --dimensions 40 20 50 --domain-count 30 --arrays render -o r.pvti --pieces 3 >r.txt 2>&1 ||
+  fail "opal-volume --arrays render exits 0"
+grep -q "the render's only" r.txt || fail "opal-volume --arrays render says what it wrote: $(cat r.txt)"
+[[ $(grep -o 'Name="[A-Za-z]*"' r_1.vti | sort -u | tr '\n' ' ') == *DomainId*ScatteringCoefficient*SurfaceDistance* &&
+  ! $(grep -c 'Name="VoxelType"' r_1.vti) -gt 0 && $(stat -c %s r_1.vti) -lt $(stat -c %s v_1.vti) ]] ||
+  fail "a render-only piece holds the render's arrays, no VoxelType, and is smaller"
+expect_one_line "unknown --arrays" "--arrays" "$volume" --dimensions 40 20 50 --arrays some -o x.vti
 # Voronoi grains: a preset sets the layout; a flag given with it wins over its value.
 "$volume" --dimensions 40 20 50 --preset pinfire -o grains.vti >g.txt 2>&1 || fail "opal-volume --preset pinfire exits 0"
 grep -q "voronoi cells    3000, 360 ordered" g.txt || fail "pinfire: 3000 cells, 12% ordered: $(cat g.txt)"

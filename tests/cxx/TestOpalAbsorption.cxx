@@ -137,6 +137,32 @@ void checkBackingDarkens()
   OPAL_CHECK(with > 0 && with < 0.95 * without, "the backing darkens the stone by more than 5%: " +
       std::to_string(with) + " against " + std::to_string(without));
 }
+
+// An absorbing volume of the render's arrays only (OutputArrays render: the
+// absorption's two arrays kept) renders the whole set's image exactly.
+void checkRenderArraysOnly()
+{
+  auto all = makeAbsorbingSource();
+  auto renderOnly = makeAbsorbingSource();
+  renderOnly->SetOutputArrays(vtkOpalSource::RENDER_ARRAYS);
+  renderOnly->Update();
+  OPAL_CHECK(renderOnly->GetOutput()->GetPointData()->GetNumberOfArrays() == 5 &&
+      renderOnly->GetOutput()->GetPointData()->GetArray("AbsorptionExponent"),
+    "the render's arrays of an absorbing volume: five, the absorption's included");
+  vtkNew<vtkOpalSpectralRender> a, b;
+  a->SetInputConnection(all->GetOutputPort(0));
+  b->SetInputConnection(renderOnly->GetOutputPort(0));
+  for (vtkOpalSpectralRender* render : { a.Get(), b.Get() })
+  {
+    render->SetImageSize(48, 36);
+    OPAL_CHECK(render->GetExecutive()->Update() == 1, "an absorbing volume of either set renders");
+  }
+  for (const char* name : { "RGB", "XYZ", "Radiance" })
+  {
+    OPAL_CHECK(opaltest::countDifferences(a->GetOutput(), b->GetOutput(), name) == 0,
+      std::string("the render's arrays alone give the whole set's ") + name);
+  }
+}
 } // namespace
 
 int TestOpalAbsorption(int, char*[])
@@ -149,5 +175,6 @@ int TestOpalAbsorption(int, char*[])
     return opaltest::noDeviceReturnCode();
   }
   checkBackingDarkens();
+  checkRenderArraysOnly();
   return opaltest::finish("TestOpalAbsorption");
 }

@@ -3,12 +3,14 @@
 // the old layout), and any split of the extent into pieces, built by one
 // source, gives exactly the whole run's values: for the paper's polygon
 // layout and for Voronoi grains with correlated diameters (CellId too). A grid
-// larger than this machine's memory is refused whole and built by pieces.
+// larger than this machine's memory is refused whole and built by pieces. The
+// render's arrays alone (OutputArrays render) equal the whole set's.
 #include "OpalTestVolumes.h"
 
 #include "vtkExecutive.h"
 #include "vtkImageData.h"
 #include "vtkNew.h"
+#include "vtkPointData.h"
 
 #include <functional>
 #include <string>
@@ -83,6 +85,45 @@ void checkPieceOfHugeGrid()
   source->UpdateExtent(piece);
   OPAL_CHECK(source->GetOutput()->GetNumberOfPoints() == 40 * 20 * 50, "a 40 x 20 x 50 piece of it builds");
 }
+
+// OutputArrays render (vtkOpalSource): only the render's arrays, in the
+// order the whole set has them, each equal to the whole set's, whole and in
+// pieces; the source's scalars are ScatteringCoefficient. Another value is
+// refused, named.
+void checkRenderArrays(const std::string& layout, const SourceMaker& make)
+{
+  auto all = make(7);
+  all->Update();
+  auto render = make(7);
+  render->SetOutputArrays(vtkOpalSource::RENDER_ARRAYS);
+  render->Update();
+  vtkPointData* data = render->GetOutput()->GetPointData();
+  const std::vector<std::string> expected{ "DomainId", "ScatteringCoefficient", "SurfaceDistance" };
+  std::vector<std::string> names;
+  for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+  {
+    names.emplace_back(data->GetArrayName(a));
+  }
+  OPAL_CHECK(names == expected, layout + ": render arrays only are DomainId, ScatteringCoefficient, SurfaceDistance");
+  OPAL_CHECK(data->GetScalars() && std::string(data->GetScalars()->GetName()) == "ScatteringCoefficient",
+    layout + ": their scalars are ScatteringCoefficient");
+  for (const std::string& name : expected)
+  {
+    OPAL_CHECK(opaltest::countDifferences(all->GetOutput(), render->GetOutput(), name) == 0,
+      layout + ": the render's " + name + " equals the whole set's");
+    render->UpdatePiece(1, 3, 0);
+    OPAL_CHECK(opaltest::countDifferences(all->GetOutput(), render->GetOutput(), name) == 0,
+      layout + ": piece 1 of 3 of the render's " + name + " equals the whole set's");
+    render->UpdatePiece(0, 1, 0);
+  }
+  opaltest::silenceExpectedErrors();
+  auto unknown = make(7);
+  unknown->SetOutputArrays(2);
+  vtkNew<opaltest::MessageRecorder> recorder;
+  recorder->watch(unknown);
+  OPAL_CHECK(!unknown->GetExecutive()->Update() && recorder->anyContains(recorder->Errors, "OutputArrays 2"),
+    layout + ": OutputArrays 2 is refused, named");
+}
 } // namespace
 
 int TestOpalVolumeDeterminism(int, char*[])
@@ -93,5 +134,7 @@ int TestOpalVolumeDeterminism(int, char*[])
   names.emplace_back("CellId");
   checkDeterminism("voronoi", [](int seed) { return opaltest::makeSmallGrainSource(seed); }, names);
   checkPieceOfHugeGrid();
+  checkRenderArrays("polygons", [](int seed) { return opaltest::makeSmallSource(seed); });
+  checkRenderArrays("voronoi", [](int seed) { return opaltest::makeSmallGrainSource(seed); });
   return opaltest::finish("TestOpalVolumeDeterminism");
 }

@@ -38,6 +38,7 @@ PROXIES = {
     }),
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",
+        "OutputArrays": "which arrays the volume carries, not the opal it describes",
     }),
 }
 # Rows whose XML gives a narrower range on purpose (a slider, an animation's
