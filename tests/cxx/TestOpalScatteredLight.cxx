@@ -217,6 +217,41 @@ int TestOpalScatteredLight(int, char*[])
     OPAL_CHECK(valuesOf(shared, medium) == clearValues && shared.Escaped == clear->Escaped,
       "a solve shared by " + std::to_string(shares) + " equals one process's bit for bit");
   }
+  // The render session's geometry: the inside bits and the apex, SurfaceDistance given back (read from
+  // the device) when a solve needs it: the same field. Values whose signs disagree (a round read from
+  // the wrong place) are refused; without them surfaceDistance throws.
+  opal::ScatteringMedium givenBack = medium;
+  givenBack.Geometry = opal::VolumeGeometry(volume, false);
+  bool insideAgrees = !givenBack.Geometry.insideAt(medium.Geometry.boxHigh() + 1.0);
+  const glm::ivec3 dims = medium.Geometry.dimensions();
+  for (int k = 0; k < dims.z; ++k)
+    for (int j = 0; j < dims.y; ++j)
+      for (int i = 0; i < dims.x; ++i)
+      {
+        const glm::dvec3 p = medium.Geometry.origin() + glm::dvec3(i, j, k) * medium.Geometry.spacing();
+        const std::size_t v = static_cast<std::size_t>(i + dims.x * (j + dims.y * k));
+        insideAgrees = insideAgrees && givenBack.Geometry.insideAt(p) == (volume.SurfaceDistance[v] <= 0);
+      }
+  bool throwsWithout = false;
+  try
+  {
+    givenBack.Geometry.surfaceDistance(medium.Geometry.apex());
+  }
+  catch (const std::logic_error&)
+  {
+    throwsWithout = true;
+  }
+  OPAL_CHECK(insideAgrees && throwsWithout && givenBack.Geometry.apex() == medium.Geometry.apex(),
+    "a geometry without SurfaceDistance keeps each voxel's inside and the apex, and asks for the rest");
+  std::vector<float> distance(volume.SurfaceDistance, volume.SurfaceDistance + volume.voxelCount());
+  std::vector<float> shifted(distance.begin() + 1, distance.end());
+  shifted.push_back(distance.back());
+  OPAL_CHECK(refuses([&] { givenBack.Geometry.setSurfaceDistance(shifted); }, "disagrees"),
+    "SurfaceDistance given back one voxel off is refused");
+  givenBack.Geometry.setSurfaceDistance(distance);
+  const auto fromGivenBack = opal::solveScatteredLight(givenBack, requestFor(givenBack, 1.45, 4096), nullptr);
+  OPAL_CHECK(valuesOf(*fromGivenBack, givenBack) == clearValues, "SurfaceDistance given back: the same field");
+
   const opal::ScatteredLightRequest small = requestFor(medium, 1.45, 64);
   OPAL_CHECK(refuses([&] { opal::traceScatteredLightShare(medium, small, 2, 2, nullptr); }, "share 2 of 2"),
     "a share that does not exist is refused");

@@ -130,10 +130,27 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
   return *pass;
 }
 
+namespace
+{
+// A value of each of a device field's `count` records, read back round by round.
+template <typename Record, typename Value>
+std::vector<float> readEach(const VulkanBuffer& buffer, std::size_t count, Value&& value)
+{
+  std::vector<float> values(count);
+  buffer.read(count * sizeof(Record), [&values, &value](std::uint64_t first, std::uint64_t bytes, const void* from) {
+    const auto* records = static_cast<const Record*>(from);
+    float* into = values.data() + first / sizeof(Record);
+    for (std::size_t i = 0; i < bytes / sizeof(Record); ++i) into[i] = value(records[i]);
+  });
+  return values;
+}
+} // namespace
+
 // The medium the every-order solve reads: its fields read back from the
-// device's cells (and absorption cells) by the first solve, then kept with
-// the volume with its tally nodes' volumes, so a session that renders single scattering never holds them
-// on the host (4 bytes per voxel, 12 with absorption; docs/design.md §3.10).
+// device's cells (and absorption cells) and SurfaceDistance by the first
+// solve, then kept with the volume with its tally nodes' volumes, so a
+// session that renders single scattering never holds them on the host (8
+// bytes per voxel, 16 with absorption; docs/design.md §3.10).
 const ScatteringMedium& RenderSession::scatteringMedium()
 {
   DeviceVolume& v = *this->Volume;
@@ -144,17 +161,16 @@ const ScatteringMedium& RenderSession::scatteringMedium()
   }
   // Read whole before it is kept: a read that throws (its staging round
   // beyond the memory limit, say) leaves no half-read medium for a later solve.
-  std::vector<float> scattering(voxels);
-  v.Cells->read(voxels * sizeof(gpu::VoxelCell), [&scattering](std::uint64_t first, std::uint64_t count, const void* from) {
-    const auto* cells = static_cast<const gpu::VoxelCell*>(from);
-    float* into = scattering.data() + first / sizeof(gpu::VoxelCell);
-    for (std::size_t i = 0; i < count / sizeof(gpu::VoxelCell); ++i) into[i] = cells[i].scattering;
-  });
+  std::vector<float> scattering =
+    readEach<gpu::VoxelCell>(*v.Cells, voxels, [](const gpu::VoxelCell& cell) { return cell.scattering; });
   std::vector<glm::vec2> absorption(v.Absorbs ? voxels : 0);
   v.AbsorptionCells->read(absorption.size() * sizeof(glm::vec2),
     [&absorption](std::uint64_t first, std::uint64_t count, const void* from) {
       std::memcpy(reinterpret_cast<char*>(absorption.data()) + first, from, count);
     });
+  // Each voxel's own SurfaceDistance is its pair's first value (the second its +x neighbour's).
+  v.Medium.Geometry.setSurfaceDistance(
+    readEach<gpu::vec2>(*v.SurfaceDistance, voxels, [](const gpu::vec2& pair) { return pair.x; }));
   std::vector<double> nodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry); // for every later light too
   v.Medium.Scattering = std::move(scattering);
   v.Medium.Absorption = std::move(absorption);

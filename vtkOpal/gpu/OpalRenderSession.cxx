@@ -327,7 +327,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
-  uploaded->Medium.Geometry = VolumeGeometry(volume); // its fields read back by the first every-order solve
+  // SurfaceDistance, like the medium's fields, read back by the first every-order solve.
+  uploaded->Medium.Geometry = VolumeGeometry(volume, false);
   uploaded->Medium.AbsorptionExponent = uploaded->AbsorptionExponent;
   uploaded->ScatteredLight = scatteredLightPlaceholder(context, placement);
   uploaded->ScatteredLightGrid = deviceLocalBuffer(
@@ -497,7 +498,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
 bool RenderSession::eyeInsideOpal(const ResolvedFrame& frame) const
 {
   return this->Volume && frame.Error.empty() &&
-    this->Volume->Medium.Geometry.nearestSurfaceDistance(cameraInModelFrame(frame.Parameters).Eye) <= 0;
+    this->Volume->Medium.Geometry.insideAt(cameraInModelFrame(frame.Parameters).Eye);
 }
 
 // Frame set-up: validation, the camera and light in the model's frame, the
@@ -514,11 +515,11 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   setup.Preview = frame.Preview;
   setup.Camera = cameraInModelFrame(p);
   const VolumeGeometry& geometry = this->Volume->Medium.Geometry;
-  if (geometry.nearestSurfaceDistance(setup.Camera.Light) <= 0)
+  if (geometry.insideAt(setup.Camera.Light))
   {
     throw std::invalid_argument("LightPosition is inside the opal; place the light outside it.");
   }
-  if (geometry.nearestSurfaceDistance(setup.Camera.Eye) <= 0)
+  if (geometry.insideAt(setup.Camera.Eye))
   {
     throw std::invalid_argument("EyePosition is inside the opal; place the eye outside it.");
   }

@@ -2,27 +2,58 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace opal
 {
 
-VolumeGeometry::VolumeGeometry(const RenderVolume& volume)
+VolumeGeometry::VolumeGeometry(const RenderVolume& volume, bool keepSurfaceDistance)
   : Dimensions(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])
   , Origin(volume.Origin[0], volume.Origin[1], volume.Origin[2])
   , Spacing(volume.Spacing[0], volume.Spacing[1], volume.Spacing[2])
-  , SurfaceDistance(volume.SurfaceDistance, volume.SurfaceDistance + volume.voxelCount())
+  , Inside(volume.voxelCount())
 {
+  for (std::size_t v = 0; v < this->Inside.size(); ++v)
+  {
+    this->Inside[v] = volume.SurfaceDistance[v] <= 0;
+  }
+  this->Apex = this->apexOf(volume.SurfaceDistance);
+  if (keepSurfaceDistance)
+  {
+    this->SurfaceDistance.assign(volume.SurfaceDistance, volume.SurfaceDistance + volume.voxelCount());
+  }
 }
 
-double VolumeGeometry::distanceAt(int i, int j, int k) const
+void VolumeGeometry::setSurfaceDistance(std::vector<float> values)
+{
+  if (values.size() != this->Inside.size())
+  {
+    throw std::invalid_argument("SurfaceDistance has " + std::to_string(values.size()) + " values for " +
+      std::to_string(this->Inside.size()) + " voxels");
+  }
+  // The values given back (read from a device) must be those the inside bits
+  // were taken from: a round read at the wrong place disagrees at the surface.
+  for (std::size_t v = 0; v < values.size(); ++v)
+  {
+    if ((values[v] <= 0) != this->Inside[v])
+    {
+      throw std::invalid_argument("SurfaceDistance given back disagrees with the volume's at voxel " +
+        std::to_string(v) + " (" + std::to_string(values[v]) + ")");
+    }
+  }
+  this->SurfaceDistance = std::move(values);
+}
+
+std::size_t VolumeGeometry::indexOf(int i, int j, int k) const
 {
   const std::size_t nx = static_cast<std::size_t>(this->Dimensions.x);
   const std::size_t ny = static_cast<std::size_t>(this->Dimensions.y);
-  return this->SurfaceDistance[static_cast<std::size_t>(i) +
-    nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k))];
+  return static_cast<std::size_t>(i) + nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k));
 }
 
-double VolumeGeometry::nearestSurfaceDistance(const glm::dvec3& p) const
+bool VolumeGeometry::insideAt(const glm::dvec3& p) const
 {
   int c[3];
   for (int a = 0; a < 3; ++a)
@@ -30,14 +61,18 @@ double VolumeGeometry::nearestSurfaceDistance(const glm::dvec3& p) const
     c[a] = static_cast<int>(std::floor((p[a] - this->Origin[a]) / this->Spacing[a] + 0.5));
     if (c[a] < 0 || c[a] >= this->Dimensions[a])
     {
-      return INFINITY;
+      return false;
     }
   }
-  return this->distanceAt(c[0], c[1], c[2]);
+  return this->Inside[this->indexOf(c[0], c[1], c[2])];
 }
 
 double VolumeGeometry::surfaceDistance(const glm::dvec3& p) const
 {
+  if (!this->hasSurfaceDistance())
+  {
+    throw std::logic_error("the volume's geometry holds no SurfaceDistance");
+  }
   // As the shaders' trilinearSurfaceDistance: up to the grid's box (half a
   // cell beyond the outermost centres) the outermost cells continue linearly.
   const glm::dvec3 g =
@@ -75,18 +110,18 @@ glm::dvec3 VolumeGeometry::boxHigh() const
   return this->boxLow() + glm::dvec3(this->Dimensions) * this->Spacing;
 }
 
-glm::dvec3 VolumeGeometry::apex() const
+glm::dvec3 VolumeGeometry::apexOf(const float* distance) const
 {
   const int i = this->Dimensions.x / 2, k = this->Dimensions.z / 2, ny = this->Dimensions.y;
   const double x = this->Origin.x + i * this->Spacing.x;
   const double z = this->Origin.z + k * this->Spacing.z;
   for (int j = ny - 1; j >= 0; --j)
   {
-    const double here = this->distanceAt(i, j, k);
+    const double here = distance[this->indexOf(i, j, k)];
     if (here <= 0)
     {
       const double y0 = this->Origin.y + j * this->Spacing.y;
-      const double above = j + 1 < ny ? this->distanceAt(i, j + 1, k) : here;
+      const double above = j + 1 < ny ? distance[this->indexOf(i, j + 1, k)] : here;
       // The zero between this voxel centre and the one above, else continued linearly.
       return above > here ? glm::dvec3(x, y0 + this->Spacing.y * (-here) / (above - here), z)
                           : glm::dvec3(x, y0 - here, z);

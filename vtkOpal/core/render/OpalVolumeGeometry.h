@@ -7,22 +7,33 @@
 
 #include <glm/glm.hpp>
 
+#include <cstddef>
+#include <vector>
+
 namespace opal
 {
 
-// The grid's shape and a host copy of its SurfaceDistance field.
+// The grid's shape, which voxels lie inside the opal (a bit each), its apex,
+// and a host copy of its SurfaceDistance field where kept.
 class VolumeGeometry
 {
 public:
   VolumeGeometry() = default;
-  explicit VolumeGeometry(const RenderVolume& volume);
+  // Without `keepSurfaceDistance` only the inside bits and the apex are kept
+  // (the render session's, which reads SurfaceDistance back from the device
+  // when a solve needs it: docs/design.md §3.10); setSurfaceDistance gives it,
+  // refusing values whose signs disagree with the inside bits (or count).
+  explicit VolumeGeometry(const RenderVolume& volume, bool keepSurfaceDistance = true);
+  void setSurfaceDistance(std::vector<float> values);
+  bool hasSurfaceDistance() const { return !this->SurfaceDistance.empty(); }
 
-  // Nearest-voxel SurfaceDistance at a model-frame point; +inf outside the grid.
-  double nearestSurfaceDistance(const glm::dvec3& p) const;
+  // Whether the voxel centre nearest a model-frame point lies inside the
+  // opal (its SurfaceDistance <= 0); false outside the grid.
+  bool insideAt(const glm::dvec3& p) const;
 
   // SurfaceDistance interpolated trilinearly over the voxel centres,
   // continued linearly to the grid's box (clamped beyond), the surface being
-  // its zero as the march reads it.
+  // its zero as the march reads it. Needs SurfaceDistance (std::logic_error).
   double surfaceDistance(const glm::dvec3& p) const;
 
   // The outward unit normal there: the normalised central-difference
@@ -35,7 +46,7 @@ public:
 
   // The opal's apex: the top of the surface over the grid's centre column
   // (SurfaceDistance crossing zero), or the top of the grid.
-  glm::dvec3 apex() const;
+  const glm::dvec3& apex() const { return this->Apex; }
 
   // Whether the light sits above the grid steeply enough for the layer sweep:
   // every path to it rises through each layer moving at most half a voxel
@@ -51,11 +62,15 @@ public:
   const glm::dvec3& spacing() const { return this->Spacing; }
 
 private:
-  double distanceAt(int i, int j, int k) const;
+  std::size_t indexOf(int i, int j, int k) const;
+  double distanceAt(int i, int j, int k) const { return this->SurfaceDistance[this->indexOf(i, j, k)]; }
+  glm::dvec3 apexOf(const float* distance) const;
 
   glm::ivec3 Dimensions{ 0 };
   glm::dvec3 Origin{ 0.0 };
   glm::dvec3 Spacing{ 1.0 };
+  std::vector<bool> Inside; // SurfaceDistance <= 0, a bit per voxel
+  glm::dvec3 Apex{ 0.0 };
   std::vector<float> SurfaceDistance;
 };
 

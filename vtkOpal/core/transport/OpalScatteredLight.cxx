@@ -495,7 +495,7 @@ std::vector<double> insideVolumes(const VolumeGeometry& g, const TallyGrid& tall
           for (int i = 0; i < dims.x; ++i)
           {
             const glm::dvec3 p = g.origin() + glm::dvec3(i, j, k) * g.spacing();
-            if (g.nearestSurfaceDistance(p) <= 0) // a voxel centre: its own value
+            if (g.insideAt(p)) // a voxel centre: its own value
             {
               tally.forEachNodeOfVoxel({ i, j, k }, [&](std::size_t n, double w) { volumes[n] += w * cell; });
             }
