@@ -5,7 +5,6 @@
 #include "OpalAtomicFile.h"
 #include "OpalCliFiles.h"
 #include "OpalCliSupport.h"
-#include "OpalGrid.h"
 #include "OpalModelOptions.h"
 #include "OpalModelParameters.h"
 #include "OpalOutputModules.h"
@@ -164,14 +163,13 @@ opal::RenderImage renderFrame(const opal::ModelParameters& model, const opal::Re
   // uploaded where the build finished first.
   std::unique_ptr<opal::RenderSession> session;
   std::exception_ptr refused;
-  const auto voxels = static_cast<std::uint64_t>(opal::Grid::fromParameters(model).voxelCount());
   auto checkDevice = [&](bool wait) {
     if (!session && !refused && (wait || starting.wait_for(std::chrono::seconds(0)) == std::future_status::ready))
     {
       try
       {
         session = starting.get();
-        session->checkVolumeFits(voxels, model.absorbs(), parameters);
+        session->checkVolumeFits(model.Dimensions, model.absorbs(), parameters);
       }
       catch (...)
       {

@@ -140,7 +140,7 @@ expect_one_line "opal-render beyond memory" "memory" "$render" --dimensions 4000
 # shadows, and the every-order tally grid; the field per voxel, 16 more, only where it fits, else the march
 # evaluates the grid) beyond the device's memory: refused once the device has started, not after the
 # volume's build and upload (the frame's own refusal says "the render needs").
-expect_one_line "white-opal's fields beyond the device's memory" "the volume's fields for this render need about 868 MB" \
+expect_one_line "white-opal's fields beyond the device's memory" "the volume's fields for this render need about 861 MB" \
   "$render" --preset white-opal --dimensions 320 160 400 --device-memory-limit 800 -o x.png
 # Counts bounded where they hung or ran out of memory.
 expect_one_line "two billion domains" "DomainCount" "$volume" --domain-count 2000000000 -o x.vti

@@ -591,10 +591,11 @@ void RenderSession::requireDeviceMemory(
   }
 }
 
-void RenderSession::checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters)
+void RenderSession::checkVolumeFits(
+  const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& parameters)
 {
   this->context(); // throws once released
-  this->requireDeviceMemory(volumeDeviceBytes(voxels, absorbs, parameters, false),
+  this->requireDeviceMemory(volumeDeviceBytes(dimensions, absorbs, parameters, false),
     "the volume's fields for this render need", "", "use fewer voxels");
 }
 
@@ -608,14 +609,14 @@ std::uint64_t RenderSession::frameDeviceBytes(const FrameSetup& setup, bool scat
   const std::uint64_t spectrumBytes =
     kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
   return capacity * ImageBytesPerPixel + spectrumBytes +
-    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters, scatteredFieldPerVoxel);
+    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, scatteredFieldPerVoxel);
 }
 
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.voxelCount(), this->Volume->Absorbs, setup.Parameters, fieldPerVoxel);
+    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, fieldPerVoxel);
   const std::uint64_t deviceBytes = this->frameDeviceBytes(setup, fieldPerVoxel, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");

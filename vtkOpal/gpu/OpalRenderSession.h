@@ -91,11 +91,11 @@ public:
   // unusable volume (naming what is wrong) and VulkanError if it does not fit.
   void setVolume(const RenderVolume& volume);
 
-  // Refuses, before any volume exists, a volume of `voxels` whose device
+  // Refuses, before any volume exists, a volume of `dimensions` whose device
   // fields for frames with `parameters` (resolved) exceed the device's
   // memory: the VulkanError a frame would throw after the upload (a program
   // that builds the volume checks first; a 10 um stone takes minutes).
-  void checkVolumeFits(std::uint64_t voxels, bool absorbs, const RenderParameters& parameters);
+  void checkVolumeFits(const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& parameters);
 
   // Renders a frame of the volume. Throws std::invalid_argument for bad
   // parameters (naming the parameter) or without a volume, VulkanError for

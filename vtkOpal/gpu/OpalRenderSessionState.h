@@ -12,6 +12,7 @@
 #include "OpalVulkanBuffer.h"
 #include "opal_render_contract.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -39,24 +40,24 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
 // sums, Radiance and RGB.
 constexpr std::uint64_t ImageBytesPerPixel = sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) +
   sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum) + 3 * sizeof(float) + 4;
-// The every-order field's tally grid on the device (docs/design.md §3.10):
-// at most one node per voxel, and at most 65^3 nodes (8.8 MB).
-inline std::uint64_t scatteredLightGridBytes(std::uint64_t voxels)
-{
-  constexpr std::uint64_t side = ScatteredLightCellsAlongLongestSide + 1;
-  return std::min(voxels, side * side * side) * sizeof(gpu::ScatteredLightNode);
-}
-// The device fields of a volume of `voxels` for frames with `p`: the
+// The device fields of a volume of `dimensions` for frames with `p`: the
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
-// every-order tally grid, with its field per voxel where `fieldPerVoxel`
-// (else the march evaluates the grid, §3.10).
+// every-order tally grid (its shape scatteredLightGrid's), with its field per
+// voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10).
 inline std::uint64_t volumeDeviceBytes(
-  std::uint64_t voxels, bool absorbs, const RenderParameters& p, bool fieldPerVoxel)
+  const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p, bool fieldPerVoxel)
 {
   const bool everyOrder = p.ScatteringOrders == ScatteringOrdersKind::All;
+  const std::uint64_t voxels =
+    static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
+    static_cast<std::uint64_t>(dimensions[2]);
+  const std::uint64_t gridBytes = everyOrder
+    ? scatteredLightGrid(glm::ivec3(dimensions[0], dimensions[1], dimensions[2])).size() *
+      sizeof(gpu::ScatteredLightNode)
+    : 0;
   return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                     (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
-    (everyOrder ? scatteredLightGridBytes(voxels) : 0);
+    gridBytes;
 }
 // What the every-order field's binding holds where no field per voxel is:
 // one vec4 (docs/design.md §3.10).
