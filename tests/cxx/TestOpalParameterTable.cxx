@@ -148,8 +148,12 @@ void checkRange(const opal::ParameterRow<Parameters>& row)
   {
     return;
   }
-  for (const double beyond : { row.Min == -opal::Unbounded ? -HUGE_VAL : row.Min - 1,
-         row.Max == opal::Unbounded ? HUGE_VAL : row.Max + 1 })
+  // Just past a bound: the next double (1e30 + 1 is 1e30), the next whole number for an int.
+  const auto past = [&row](double bound, double direction) {
+    return row.Type == opal::ParameterType::Double ? std::nextafter(bound, direction * HUGE_VAL) : bound + direction;
+  };
+  for (const double beyond : { row.Min == -opal::Unbounded ? -HUGE_VAL : past(row.Min, -1),
+         row.Max == opal::Unbounded ? HUGE_VAL : past(row.Max, 1) })
   {
     Parameters p;
     std::vector<double> values = row.Get(p);
