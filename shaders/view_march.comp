@@ -597,14 +597,6 @@ LightShadow shadowOfVoxel(int v, int domain)
   return shadow.domain == domain ? NO_SHADOW : shadow;
 }
 
-// Walks the refracted ray on from `state`, gathering scattering and
-// recording domain crossings, until it leaves the opal at tExit or the record
-// is full; returns the number of crossings recorded.
-// With ENERGY_CONSERVATION a round records one crossing and ends where the
-// ray leaves its domain, so the crossing dims all that lies behind it; it
-// gathers scattering in one Bragg shadow besides the unshadowed light, and
-// ends before a voxel in another (outside a crossing: inside one, the
-// domain's own scattering keeps the round's shadow).
 // The light scattered more than once in voxel v, at `cell`: the light pass
 // wrote the field per voxel with the same scatteredLightAt, so both modes
 // give the same values (docs/design.md §3.10).
@@ -613,6 +605,14 @@ vec4 scatteredLightOf(int v, ivec3 cell)
   return SCATTERED_LIGHT_MODE == MarchScatteredLightFromGrid ? scatteredLightAt(cell) : SCATTERED_LIGHT_AT(v);
 }
 
+// Walks the refracted ray on from `state`, gathering scattering and
+// recording domain crossings, until it leaves the opal at tExit or the record
+// is full; returns the number of crossings recorded.
+// With ENERGY_CONSERVATION a round records one crossing and ends where the
+// ray leaves its domain, so the crossing dims all that lies behind it; it
+// gathers scattering in one Bragg shadow besides the unshadowed light, and
+// ends before a voxel in another (outside a crossing: inside one, the
+// domain's own scattering keeps the round's shadow).
 int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
 {
   int count = 0;

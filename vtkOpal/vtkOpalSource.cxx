@@ -190,7 +190,9 @@ int vtkOpalSource::RequestInformation(
   outInfo->Set(vtkDataObject::SPACING(), grid.Spacing.data(), 3);
   outInfo->Set(vtkDataObject::ORIGIN(), grid.Origin.data(), 3);
   outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
-  vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_UNSIGNED_CHAR, 1);
+  // VoxelType, or with the render's arrays only ScatteringCoefficient (FillVolume).
+  vtkDataObject::SetPointDataActiveScalarInfo(
+    outInfo, this->OutputArrays == RENDER_ARRAYS ? VTK_FLOAT : VTK_UNSIGNED_CHAR, 1);
   outInfo->Set(RENDER_HINTS(), opal::packHints(opal::renderHints(this->Preset, this->RefractiveIndex)).data(),
     opal::RenderHintsSize);
   return 1;

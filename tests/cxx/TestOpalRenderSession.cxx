@@ -161,6 +161,30 @@ void checkScatteredLightFromGrid(const opal::RenderVolume& volume, opal::RenderP
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
 }
 
+// The choice counts the Bragg shadow field the session keeps once energy
+// conservation made it (12 bytes a voxel): under a limit that holds the
+// field per voxel without the shadows but not beside them, a frame after
+// energy conservation is turned off evaluates the grid (allocating the field
+// there would exceed the limit) and gives the unlimited session's image.
+void checkKeptShadowsCounted(const opal::RenderVolume& volume, opal::RenderParameters p)
+{
+  p.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  p.ScatteringPhotons = 2000;
+  p.LightPosition = { 2.0, 60.0, 1.0 };
+  opal::RenderParameters conserving = p;
+  conserving.EnergyConservation = true;
+  opaltest::SceneRenderer whole(opal::VulkanOptions{});
+  const opal::RenderImage plain = whole.render(volume, p);
+  opal::VulkanOptions options;
+  options.MemoryLimitBytes = whole.Session.context().memoryPeak() + volume.voxelCount() * 6;
+  opaltest::SceneRenderer tight(options);
+  tight.Session.setVolume(volume);
+  const opal::RenderFrame a = tight.Session.render(conserving);
+  const opal::RenderFrame b = tight.Session.render(p);
+  OPAL_CHECK(a.Ran.ScatteredLightFromGrid && b.Ran.ScatteredLightFromGrid && identical(b.Image, plain),
+    "beside the kept Bragg shadows, every order after energy conservation evaluates the grid, the same image");
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -278,6 +302,7 @@ int TestOpalRenderSession(int, char*[])
   checkScatteredLightStages(session, moved);
   checkSharedSolve(session, volume->renderVolume(), moved);
   checkScatteredLightFromGrid(volume->renderVolume(), moved);
+  checkKeptShadowsCounted(volume->renderVolume(), moved);
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFrameTicket(session, moved, b.Image);
   // After the frame ticket (which renders the session's volume): fields of

@@ -243,8 +243,7 @@ void RenderSession::holdScatteredLight(const FrameSetup& setup, const opal::Scat
 // The every-order field per voxel where the frame's budget holds it, else its
 // placeholder, and the march evaluates the tally grid (setUpFrame,
 // docs/design.md §3.10). Before the frame's buffers grow, so that a field the
-// budget no longer counts is freed first; a failed allocation leaves the
-// placeholder bound.
+// budget no longer counts is freed first.
 void RenderSession::placeScatteredField(const FrameSetup& setup)
 {
   DeviceVolume& v = *this->Volume;
@@ -253,23 +252,15 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   {
     return;
   }
-  v.ScatteredLight.reset();
-  v.HasScatteredField = false;
+  // Made before the old one goes (the placeholder is a vec4): a failed
+  // allocation leaves the old buffer bound and the flags as they were.
+  std::unique_ptr<VulkanBuffer> next = perVoxel
+    ? std::make_unique<VulkanBuffer>(
+        *this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement)
+    : scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
+  v.ScatteredLight = std::move(next);
+  v.HasScatteredField = perVoxel;
   v.ScatteredFieldPending = true;
-  try
-  {
-    v.ScatteredLight = perVoxel
-      ? std::make_unique<VulkanBuffer>(*this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4),
-          "scattered light field", v.FieldPlacement)
-      : scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
-    v.HasScatteredField = perVoxel;
-  }
-  catch (...)
-  {
-    v.ScatteredLight = scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
-    this->bindBuffers();
-    throw;
-  }
   this->bindBuffers();
 }
 
@@ -639,7 +630,7 @@ bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress,
   if (!luminance.empty())
   {
     std::nth_element(luminance.begin(), luminance.begin() + luminance.size() / 2, luminance.end());
-    exposure = 0.18 / luminance[luminance.size() / 2];
+    exposure = std::min(0.18 / luminance[luminance.size() / 2], MaxExposure); // a subnormal median
   }
   return true;
 }

@@ -571,11 +571,26 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.scatteredLightNodes = tallyGrid.Nodes;
   block.scatteredLightStride = tallyGrid.Stride;
   setCoupledWave(block, p, shape);
-  // Beside the image buffers the session keeps: a field per voxel allocated
-  // after a larger frame's images must fit too.
-  setup.ScatteredLightFromGrid = p.ScatteringOrders == ScatteringOrdersKind::All &&
-    this->frameDeviceBytes(setup, true, true) > this->Context->memoryBudget();
+  setup.ScatteredLightFromGrid = this->scatteredLightFromGrid(setup);
   return setup;
+}
+
+// Every order reads its field per voxel where the device's budget holds it
+// beside what the session keeps (the image buffers, which only grow, and the
+// Bragg shadow field once made), else evaluates the tally grid
+// (docs/design.md §3.10): a field allocated after a larger frame, or after
+// energy conservation was turned off, must fit too.
+bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
+{
+  if (setup.Parameters.ScatteringOrders != ScatteringOrdersKind::All)
+  {
+    return false;
+  }
+  const DeviceVolume& v = *this->Volume;
+  const std::uint64_t keptShadows =
+    v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.Shape.voxelCount() * sizeof(gpu::LightShadow) : 0;
+  return volumeDeviceBytes(v.Shape.Dimensions, v.Absorbs, setup.Parameters, true) + keptShadows +
+    this->frameImageBytes(setup, true) > this->Context->memoryBudget();
 }
 
 // Memory budget: refuse up front what cannot fit, with the estimate: on the
@@ -599,17 +614,15 @@ void RenderSession::checkVolumeFits(
     "the volume's fields for this render need", "", "use fewer voxels");
 }
 
-// The frame's device memory: the volume's fields and the images; with
-// `kept`, the image buffers at the size the session keeps them if larger
-// (they only grow, prepareFrameBuffers).
-std::uint64_t RenderSession::frameDeviceBytes(const FrameSetup& setup, bool scatteredFieldPerVoxel, bool kept) const
+// The frame's image buffers on the device; with `kept`, at the size the
+// session keeps them if larger (they only grow, prepareFrameBuffers).
+std::uint64_t RenderSession::frameImageBytes(const FrameSetup& setup, bool kept) const
 {
   const FrameBuffers& b = *this->Buffers;
   const std::uint64_t capacity = kept ? std::max(setup.PixelCapacity, b.PixelCapacity) : setup.PixelCapacity;
   const std::uint64_t spectrumBytes =
     kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
-  return capacity * ImageBytesPerPixel + spectrumBytes +
-    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, scatteredFieldPerVoxel);
+  return capacity * ImageBytesPerPixel + spectrumBytes;
 }
 
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
@@ -617,7 +630,7 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
     volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, fieldPerVoxel);
-  const std::uint64_t deviceBytes = this->frameDeviceBytes(setup, fieldPerVoxel, false);
+  const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
   const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();

@@ -183,7 +183,8 @@ private:
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
   static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
-  std::uint64_t frameDeviceBytes(const FrameSetup& setup, bool scatteredFieldPerVoxel, bool kept) const;
+  std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
+  bool scatteredLightFromGrid(const FrameSetup& setup) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more

@@ -117,7 +117,7 @@ struct RenderSession::DeviceVolume
   // while the frames' memory budget holds it; placeholders otherwise.
   std::unique_ptr<VulkanBuffer> ScatteredLight, ScatteredLightGrid;
   bool HasScatteredField = false;     // ScatteredLight is the field per voxel, not its placeholder
-  bool ScatteredFieldPending = false; // the grid held, its field per voxel not yet written
+  bool ScatteredFieldPending = false; // the field per voxel (where held) not yet written from the grid held
   // Where the per-voxel fields live: DeviceAddressed for a volume beyond one
   // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES
   // read them through the address table), else DeviceLocal (docs/design.md §3.7).

@@ -55,7 +55,7 @@
     "single (the paper's) or all (every bounce in the body; default: single for the paper's figures, else all)") \
   X(ScatteringPhotons, int, 1, 1000, 100000000, "", "--scattering-photons", 0,                             \
     "Photons per spectral node of the every-order solve (fewer: faster, noisier)")                         \
-  X(Exposure, double, 1, 0, 1e30, "", "--exposure", 0,                                                     \
+  X(Exposure, double, 1, 0, MaxExposure, "", "--exposure", 0,                                              \
     "Exposure multiplier, at most 1e30 (0: automatic, the body's median luminance to 0.18)")               \
   X(Background, double, 3, 0, 1, "", "--background", 0, "Background colour, sRGB in [0, 1]")               \
   X(StepSize, double, 1, 0, OPAL_UNBOUNDED, "", "--step-size", 0, "Longest march sub-step in mm (0: one voxel)") \

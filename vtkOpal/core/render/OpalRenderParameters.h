@@ -120,6 +120,10 @@ struct RenderParameters
 // radiance per wavelength in registers).
 constexpr int MaxWavelengths = 401;
 
+// The largest exposure, given or automatic: the colour pass multiplies in
+// single precision, and beyond ~3.4e38 the product is infinite.
+constexpr double MaxExposure = 1e30;
+
 // One row per parameter of OPAL_RENDER_PARAMETERS, in its order
 // (PresetRotation is the volume's, not a parameter a user sets).
 const std::vector<ParameterRow<RenderParameters>>& renderParameterRows();
