@@ -10,8 +10,9 @@ voxels). A run whose ranks would together need more than this machine's
 memory is skipped, saying so: each rank holds its piece of the volume's
 arrays and the device fields of the whole volume (and the gathered arrays
 until their upload), ~54 / ranks + 64 bytes per voxel (fitted to 320 x 160 x
-400 on 1, 2 and 4 ranks, the process included). ARRAYS is the volume's
-OutputArrays: all (the default) or render (only what the render reads).
+400 on 1, 2 and 4 ranks, the process included; 13 / ranks with the render's
+arrays). ARRAYS is the volume's OutputArrays: all (the default) or render
+(only what the render reads).
 Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS]"""
 import os
 import resource
@@ -28,7 +29,7 @@ arrays = sys.argv[5] if len(sys.argv) > 5 else "all"
 LoadPlugin(plugin, remote=False, ns=globals())
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
-PIECE_BYTES, WHOLE_BYTES = 54, 64
+PIECE_BYTES, WHOLE_BYTES = (54 if arrays == "all" else 13), 64
 voxels = dimensions[0] * dimensions[1] * dimensions[2]
 size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels" + (", render arrays" if arrays == "render" else "")
 

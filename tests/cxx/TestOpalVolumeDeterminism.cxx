@@ -105,8 +105,9 @@ void checkRenderArrays(const std::string& layout, const SourceMaker& make)
     names.emplace_back(data->GetArrayName(a));
   }
   OPAL_CHECK(names == expected, layout + ": render arrays only are DomainId, ScatteringCoefficient, SurfaceDistance");
-  OPAL_CHECK(data->GetScalars() && std::string(data->GetScalars()->GetName()) == "ScatteringCoefficient",
-    layout + ": their scalars are ScatteringCoefficient");
+  OPAL_CHECK(data->GetScalars() && std::string(data->GetScalars()->GetName()) == "ScatteringCoefficient" &&
+      vtkImageData::GetScalarType(render->GetOutputInformation(0)) == VTK_FLOAT,
+    layout + ": their scalars are ScatteringCoefficient, announced as float");
   for (const std::string& name : expected)
   {
     OPAL_CHECK(opaltest::countDifferences(all->GetOutput(), render->GetOutput(), name) == 0,

@@ -437,21 +437,10 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   }
   this->runShadowTable(setup);
   timings.LightPass = secondsSince(lightStart);
-  const auto scatteredStart = Clock::now();
-  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
-  frame.Ran.ScatteredLight = everyOrder && !this->scatteredLightServes(setup);
-  if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
+  if (!this->prepareScatteredLight(setup, sharedSolveSeconds, progress, frame))
   {
     return frame;
   }
-  if (everyOrder && !setup.ScatteredLightFromGrid && this->Volume->ScatteredFieldPending)
-  {
-    this->writeScatteredField();
-  }
-  timings.ScatteredLight = secondsSince(scatteredStart);
-  // A field the processes solved together for this frame (solveScatteredLightShared).
-  frame.Ran.ScatteredLight = frame.Ran.ScatteredLight || (everyOrder && sharedSolveSeconds >= 0);
-  timings.ScatteredLight += std::max(0.0, sharedSolveSeconds);
 
   const auto marchStart = Clock::now();
   double exposure = setup.Parameters.Exposure;
@@ -474,14 +463,47 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   frame.Ran.Colour = true;
   timings.Colour = secondsSince(colourStart);
 
-  const auto readStart = Clock::now();
-  const RenderTimings kept = timings;
+  this->readFrame(setup, exposure, frame);
+  progress.report(1.0);
+  return frame;
+}
+
+// The light scattered more than once for the frame (docs/design.md §3.10):
+// solved unless held (or solved by the processes ahead of it), and its field
+// per voxel written from the grid where the frame reads one; false if aborted.
+bool RenderSession::prepareScatteredLight(
+  const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame)
+{
+  const auto start = Clock::now();
+  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
+  frame.Ran.ScatteredLight = everyOrder && !this->scatteredLightServes(setup);
+  if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
+  {
+    return false;
+  }
+  if (everyOrder && !setup.ScatteredLightFromGrid && this->Volume->ScatteredFieldPending)
+  {
+    this->writeScatteredField();
+  }
+  // A field the processes solved together for this frame (solveScatteredLightShared).
+  frame.Ran.ScatteredLight = frame.Ran.ScatteredLight || (everyOrder && sharedSolveSeconds >= 0);
+  frame.Image.Timings.ScatteredLight = secondsSince(start) + std::max(0.0, sharedSolveSeconds);
+  return true;
+}
+
+// The frame's image from the device, with what it was rendered with; no
+// image with a NaN or an infinity in it.
+void RenderSession::readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const
+{
+  const auto start = Clock::now();
+  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
+  const RenderTimings kept = frame.Image.Timings;
   frame.Image = this->readBack(setup);
   frame.Image.Exposure = exposure;
   frame.Image.ScatteringOrders = everyOrder ? "all" : "single";
   frame.Image.Warning = everyOrder ? this->ScatteredLightWarning : std::string();
   frame.Image.Timings = kept;
-  frame.Image.Timings.Readback = secondsSince(readStart);
+  frame.Image.Timings.Readback = secondsSince(start);
   frame.Image.DeviceMemoryPeak = this->Context->memoryPeak();
   frame.Ran.Readback = true;
   const std::string nonFinite = nonFiniteArray(frame.Image);
@@ -491,8 +513,6 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
       "; no image is given. Check the volume's arrays and the optics settings.");
   }
   frame.Status = FrameStatus::Completed;
-  progress.report(1.0);
-  return frame;
 }
 
 bool RenderSession::eyeInsideOpal(const ResolvedFrame& frame) const

@@ -199,6 +199,8 @@ private:
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing);
+  bool prepareScatteredLight(const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame);
+  void readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const;
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   const ScatteringMedium& scatteringMedium();
   bool scatteredLightServes(const FrameSetup& setup) const;
