@@ -248,7 +248,7 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
 {
   DeviceVolume& v = *this->Volume;
   const bool perVoxel = !setup.ScatteredLightFromGrid;
-  if (setup.Parameters.ScatteringOrders != ScatteringOrdersKind::All || perVoxel == v.HasScatteredField)
+  if (!scattersEveryOrder(setup.Parameters) || perVoxel == v.HasScatteredField)
   {
     return;
   }
@@ -275,7 +275,7 @@ void RenderSession::writeScatteredField()
 
 bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const
 {
-  if (!this->Volume || frame.Parameters.ScatteringOrders != ScatteringOrdersKind::All)
+  if (!this->Volume || !scattersEveryOrder(frame.Parameters))
   {
     return false;
   }
@@ -402,7 +402,7 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
   const int energy = conservesEnergy(p) ? 1 : 0;
   const std::int32_t first = floatBits(setup.Bins.front().Lambda), step = floatBits(setup.Bins.front().Width);
   const int nearestLight = setup.Preview ? 1 : 0;
-  const int scattered = p.ScatteringOrders != ScatteringOrdersKind::All ? gpu::MarchScatteredLightNone
+  const int scattered = !scattersEveryOrder(p) ? gpu::MarchScatteredLightNone
     : setup.ScatteredLightFromGrid                                    ? gpu::MarchScatteredLightFromGrid
                                                                       : gpu::MarchScatteredLightPerVoxel;
   const bool addressed = this->Volume->addressed();

@@ -475,7 +475,7 @@ bool RenderSession::prepareScatteredLight(
   const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame)
 {
   const auto start = Clock::now();
-  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
+  const bool everyOrder = scattersEveryOrder(setup.Parameters);
   frame.Ran.ScatteredLight = everyOrder && !this->scatteredLightServes(setup);
   if (frame.Ran.ScatteredLight && !this->runScatteredLight(setup, progress))
   {
@@ -496,7 +496,7 @@ bool RenderSession::prepareScatteredLight(
 void RenderSession::readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const
 {
   const auto start = Clock::now();
-  const bool everyOrder = setup.Parameters.ScatteringOrders == ScatteringOrdersKind::All;
+  const bool everyOrder = scattersEveryOrder(setup.Parameters);
   const RenderTimings kept = frame.Image.Timings;
   frame.Image = this->readBack(setup);
   frame.Image.Exposure = exposure;
@@ -602,7 +602,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
 // energy conservation was turned off, must fit too.
 bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
 {
-  if (setup.Parameters.ScatteringOrders != ScatteringOrdersKind::All)
+  if (!scattersEveryOrder(setup.Parameters))
   {
     return false;
   }

@@ -47,7 +47,7 @@ constexpr std::uint64_t ImageBytesPerPixel = sizeof(gpu::PixelColour) + sizeof(g
 inline std::uint64_t volumeDeviceBytes(
   const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p, bool fieldPerVoxel)
 {
-  const bool everyOrder = p.ScatteringOrders == ScatteringOrdersKind::All;
+  const bool everyOrder = scattersEveryOrder(p);
   const std::uint64_t voxels =
     static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
     static_cast<std::uint64_t>(dimensions[2]);

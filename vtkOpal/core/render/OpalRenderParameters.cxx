@@ -27,6 +27,11 @@ bool conservesEnergy(const RenderParameters& p)
   return p.EnergyConservation || p.BraggModel == BraggModelKind::CoupledWave;
 }
 
+bool scattersEveryOrder(const RenderParameters& p)
+{
+  return p.ScatteringOrders == ScatteringOrdersKind::All;
+}
+
 double effectiveMosaicSpread(const RenderParameters& p)
 {
   return p.BraggModel == BraggModelKind::CoupledWave && p.MosaicSpread == 0.0 ? CoupledWaveDefaultSpread

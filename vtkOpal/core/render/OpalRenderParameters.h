@@ -141,6 +141,11 @@ RenderParameters withQuality(const RenderParameters& parameters);
 // True if crossings keep 1 - R of the light: EnergyConservation, or the coupled-wave model.
 bool conservesEnergy(const RenderParameters& parameters);
 
+// True if the frame carries the light scattered more than once
+// (docs/design.md §3.10). On resolved parameters: resolveFrame turns Volume
+// into the volume's Single or All.
+bool scattersEveryOrder(const RenderParameters& parameters);
+
 // The lobe's angular deviation in degrees: MosaicSpread, or with the
 // coupled-wave model CoupledWaveDefaultSpread where MosaicSpread is 0.
 double effectiveMosaicSpread(const RenderParameters& parameters);
