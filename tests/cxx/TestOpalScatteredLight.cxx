@@ -121,6 +121,38 @@ opal::ScatteredLight::Values deviceValue(const std::vector<opal::ScatteredLight:
 
 // The largest difference, relative to the voxel's largest value, between
 // meanRadiance and the device's single-precision evaluation from the nodes.
+// The inside bits on a grid of 105 voxels (64 to a word: the last word part
+// filled): each voxel's bit is its SurfaceDistance's sign (0 inside), by index
+// and by position, and values whose last voxel's sign differs are refused.
+bool insideBitsOfOddGrid()
+{
+  std::vector<float> distance(5 * 3 * 7);
+  for (std::size_t v = 0; v < distance.size(); ++v)
+  {
+    distance[v] = static_cast<float>(static_cast<int>(v * 37 % 11) - 5);
+  }
+  distance.back() = -0.5f; // inside: a last bit left unset shows
+  opal::RenderVolume volume;
+  volume.Dimensions = { 5, 3, 7 };
+  volume.Origin = { -1.0, 0.0, 2.0 };
+  volume.Spacing = { 0.5, 0.25, 1.0 };
+  volume.SurfaceDistance = distance.data();
+  opal::VolumeGeometry geometry(volume, false);
+  bool agrees = true;
+  for (int k = 0; k < 7; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 5; ++i)
+      {
+        const bool inside = distance[static_cast<std::size_t>(i + 5 * (j + 3 * k))] <= 0;
+        const glm::dvec3 p = glm::dvec3(-1.0, 0.0, 2.0) + glm::dvec3(i, j, k) * glm::dvec3(0.5, 0.25, 1.0);
+        agrees = agrees && geometry.insideVoxel(i, j, k) == inside && geometry.insideAt(p) == inside;
+      }
+  std::vector<float> lastFlipped = distance;
+  lastFlipped.back() = lastFlipped.back() <= 0 ? 1.0f : -1.0f;
+  geometry.setSurfaceDistance(distance);
+  return agrees && refuses([&] { geometry.setSurfaceDistance(lastFlipped); }, "at voxel 104");
+}
+
 double largestDeviceDifference(const opal::ScatteredLight& field, const opal::ScatteringMedium& medium)
 {
   const std::vector<opal::ScatteredLight::Values> exact = valuesOf(field, medium);
@@ -243,6 +275,7 @@ int TestOpalScatteredLight(int, char*[])
   }
   OPAL_CHECK(insideAgrees && throwsWithout && givenBack.Geometry.apex() == medium.Geometry.apex(),
     "a geometry without SurfaceDistance keeps each voxel's inside and the apex, and asks for the rest");
+  OPAL_CHECK(insideBitsOfOddGrid(), "the inside bits of 105 voxels are their signs, the last word's too");
   std::vector<float> distance(volume.SurfaceDistance, volume.SurfaceDistance + volume.voxelCount());
   std::vector<float> shifted(distance.begin() + 1, distance.end());
   shifted.push_back(distance.back());

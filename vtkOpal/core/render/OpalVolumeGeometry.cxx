@@ -1,5 +1,7 @@
 #include "OpalVolumeGeometry.h"
 
+#include "OpalParallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -13,12 +15,8 @@ VolumeGeometry::VolumeGeometry(const RenderVolume& volume, bool keepSurfaceDista
   : Dimensions(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])
   , Origin(volume.Origin[0], volume.Origin[1], volume.Origin[2])
   , Spacing(volume.Spacing[0], volume.Spacing[1], volume.Spacing[2])
-  , Inside(volume.voxelCount())
 {
-  for (std::size_t v = 0; v < this->Inside.size(); ++v)
-  {
-    this->Inside[v] = volume.SurfaceDistance[v] <= 0;
-  }
+  this->takeInsideBits(volume.SurfaceDistance);
   this->Apex = this->apexOf(volume.SurfaceDistance);
   if (keepSurfaceDistance)
   {
@@ -26,18 +24,35 @@ VolumeGeometry::VolumeGeometry(const RenderVolume& volume, bool keepSurfaceDista
   }
 }
 
+void VolumeGeometry::takeInsideBits(const float* distance)
+{
+  const std::size_t voxels = this->voxelCount();
+  this->InsideBits.assign((voxels + 63) / 64, 0);
+  parallelFor(0, static_cast<int>(this->InsideBits.size()), [&](int from, int to) {
+    for (std::size_t w = static_cast<std::size_t>(from); w < static_cast<std::size_t>(to); ++w)
+    {
+      std::uint64_t bits = 0;
+      for (std::size_t v = 64 * w; v < std::min(voxels, 64 * w + 64); ++v)
+      {
+        bits |= static_cast<std::uint64_t>(distance[v] <= 0) << (v % 64);
+      }
+      this->InsideBits[w] = bits;
+    }
+  });
+}
+
 void VolumeGeometry::setSurfaceDistance(std::vector<float> values)
 {
-  if (values.size() != this->Inside.size())
+  if (values.size() != this->voxelCount())
   {
     throw std::invalid_argument("SurfaceDistance has " + std::to_string(values.size()) + " values for " +
-      std::to_string(this->Inside.size()) + " voxels");
+      std::to_string(this->voxelCount()) + " voxels");
   }
   // The values given back (read from a device) must be those the inside bits
   // were taken from: a round read at the wrong place disagrees at the surface.
   for (std::size_t v = 0; v < values.size(); ++v)
   {
-    if ((values[v] <= 0) != this->Inside[v])
+    if ((values[v] <= 0) != this->insideBit(v))
     {
       throw std::invalid_argument("SurfaceDistance given back disagrees with the volume's at voxel " +
         std::to_string(v) + " (" + std::to_string(values[v]) + ")");
@@ -53,6 +68,12 @@ std::size_t VolumeGeometry::indexOf(int i, int j, int k) const
   return static_cast<std::size_t>(i) + nx * (static_cast<std::size_t>(j) + ny * static_cast<std::size_t>(k));
 }
 
+std::size_t VolumeGeometry::voxelCount() const
+{
+  return static_cast<std::size_t>(this->Dimensions.x) * static_cast<std::size_t>(this->Dimensions.y) *
+    static_cast<std::size_t>(this->Dimensions.z);
+}
+
 bool VolumeGeometry::insideAt(const glm::dvec3& p) const
 {
   int c[3];
@@ -64,7 +85,7 @@ bool VolumeGeometry::insideAt(const glm::dvec3& p) const
       return false;
     }
   }
-  return this->Inside[this->indexOf(c[0], c[1], c[2])];
+  return this->insideVoxel(c[0], c[1], c[2]);
 }
 
 double VolumeGeometry::surfaceDistance(const glm::dvec3& p) const

@@ -494,8 +494,7 @@ std::vector<double> insideVolumes(const VolumeGeometry& g, const TallyGrid& tall
         for (int j = 0; j < dims.y; ++j)
           for (int i = 0; i < dims.x; ++i)
           {
-            const glm::dvec3 p = g.origin() + glm::dvec3(i, j, k) * g.spacing();
-            if (g.insideAt(p)) // a voxel centre: its own value
+            if (g.insideVoxel(i, j, k))
             {
               tally.forEachNodeOfVoxel({ i, j, k }, [&](std::size_t n, double w) { volumes[n] += w * cell; });
             }
