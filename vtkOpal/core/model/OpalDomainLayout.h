@@ -55,8 +55,10 @@ public:
   int requestedCount() const { return this->Requested; }
   bool aborted() const { return this->Aborted; }
 
-  // Diffraction voxels sorted by global index (x fastest): a row of the grid
-  // is a contiguous run.
+  // Polygons: the diffraction voxels sorted by global index (x fastest), a
+  // row of the grid a contiguous run. Empty for Voronoi cells: a voxel's
+  // domain is its cell's (cellDomainAt), and a list of the ordered voxels of
+  // the whole grid would cost every process 16 bytes each.
   const std::vector<DomainVoxel>& voxels() const { return this->Voxels; }
 
   // First diffraction voxel at or after the global index.
@@ -68,6 +70,12 @@ public:
   const std::vector<std::int32_t>& cellIds() const { return this->CellIds; }
   const std::vector<int>& cellDomains() const { return this->CellDomains; }
   int cellCount() const { return static_cast<int>(this->CellDomains.size()); }
+  // Voronoi: the domain of the voxel at a global index (-1: none).
+  int cellDomainAt(std::int64_t index) const
+  {
+    const std::int32_t cell = this->CellIds[static_cast<std::size_t>(index)];
+    return cell >= 0 ? this->CellDomains[static_cast<std::size_t>(cell)] : -1;
+  }
 
 private:
   static DomainLayout buildPolygons(const ModelParameters& parameters, const std::function<bool(double)>& progress);

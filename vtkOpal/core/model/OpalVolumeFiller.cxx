@@ -58,7 +58,8 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
   const std::int64_t nx = extent[1] - extent[0] + 1;
   const std::int64_t ny = extent[3] - extent[2] + 1;
   const std::int64_t rowStart = nx * ((j - extent[2]) + ny * (k - extent[4]));
-  // The row's diffraction voxels, in increasing x.
+  // The row's diffraction voxels, in increasing x (polygons; a Voronoi
+  // voxel's domain is its cell's).
   auto domainVoxel = this->Layout.lowerBound(grid.linearIndex(extent[0], j, k));
   const auto domainEnd = this->Layout.voxels().end();
   for (int i = extent[0]; i <= extent[1]; ++i)
@@ -82,9 +83,12 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
     {
       ++domainVoxel;
     }
-    if (domainVoxel != domainEnd && domainVoxel->Index == globalIndex)
+    const int domain = this->Layout.hasCells() ? this->Layout.cellDomainAt(globalIndex)
+      : domainVoxel != domainEnd && domainVoxel->Index == globalIndex ? domainVoxel->DomainId
+                                                                      : -1;
+    if (domain >= 0)
     {
-      this->fillDiffractionVoxel(o, this->Layout.domains()[static_cast<std::size_t>(domainVoxel->DomainId)], out);
+      this->fillDiffractionVoxel(o, this->Layout.domains()[static_cast<std::size_t>(domain)], out);
       this->fillAbsorption(o, j, out);
     }
     else if (this->Shape.contains(grid.position(i, j, k)))

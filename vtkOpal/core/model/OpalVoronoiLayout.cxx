@@ -73,14 +73,6 @@ DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::fun
     }
   }
   layout.Requested = static_cast<int>(layout.Domains.size());
-  for (std::size_t v = 0; v < layout.CellIds.size(); ++v)
-  {
-    const std::int32_t cell = layout.CellIds[v];
-    if (cell >= 0 && layout.CellDomains[static_cast<std::size_t>(cell)] >= 0)
-    {
-      layout.Voxels.push_back({ static_cast<std::int64_t>(v), layout.CellDomains[static_cast<std::size_t>(cell)] });
-    }
-  }
   return layout;
 }
 
