@@ -33,6 +33,7 @@ layout(local_size_x = LightPassGroupSize) in;
 layout(constant_id = LightPassModeConstant) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 layout(constant_id = LightAbsorptionConstant) const bool ABSORPTION = false;
 layout(constant_id = LightBraggShadowConstant) const bool BRAGG_SHADOW = false;
+#define PAIRED_FIELDS_CONSTANT LightPairedFieldsConstant
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"
@@ -43,21 +44,28 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Abs
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightShadowRef { LightShadow value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer EntryVoxelRef { uint value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer ScatteredLightRef { vec4 value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldSingleRef { vec2 value; };
 #define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
 #define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
+#define LIGHT_FIELD_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightField, (i), 8u)).value
+#define LIGHT_ABSORPTION_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 8u)).value
 #define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
 #define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
 #define ENTRY_VOXEL_AT(i) EntryVoxelRef(voxelAddress(volumeAddresses.entryVoxels, (i), 4u)).value
 #define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
+layout(std430, set = 0, binding = LightFieldBinding) buffer LightFieldSingles { vec2 lightFieldSingles[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorptionSingles { vec2 lightAbsorptionSingles[]; };
 layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
+#define LIGHT_FIELD_SINGLE_AT(i) lightFieldSingles[i]
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorptionSingles[i]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]
@@ -127,13 +135,19 @@ void followShadow(inout ShadowWalk w, int domain, float length)
 
 // Stores a voxel's (optical depth, geometry factor) where the light field
 // keeps them: in its own pair, and as the +x neighbour in the pair before it
-// (in its own pair too at the end of a row); its absorption depths likewise;
-// its Bragg shadow with BRAGG_SHADOW.
+// (in its own pair too at the end of a row), or without PAIRED_FIELDS in its
+// own place; its absorption depths likewise; its Bragg shadow with BRAGG_SHADOW.
 void storeLight(int index, LightSample light, ShadowWalk shadow)
 {
   if (BRAGG_SHADOW) LIGHT_SHADOW_AT(index) = shadow.record;
-  int x = index % P.gridDimensions.x;
   vec2 field = vec2(light.tau.x, light.geometry);
+  if (!PAIRED_FIELDS)
+  {
+    LIGHT_FIELD_SINGLE_AT(index) = field;
+    if (ABSORPTION) LIGHT_ABSORPTION_SINGLE_AT(index) = light.tau.yz;
+    return;
+  }
+  int x = index % P.gridDimensions.x;
   LIGHT_FIELD_AT(index).voxel = field;
   if (x > 0) LIGHT_FIELD_AT(index - 1).nextVoxel = field;
   if (x == P.gridDimensions.x - 1) LIGHT_FIELD_AT(index).nextVoxel = field;
@@ -324,15 +338,26 @@ vec3 quadraticWeights(float u)
 }
 
 // A row of three voxels (m - 1, m, m + 1 along x) of the layer above: the
-// pair at m - 1 holds the first two, the pair at m + 1 the third.
+// pair at m - 1 holds the first two, the pair at m + 1 the third (without
+// PAIRED_FIELDS, each its own).
 vec2 lightRow(int first, vec3 wx)
 {
+  if (!PAIRED_FIELDS)
+  {
+    return wx.x * LIGHT_FIELD_SINGLE_AT(first) + wx.y * LIGHT_FIELD_SINGLE_AT(first + 1) +
+      wx.z * LIGHT_FIELD_SINGLE_AT(first + 2);
+  }
   LightFieldPair left = LIGHT_FIELD_AT(first), right = LIGHT_FIELD_AT(first + 2);
   return wx.x * left.voxel + wx.y * left.nextVoxel + wx.z * right.voxel;
 }
 
 vec2 absorptionRow(int first, vec3 wx)
 {
+  if (!PAIRED_FIELDS)
+  {
+    return wx.x * LIGHT_ABSORPTION_SINGLE_AT(first) + wx.y * LIGHT_ABSORPTION_SINGLE_AT(first + 1) +
+      wx.z * LIGHT_ABSORPTION_SINGLE_AT(first + 2);
+  }
   LightFieldPair left = LIGHT_ABSORPTION_AT(first), right = LIGHT_ABSORPTION_AT(first + 2);
   return wx.x * left.voxel + wx.y * left.nextVoxel + wx.z * right.voxel;
 }
@@ -340,7 +365,7 @@ vec2 absorptionRow(int first, vec3 wx)
 // The largest SurfaceDistance of a row of three.
 float rowDistance(int first)
 {
-  vec2 left = SURFACE_DISTANCE_AT(first);
+  vec2 left = surfaceDistancePair(first);
   return max(max(left.x, left.y), voxelSurfaceDistance(first + 2));
 }
 

@@ -40,6 +40,8 @@ OPAL_CONSTANT int ParametersBinding = 0;       // uniform RenderParameterBlock
 OPAL_CONSTANT int WavelengthTableBinding = 1;  // WavelengthBinRecord per wavelength
 OPAL_CONSTANT int VoxelCellBinding = 2;        // VoxelCell per voxel: ScatteringCoefficient and DomainId
 OPAL_CONSTANT int HighlightPixelsBinding = 3;  // uint per pixel: the pixels queued for the highlight
+// Binding 4, 5 and 17 hold pairs (a voxel's value and its +x neighbour's)
+// where the device holds them, else one value per voxel (PairedFields below).
 OPAL_CONSTANT int SurfaceDistanceBinding = 4;  // vec2 per voxel: its SurfaceDistance (mm, negative inside) and its +x neighbour's
 OPAL_CONSTANT int LightFieldBinding = 5;       // LightFieldPair per voxel
 OPAL_CONSTANT int DomainTableBinding = 6;      // DomainRecord per domain
@@ -342,6 +344,12 @@ struct HighlightWork
   int count;
 };
 
+// PairedFields: SurfaceDistance and the light fields hold, per voxel, its
+// value and its +x neighbour's (a trilinear read takes four loads, not
+// eight); where the device cannot hold those, one value per voxel (float,
+// vec2 and vec2: 12 bytes per voxel less, 20 with absorption; docs/design.md
+// §3.7). Each pass that reads them takes the layout as a constant of its own.
+
 // Specialisation constants, by constant_id: each pass's layout(constant_id =
 // ...) and the host's pipeline keys name these ids, so neither side counts
 // positions (OpalGpu's specialisation() places each value at its id).
@@ -349,10 +357,12 @@ struct HighlightWork
 OPAL_CONSTANT int LightPassModeConstant = 0;        // int: one of the light pass's modes above
 OPAL_CONSTANT int LightAbsorptionConstant = 1;      // bool: the volume absorbs (docs/design.md §3.9)
 OPAL_CONSTANT int LightBraggShadowConstant = 2;     // bool: record the Bragg shadows (§7.2)
-OPAL_CONSTANT int LightPassConstantCount = 3;
+OPAL_CONSTANT int LightPairedFieldsConstant = 3;    // bool: the fields hold pairs (PairedFields)
+OPAL_CONSTANT int LightPassConstantCount = 4;
 // The highlight pass:
 OPAL_CONSTANT int HighlightModeConstant = 0;        // int: HighlightSelect or HighlightShade
-OPAL_CONSTANT int HighlightConstantCount = 1;
+OPAL_CONSTANT int HighlightPairedFieldsConstant = 1; // bool: the fields hold pairs (PairedFields)
+OPAL_CONSTANT int HighlightConstantCount = 2;
 // The Bragg shadow table:
 OPAL_CONSTANT int ShadowTableWavelengthsConstant = 0; // int: the frame's wavelength count
 OPAL_CONSTANT int ShadowTableCoupledWaveConstant = 1; // bool: the coupled-wave model
@@ -371,7 +381,8 @@ OPAL_CONSTANT int MarchScatteredLightConstant = 9;     // int: the light scatter
 OPAL_CONSTANT int MarchScatteredLightNone = 0;         //   not added (single scattering)
 OPAL_CONSTANT int MarchScatteredLightPerVoxel = 1;     //   read from the field per voxel
 OPAL_CONSTANT int MarchScatteredLightFromGrid = 2;     //   evaluated from the tally grid (the field does not fit)
-OPAL_CONSTANT int MarchConstantCount = 10;
+OPAL_CONSTANT int MarchPairedFieldsConstant = 10;      // bool: the fields hold pairs (PairedFields)
+OPAL_CONSTANT int MarchConstantCount = 11;
 
 // The march reads a LightFieldPair (and the absorption's) as one vec4,
 // (voxel.x, voxel.y, nextVoxel.x, nextVoxel.y): one load where lavapipe

@@ -19,6 +19,7 @@
 
 layout(local_size_x = HighlightGroupSize) in;
 layout(constant_id = HighlightModeConstant) const int HIGHLIGHT_MODE = HighlightSelect;
+#define PAIRED_FIELDS_CONSTANT HighlightPairedFieldsConstant
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"

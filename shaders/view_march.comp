@@ -41,6 +41,7 @@ layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false
 layout(constant_id = MarchScatteredLightConstant) const int SCATTERED_LIGHT_MODE = 0;
 const bool SCATTERED_LIGHT = SCATTERED_LIGHT_MODE != MarchScatteredLightNone;
 
+#define PAIRED_FIELDS_CONSTANT MarchPairedFieldsConstant
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"
@@ -51,25 +52,38 @@ const bool SCATTERED_LIGHT = SCATTERED_LIGHT_MODE != MarchScatteredLightNone;
 // The light and absorption fields' LightFieldPairs read as one vec4 each
 // (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
 // members one by one, a vec4 at once (lavapipe: paper march ~14% faster,
-// with absorption ~19%; images bit-identical).
+// with absorption ~19%; images bit-identical). Without PAIRED_FIELDS, a vec2
+// per voxel.
 #ifdef OPAL_VOLUME_ADDRESSES
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightFieldRef { LightFieldPairAsVec4 value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightFieldSingleRef { vec2 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer AbsorptionCellRef { vec2 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer LightShadowRef { LightShadow value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer ScatteredLightRef { vec4 value; };
 #define LIGHT_FIELD_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 16u)).value
 #define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
+#define LIGHT_FIELD_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightField, (i), 8u)).value
+#define LIGHT_ABSORPTION_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 8u)).value
+// Unpaired, the two vec2s from voxel i on: its value and the next voxel's, one load.
+#define LIGHT_FIELD_FROM_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 8u)).value
+#define LIGHT_ABSORPTION_FROM_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 8u)).value
 #define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
 #define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
 #define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
+layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightFieldSingles { vec2 lightFieldSingles[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
+layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorptionSingles { vec2 lightAbsorptionSingles[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
+#define LIGHT_FIELD_SINGLE_AT(i) lightFieldSingles[i]
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorptionSingles[i]
+#define LIGHT_FIELD_FROM_AT(i) vec4(lightFieldSingles[i], lightFieldSingles[(i) + 1])
+#define LIGHT_ABSORPTION_FROM_AT(i) vec4(lightAbsorptionSingles[i], lightAbsorptionSingles[(i) + 1])
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define SCATTERED_LIGHT_AT(i) scatteredLight[i]
@@ -161,12 +175,24 @@ vec2 trilinearPairs(vec4 p00, vec4 p10, vec4 p01, vec4 p11, vec3 f)
   return mix(mix(x00, x10, f.y), mix(x01, x11, f.y), f.z);
 }
 
+// The light field's and the absorption field's pair at voxel i: its value
+// and its +x neighbour's (i as surfaceDistancePair takes it).
+vec4 lightFieldPair(int i)
+{
+  return PAIRED_FIELDS ? LIGHT_FIELD_AT(i) : LIGHT_FIELD_FROM_AT(i);
+}
+
+vec4 lightAbsorptionPair(int i)
+{
+  return PAIRED_FIELDS ? LIGHT_ABSORPTION_AT(i) : LIGHT_ABSORPTION_FROM_AT(i);
+}
+
 // The light field of the voxel holding p (NEAREST_LIGHT).
 LightSample voxelLightAt(vec3 p)
 {
   int v = voxelIndex(clamp(voxelOf(p), ivec3(0), P.gridDimensions - 1));
-  vec2 light = LIGHT_FIELD_AT(v).xy;
-  vec2 absorption = ABSORPTION ? LIGHT_ABSORPTION_AT(v).xy : vec2(0.0);
+  vec2 light = PAIRED_FIELDS ? LIGHT_FIELD_AT(v).xy : LIGHT_FIELD_SINGLE_AT(v);
+  vec2 absorption = !ABSORPTION ? vec2(0.0) : PAIRED_FIELDS ? LIGHT_ABSORPTION_AT(v).xy : LIGHT_ABSORPTION_SINGLE_AT(v);
   return LightSample(vec3(max(light.x, 0.0), max(absorption, vec2(0.0))), light.y);
 }
 
@@ -185,9 +211,9 @@ LightSample lightAt(vec3 p)
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
   int i00 = c0.x + c0.y * sy + c0.z * sz, i10 = c0.x + c1.y * sy + c0.z * sz;
   int i01 = c0.x + c0.y * sy + c1.z * sz, i11 = c0.x + c1.y * sy + c1.z * sz;
-  vec2 light = trilinearPairs(LIGHT_FIELD_AT(i00), LIGHT_FIELD_AT(i10), LIGHT_FIELD_AT(i01), LIGHT_FIELD_AT(i11), f);
+  vec2 light = trilinearPairs(lightFieldPair(i00), lightFieldPair(i10), lightFieldPair(i01), lightFieldPair(i11), f);
   vec2 absorption = ABSORPTION
-    ? trilinearPairs(LIGHT_ABSORPTION_AT(i00), LIGHT_ABSORPTION_AT(i10), LIGHT_ABSORPTION_AT(i01), LIGHT_ABSORPTION_AT(i11), f)
+    ? trilinearPairs(lightAbsorptionPair(i00), lightAbsorptionPair(i10), lightAbsorptionPair(i01), lightAbsorptionPair(i11), f)
     : vec2(0.0);
   // Outside voxels beside the opal hold depths continued linearly (negative)
   // from the inside: a read just inside the surface stays at or above 0.

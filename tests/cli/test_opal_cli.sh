@@ -136,12 +136,12 @@ expect_one_line ".pvti in a missing folder" "could not write" "$volume" --dimens
 expect_one_line "opal-volume beyond memory" "memory" "$volume" --dimensions 4000 4000 4000 -o x.vti
 [[ $status_of_last == 2 ]] || fail "a volume beyond memory exits 2 (got $status_of_last)"
 expect_one_line "opal-render beyond memory" "memory" "$render" --dimensions 4000 4000 4000 -o x.png
-# white-opal's fields with every order (44 bytes per voxel: the volume's, energy conservation's Bragg
-# shadows, and the every-order tally grid; the field per voxel, 16 more, only where it fits, else the march
-# evaluates the grid) beyond the device's memory: refused once the device has started, not after the
+# white-opal's fields with every order (32 bytes per voxel: the volume's unpaired, energy conservation's
+# Bragg shadows, and the every-order tally grid; pairs, 12 more, and the field per voxel, 16 more, only
+# where they fit) beyond the device's memory: refused once the device has started, not after the
 # volume's build and upload (the frame's own refusal says "the render needs").
-expect_one_line "white-opal's fields beyond the device's memory" "the volume's fields for this render need about 861 MB" \
-  "$render" --preset white-opal --dimensions 320 160 400 --device-memory-limit 800 -o x.png
+expect_one_line "white-opal's fields beyond the device's memory" "the volume's fields for this render need about 627 MB" \
+  "$render" --preset white-opal --dimensions 320 160 400 --device-memory-limit 500 -o x.png
 # Counts bounded where they hung or ran out of memory.
 expect_one_line "two billion domains" "DomainCount" "$volume" --domain-count 2000000000 -o x.vti
 expect_one_line "two billion vertices" "DomainVertexRange" "$volume" --domain-vertex-range 3 2000000000 -o x.vti

@@ -185,6 +185,58 @@ void checkKeptShadowsCounted(const opal::RenderVolume& volume, opal::RenderParam
     "beside the kept Bragg shadows, every order after energy conservation evaluates the grid, the same image");
 }
 
+// Where the device's budget does not hold SurfaceDistance and the light
+// fields as pairs beside the Bragg shadows, the session holds one value per
+// voxel (docs/design.md §3.7), read by address where the device can, else
+// through the bindings, and the passes read the neighbour a pair would hold
+// from the next voxel: each image equals the paired session's pixel for
+// pixel, with the light above (the layer sweep) and at the side (the
+// per-voxel march), in the preview (nearest reads) and with every order (its
+// solve reads SurfaceDistance back), in an absorbing body; the device holds
+// 20 bytes a voxel less.
+void checkUnpairedFields(const opal::RenderVolume& volume, const opal::RenderParameters& p)
+{
+  std::vector<opal::RenderParameters> frames(4, p);
+  frames[1].LightPosition = { 30.0, 12.0, 4.0 };
+  frames[2].Quality = opal::RenderQuality::Preview;
+  frames[3].ScatteringOrders = opal::ScatteringOrdersKind::All;
+  frames[3].ScatteringPhotons = 2000;
+  opaltest::SceneRenderer paired(opal::VulkanOptions{});
+  paired.Session.setVolume(volume);
+  // Pairs: VoxelCell 8, SurfaceDistance 8, light field 16, absorption cells 8
+  // and their light field 16; the Bragg shadows 12.
+  std::vector<opal::RenderImage> images;
+  for (const opal::RenderParameters& f : frames)
+  {
+    const opal::RenderFrame a = paired.Session.render(f);
+    OPAL_CHECK(a.Ran.PairedFields, "unlimited, the fields are held as pairs");
+    images.push_back(a.Image);
+  }
+  for (const bool addressed : { true, false }) // one load by address, two through the bindings
+  {
+    opal::VulkanOptions options;
+    options.MemoryLimitBytes = volume.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
+    options.Simulated.WithoutBufferDeviceAddress = !addressed;
+    opaltest::SceneRenderer single(options);
+    single.Session.setVolume(volume);
+    bool same = true, unpaired = true;
+    for (std::size_t f = 0; f < frames.size(); ++f)
+    {
+      const opal::RenderFrame b = single.Session.render(frames[f]);
+      same = same && b.Status == opal::FrameStatus::Completed && identical(images[f], b.Image);
+      unpaired = unpaired && !b.Ran.PairedFields;
+    }
+    const std::string how = addressed ? " (by address)" : " (through bindings)";
+    OPAL_CHECK(unpaired, "under the limit the fields are held unpaired" + how);
+    OPAL_CHECK(same, "unpaired fields give the paired images pixel for pixel (above, side, preview, every order)" + how);
+    OPAL_CHECK(single.Session.context().memoryPeak() + volume.voxelCount() * 20 <= paired.Session.context().memoryPeak(),
+      "the device peak falls by 20 bytes a voxel: " + std::to_string(single.Session.context().memoryPeak()) +
+        " against " + std::to_string(paired.Session.context().memoryPeak()) + " bytes" + how);
+    const auto messages = single.Session.context().validationMessages();
+    OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+  }
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -322,6 +374,10 @@ int TestOpalRenderSession(int, char*[])
   everyOrder.ScatteringPhotons = 2000;
   checkStagingTransfers(absorbingVolume->renderVolume(), everyOrder,
     renderer->render(absorbingVolume->renderVolume(), everyOrder), "every order, its medium read back in two rounds");
+  opal::ModelParameters absorbingSmall = model;
+  absorbingSmall.Dimensions = { 64, 32, 80 };
+  absorbingSmall.BodyAbsorption = 0.05;
+  checkUnpairedFields(opal::buildVolume(absorbingSmall)->renderVolume(), moved);
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

@@ -118,14 +118,16 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
   const int shadow = braggShadow ? 1 : 0;
   const bool addressed = this->Volume->addressed();
-  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow, addressed ? 1 : 0 }];
+  const int paired = this->Volume->PairedFields ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow, addressed ? 1 : 0, paired }];
   if (!pass)
   {
     const embedded::Spirv code =
       addressed ? embedded::lightOpticalDepthAddressedShader() : embedded::lightOpticalDepthShader();
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      specialisation(gpu::LightPassConstantCount, { { gpu::LightPassModeConstant, mode },
-        { gpu::LightAbsorptionConstant, absorbs }, { gpu::LightBraggShadowConstant, shadow } }));
+      specialisation(gpu::LightPassConstantCount,
+        { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, absorbs },
+          { gpu::LightBraggShadowConstant, shadow }, { gpu::LightPairedFieldsConstant, paired } }));
   }
   return *pass;
 }
@@ -169,8 +171,9 @@ const ScatteringMedium& RenderSession::scatteringMedium()
       std::memcpy(reinterpret_cast<char*>(absorption.data()) + first, from, count);
     });
   // Each voxel's own SurfaceDistance is its pair's first value (the second its +x neighbour's).
-  v.Medium.Geometry.setSurfaceDistance(
-    readEach<gpu::vec2>(*v.SurfaceDistance, voxels, [](const gpu::vec2& pair) { return pair.x; }));
+  v.Medium.Geometry.setSurfaceDistance(v.PairedFields
+      ? readEach<gpu::vec2>(*v.SurfaceDistance, voxels, [](const gpu::vec2& pair) { return pair.x; })
+      : readEach<float>(*v.SurfaceDistance, voxels, [](float value) { return value; }));
   std::vector<double> nodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry); // for every later light too
   v.Medium.Scattering = std::move(scattering);
   v.Medium.Absorption = std::move(absorption);
@@ -406,8 +409,9 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
     : setup.ScatteredLightFromGrid                                    ? gpu::MarchScatteredLightFromGrid
                                                                       : gpu::MarchScatteredLightPerVoxel;
   const bool addressed = this->Volume->addressed();
-  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{
-    wavelengths, exact ? 0 : nodes, absorbs, coupled, energy, first, step, nearestLight, scattered, addressed ? 1 : 0 }];
+  const int paired = this->Volume->PairedFields ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled,
+    energy, first, step, nearestLight, scattered, addressed ? 1 : 0, paired }];
   if (!march)
   {
     const embedded::Spirv code = addressed ? embedded::viewMarchAddressedShader() : embedded::viewMarchShader();
@@ -417,7 +421,8 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
           { gpu::MarchExactScatteringConstant, exact ? 1 : 0 }, { gpu::MarchAbsorptionConstant, absorbs },
           { gpu::MarchCoupledWaveConstant, coupled }, { gpu::MarchEnergyConservationConstant, energy },
           { gpu::MarchFirstWavelengthConstant, first }, { gpu::MarchWavelengthStepConstant, step },
-          { gpu::MarchNearestLightConstant, nearestLight }, { gpu::MarchScatteredLightConstant, scattered } }));
+          { gpu::MarchNearestLightConstant, nearestLight }, { gpu::MarchScatteredLightConstant, scattered },
+          { gpu::MarchPairedFieldsConstant, paired } }));
   }
   return *march;
 }
@@ -591,13 +596,15 @@ bool RenderSession::drainQueue(std::int64_t queued, SubmitPacer& pacer, Progress
 ComputePipeline& RenderSession::highlightPass(int mode)
 {
   const bool addressed = this->Volume->addressed();
-  std::unique_ptr<ComputePipeline>& pass = this->HighlightPasses[{ mode, addressed ? 1 : 0 }];
+  const int paired = this->Volume->PairedFields ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& pass = this->HighlightPasses[{ mode, addressed ? 1 : 0, paired }];
   if (!pass)
   {
     const embedded::Spirv code =
       addressed ? embedded::specularHighlightAddressedShader() : embedded::specularHighlightShader();
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
-      specialisation(gpu::HighlightConstantCount, { { gpu::HighlightModeConstant, mode } }));
+      specialisation(gpu::HighlightConstantCount,
+        { { gpu::HighlightModeConstant, mode }, { gpu::HighlightPairedFieldsConstant, paired } }));
   }
   return *pass;
 }

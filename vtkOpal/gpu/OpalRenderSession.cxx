@@ -16,6 +16,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace opal
 {
@@ -170,31 +172,59 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
   return gpu::uvec2(static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32));
 }
 
-// Where a volume's fields live (docs/design.md §3.7): bound as storage
-// buffers while the widest (the light field's 16 bytes a voxel, or a small
-// volume's every-order tally grid, 32 bytes a node) fits the device's
-// maxStorageBufferRange, else addressed by the shaders, where the device
-// can; refused naming both limits where it cannot.
-BufferPlacement fieldPlacement(const VulkanContext& context, const RenderVolume& volume)
+// Where a volume's fields live and how (docs/design.md §3.7): bound as
+// storage buffers, as pairs, while the widest (the light field's 16 bytes a
+// voxel, or a small volume's every-order tally grid, 32 bytes a node) fits
+// the device's maxStorageBufferRange and the pairs fit its memory
+// (`pairsFit`); else addressed by the shaders, unpaired, where the device
+// can: one load by address gives a voxel's value and the next one's, as a
+// pair does, so pairs would only double those fields; else bound, unpaired
+// (two loads), where the widest (8 bytes a voxel) fits the range; refused
+// naming both limits where it does not.
+std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const RenderVolume& volume, bool pairsFit)
 {
-  const std::uint64_t widest = std::max<std::uint64_t>(volume.voxelCount() * sizeof(gpu::LightFieldPair),
-    scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
-      sizeof(gpu::ScatteredLightNode));
+  const auto widest = [&volume](bool paired) {
+    return std::max<std::uint64_t>(
+      volume.voxelCount() * (paired ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2)),
+      scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
+        sizeof(gpu::ScatteredLightNode));
+  };
   const std::uint64_t range = context.limits().maxStorageBufferRange;
-  if (widest <= range)
+  if (pairsFit && widest(true) <= range)
   {
-    return BufferPlacement::DeviceLocal;
+    return { BufferPlacement::DeviceLocal, true };
   }
-  if (!context.bufferDeviceAddresses())
+  if (context.bufferDeviceAddresses())
   {
-    throw VulkanError("the volume's light field needs a " + std::to_string(widest) +
+    return { BufferPlacement::DeviceAddressed, false };
+  }
+  if (widest(false) > range)
+  {
+    throw VulkanError("the volume's light field needs a " + std::to_string(widest(false)) +
         "-byte buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
         " bytes, and the device cannot address buffers (bufferDeviceAddress); use fewer voxels",
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
-  return BufferPlacement::DeviceAddressed;
+  return { BufferPlacement::DeviceLocal, false };
 }
 } // namespace
+
+// SurfaceDistance and the light fields (the absorption's where it absorbs)
+// on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7).
+void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v)
+{
+  VulkanContext& context = *this->Context;
+  const std::size_t voxels = volume.voxelCount();
+  const std::uint64_t lightFieldBytes = v.PairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
+  v.LightAbsorption = deviceLocalBuffer(context, v.Absorbs ? voxels * lightFieldBytes : sizeof(gpu::LightFieldPair),
+    "light absorption field", nullptr, v.FieldPlacement);
+  v.SurfaceDistance = v.PairedFields
+    ? deviceVoxelField<gpu::vec2>(context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
+        v.FieldPlacement, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); })
+    : deviceVoxelField<float>(context, voxels, "SurfaceDistance volume", v.FieldPlacement, {},
+        [&volume](std::size_t i) { return volume.SurfaceDistance[i]; });
+  v.LightField = deviceLocalBuffer(context, voxels * lightFieldBytes, "light field", nullptr, v.FieldPlacement);
+}
 
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
 {
@@ -221,19 +251,21 @@ RenderSession::RenderSession(const VulkanOptions& options)
   // Without absorption and Bragg shadows (pipelines with either made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[{ mode, 0, 0, 0 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
+    this->LightPasses[{ mode, 0, 0, 0, 1 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
       light.Words, light.WordCount,
       specialisation(gpu::LightPassConstantCount,
-        { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, 0 }, { gpu::LightBraggShadowConstant, 0 } }));
+        { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, 0 }, { gpu::LightBraggShadowConstant, 0 },
+          { gpu::LightPairedFieldsConstant, 1 } }));
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
   const embedded::Spirv highlight = embedded::specularHighlightShader();
   for (int mode : { gpu::HighlightSelect, gpu::HighlightShade })
   {
-    this->HighlightPasses[{ mode, 0 }] = std::make_unique<ComputePipeline>(
+    this->HighlightPasses[{ mode, 0, 1 }] = std::make_unique<ComputePipeline>(
       *this->Context, *this->Bindings, highlight.Words, highlight.WordCount,
-      specialisation(gpu::HighlightConstantCount, { { gpu::HighlightModeConstant, mode } }));
+      specialisation(gpu::HighlightConstantCount,
+        { { gpu::HighlightModeConstant, mode }, { gpu::HighlightPairedFieldsConstant, 1 } }));
   }
   this->Buffers->Parameters =
     std::make_unique<VulkanBuffer>(*this->Context, sizeof(gpu::RenderParameterBlock), "render parameters");
@@ -293,13 +325,14 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->PendingScatteredSeconds = -1;
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
-  // Fields and light field, refused up front if too large.
-  this->requireDeviceMemory(
-    static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs), "the volume needs", "", "use fewer voxels");
+  // Fields and light field, refused up front if too large even unpaired.
+  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, false),
+    "the volume needs", "", "use fewer voxels");
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  const BufferPlacement placement = fieldPlacement(context, volume);
-  uploaded->FieldPlacement = placement;
+  std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
+    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs));
+  const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
   uploaded->Cells = deviceVoxelField<gpu::VoxelCell>(context, voxels, "ScatteringCoefficient and DomainId volume",
@@ -308,13 +341,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->AbsorptionCells = absorptionBuffer(context, volume, skin, placement);
-  uploaded->LightAbsorption = deviceLocalBuffer(context,
-    absorbs ? voxels * sizeof(gpu::LightFieldPair) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
-    placement);
-  uploaded->SurfaceDistance = deviceVoxelField<gpu::vec2>(context, voxels,
-    "SurfaceDistance volume (voxel and +x neighbour)", placement, {},
-    [&volume](std::size_t i) { return surfaceDistancePair(volume, i); });
-  uploaded->LightField = deviceLocalBuffer(context, voxels * sizeof(gpu::LightFieldPair), "light field", nullptr, placement);
+  this->uploadSurfaceAndLightFields(volume, *uploaded);
   uploaded->LightShadow =
     deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);
   const std::size_t layerVoxels = static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[2];
@@ -420,6 +447,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;
   frame.Ran.ScatteredLightFromGrid = setup.ScatteredLightFromGrid;
+  frame.Ran.PairedFields = this->Volume->PairedFields;
   this->checkMemoryBudget(setup);
   this->placeScatteredField(setup);
   this->prepareFrameBuffers(setup);
@@ -609,8 +637,18 @@ bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
   const DeviceVolume& v = *this->Volume;
   const std::uint64_t keptShadows =
     v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.Shape.voxelCount() * sizeof(gpu::LightShadow) : 0;
-  return volumeDeviceBytes(v.Shape.Dimensions, v.Absorbs, setup.Parameters, true) + keptShadows +
+  return volumeDeviceBytes(v.Shape.Dimensions, v.Absorbs, setup.Parameters, true, v.PairedFields) + keptShadows +
     this->frameImageBytes(setup, true) > this->Context->memoryBudget();
+}
+
+// Whether the device's budget holds the volume's fields as pairs beside the
+// Bragg shadow field that energy conservation adds (else one value per
+// voxel, docs/design.md §3.7): the layout is the volume's, for all its
+// frames, and a frame's own buffers (images, the every-order field, which
+// falls back to its grid) are small beside it.
+bool RenderSession::pairedFieldsFit(std::size_t voxels, bool absorbs) const
+{
+  return voxels * (deviceBytesPerVoxel(absorbs, true) + sizeof(gpu::LightShadow)) <= this->Context->memoryBudget();
 }
 
 // Memory budget: refuse up front what cannot fit, with the estimate: on the
@@ -630,7 +668,7 @@ void RenderSession::checkVolumeFits(
   const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& parameters)
 {
   this->context(); // throws once released
-  this->requireDeviceMemory(volumeDeviceBytes(dimensions, absorbs, parameters, false),
+  this->requireDeviceMemory(volumeDeviceBytes(dimensions, absorbs, parameters, false, false),
     "the volume's fields for this render need", "", "use fewer voxels");
 }
 
@@ -649,7 +687,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, fieldPerVoxel);
+    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, fieldPerVoxel,
+      this->Volume->PairedFields);
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");

@@ -46,6 +46,11 @@ struct FrameStages
   // The march evaluated that light from its tally grid: the device's budget
   // did not hold its field per voxel (docs/design.md §3.10).
   bool ScatteredLightFromGrid = false;
+  // SurfaceDistance and the light fields were held as pairs (a voxel's and
+  // its +x neighbour's); false: one value per voxel, read by address (a
+  // volume beyond one storage buffer's range, or pairs beyond the device's
+  // budget) or through the bindings (docs/design.md §3.7).
+  bool PairedFields = true;
   bool Exposure = false;  // the automatic exposure's thumbnail was marched
   bool March = false;
   bool Colour = false;
@@ -185,6 +190,8 @@ private:
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
   bool scatteredLightFromGrid(const FrameSetup& setup) const;
+  bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;
+  void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more
@@ -244,15 +251,15 @@ private:
   // The light pass's three modes (shaders/opal_render_contract.h), by mode,
   // whether the volume absorbs (docs/design.md §3.9) and whether the pass
   // records Bragg shadows (§7.2), and whether it reads the fields by address (§3.7).
-  std::map<std::array<int, 4>, std::unique_ptr<ComputePipeline>> LightPasses;
+  std::map<std::array<int, 5>, std::unique_ptr<ComputePipeline>> LightPasses;
   // The highlight pass's two modes (select and shade), by mode and address reads.
-  std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> HighlightPasses;
+  std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength), absorption,
   // coupled-wave and energy conservation (0 or 1), the bins' first centre
   // and step (their float bits), the preview's light read and the scattered
   // light and address reads (0 or 1).
-  std::map<std::array<std::int32_t, 10>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  std::map<std::array<std::int32_t, 11>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;

@@ -25,15 +25,15 @@ namespace sessiondetail
 {
 constexpr std::uint32_t PushConstantBytes = 32;   // the largest push-constant struct of the contract
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
-// On the device per voxel: its VoxelCell (8), SurfaceDistance's pair (8)
-// and the light field's pair; with absorption also its two coefficients and
-// their light field's pair. (Besides: the light pass's entry queue, 4 bytes
-// per voxel of one layer.)
-constexpr std::uint64_t DeviceBytesPerVoxel = sizeof(gpu::VoxelCell) + 8 + sizeof(gpu::LightFieldPair);
-constexpr std::uint64_t AbsorptionBytesPerVoxel = 8 + sizeof(gpu::LightFieldPair);
-inline std::uint64_t deviceBytesPerVoxel(bool absorbs)
+// On the device per voxel: its VoxelCell (8), SurfaceDistance and the light
+// field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with
+// absorption also its two coefficients (8) and their light field (16 or 8).
+// (Besides: the light pass's entry queue, 4 bytes per voxel of one layer.)
+inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
 {
-  return DeviceBytesPerVoxel + (absorbs ? AbsorptionBytesPerVoxel : 0);
+  const std::uint64_t lightField = pairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
+  const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
+  return sizeof(gpu::VoxelCell) + surfaceDistance + lightField + (absorbs ? sizeof(gpu::vec2) + lightField : 0);
 }
 // The image buffers' bytes per pixel on the device (prepareFrameBuffers):
 // XYZ, Bragg and mirror images, highlight and edge queues, the edge pixels'
@@ -43,9 +43,10 @@ constexpr std::uint64_t ImageBytesPerPixel = sizeof(gpu::PixelColour) + sizeof(g
 // The device fields of a volume of `dimensions` for frames with `p`: the
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
 // every-order tally grid (its shape scatteredLightGrid's), with its field per
-// voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10).
-inline std::uint64_t volumeDeviceBytes(
-  const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p, bool fieldPerVoxel)
+// voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10),
+// its fields paired where `pairedFields` (§3.7).
+inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p,
+  bool fieldPerVoxel, bool pairedFields)
 {
   const bool everyOrder = scattersEveryOrder(p);
   const std::uint64_t voxels =
@@ -55,7 +56,7 @@ inline std::uint64_t volumeDeviceBytes(
     ? scatteredLightGrid(glm::ivec3(dimensions[0], dimensions[1], dimensions[2])).size() *
       sizeof(gpu::ScatteredLightNode)
     : 0;
-  return voxels * (deviceBytesPerVoxel(absorbs) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
+  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                     (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     gridBytes;
 }
@@ -122,6 +123,10 @@ struct RenderSession::DeviceVolume
   // storage buffer's range (the passes compiled with OPAL_VOLUME_ADDRESSES
   // read them through the address table), else DeviceLocal (docs/design.md §3.7).
   BufferPlacement FieldPlacement = BufferPlacement::DeviceLocal;
+  // SurfaceDistance and the light fields as pairs (a voxel's and its +x
+  // neighbour's) where bound and the device holds them, else one value per
+  // voxel (always where addressed): PairedFields, docs/design.md §3.7.
+  bool PairedFields = true;
   std::unique_ptr<VulkanBuffer> Addresses; // gpu::VolumeAddresses
   bool addressed() const { return this->FieldPlacement == BufferPlacement::DeviceAddressed; }
 };

@@ -333,6 +333,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
   }
   this->choosePhysicalDevice(options);
   this->createDevice();
+  this->BufferDeviceAddresses = this->BufferDeviceAddresses && !options.Simulated.WithoutBufferDeviceAddress;
   this->createCommandObjects();
   this->Pipelines = std::make_unique<PipelineCache>(this->Device.get(), this->Properties);
   armDeviceLossFromEnvironment();

@@ -44,6 +44,7 @@ struct VulkanOptions
     std::uint32_t MaxComputeWorkGroupCount = 0; // along x
     std::uint32_t MaxComputeWorkGroupInvocations = 0;
     std::uint32_t MaxStorageBufferRange = 0;
+    bool WithoutBufferDeviceAddress = false; // plan as a device that cannot address buffers
   } Simulated;
 };
 
