@@ -550,7 +550,7 @@ bool RenderSession::eyeInsideOpal(const ResolvedFrame& frame) const
 }
 
 // Frame set-up: validation, the camera and light in the model's frame, the
-// rectangles, the wavelength bins and the parameter block.
+// rectangles, the wavelength bins and the parameter block (writeParameterBlock).
 RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) const
 {
   if (!frame.Error.empty())
@@ -579,7 +579,17 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   setup.PixelCapacity = std::max(setup.Pixels + static_cast<std::size_t>(MARCH_RING_PIXELS(setup.Region[2], setup.Region[3])),
     static_cast<std::size_t>(setup.Thumbnail[0]) * static_cast<std::size_t>(setup.Thumbnail[1]));
   setup.Bins = sampleWavelengths(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
+  this->writeParameterBlock(setup);
+  setup.ScatteredLightFromGrid = this->scatteredLightFromGrid(setup);
+  return setup;
+}
 
+// The frame's parameter block, as the passes read it, from its parameters,
+// camera and bins and the volume's shape.
+void RenderSession::writeParameterBlock(FrameSetup& setup) const
+{
+  const RenderParameters& p = setup.Parameters;
+  const VolumeGeometry& geometry = this->Volume->Medium.Geometry;
   gpu::RenderParameterBlock& block = setup.Block;
   const RenderVolume& shape = this->Volume->Shape;
   block.gridDimensions = gpu::ivec3(shape.Dimensions[0], shape.Dimensions[1], shape.Dimensions[2]);
@@ -588,7 +598,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.smallestSpacing = static_cast<float>(geometry.smallestSpacing());
   block.gridSpacing = toVec3(shape.Spacing);
   block.marchStep = static_cast<float>((p.StepSize > 0 ? p.StepSize : geometry.smallestSpacing()) *
-    (frame.Preview ? PreviewStepScale : 1.0));
+    (setup.Preview ? PreviewStepScale : 1.0));
   block.eye = toVec3(setup.Camera.Eye);
   block.tanHalfViewAngle = static_cast<float>(std::tan(glm::radians(p.ViewAngle) / 2));
   block.forward = toVec3(setup.Camera.Forward);
@@ -619,8 +629,6 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   block.scatteredLightNodes = tallyGrid.Nodes;
   block.scatteredLightStride = tallyGrid.Stride;
   setCoupledWave(block, p, shape);
-  setup.ScatteredLightFromGrid = this->scatteredLightFromGrid(setup);
-  return setup;
 }
 
 // Every order reads its field per voxel where the device's budget holds it

@@ -191,6 +191,7 @@ private:
   std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
   bool scatteredLightFromGrid(const FrameSetup& setup) const;
   bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;
+  void writeParameterBlock(FrameSetup& setup) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
