@@ -60,8 +60,8 @@ float voxelSurfaceDistance(int index)
 }
 
 // SurfaceDistance of voxel i and of its +x neighbour, as a pair holds them,
-// where i is not the last voxel of a row of several (no interpolation's lower
-// corner is): unpaired, the next voxel's, or i's own in rows of one voxel.
+// where i is not the last voxel of its row (no interpolation's lower corner
+// is; rows of one voxel are always paired): unpaired, the next voxel's.
 // (No division: finding a row's end by a modulo per read made the unpaired
 // march ~1.8x the paired one on lavapipe.)
 vec2 surfaceDistancePair(int i)

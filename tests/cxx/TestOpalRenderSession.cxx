@@ -237,6 +237,28 @@ void checkUnpairedFields(const opal::RenderVolume& volume, const opal::RenderPar
   }
 }
 
+// A volume one voxel wide keeps its pairs under a limit below them and when
+// addressed (a small simulated range): its reads have no next voxel to take
+// the neighbour from. The images equal the unlimited bound session's.
+void checkOneVoxelWidePaired(const opal::RenderVolume& volume, const opal::RenderParameters& p)
+{
+  opaltest::SceneRenderer unlimited(opal::VulkanOptions{});
+  const opal::RenderImage reference = unlimited.render(volume, p);
+  opal::VulkanOptions tight;
+  tight.MemoryLimitBytes = unlimited.Session.context().memoryPeak();
+  opal::VulkanOptions addressed;
+  addressed.Simulated.MaxStorageBufferRange = 128 << 10; // the fields exceed it, 48 x 36 pixels do not
+  for (const opal::VulkanOptions& options : { tight, addressed })
+  {
+    opaltest::SceneRenderer renderer(options);
+    renderer.Session.setVolume(volume);
+    const opal::RenderFrame frame = renderer.Session.render(p);
+    OPAL_CHECK(frame.Ran.PairedFields && identical(frame.Image, reference),
+      "a volume one voxel wide is paired and renders the unlimited image (" +
+        std::string(options.MemoryLimitBytes ? "under a limit" : "addressed") + ")");
+  }
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -378,6 +400,9 @@ int TestOpalRenderSession(int, char*[])
   absorbingSmall.Dimensions = { 64, 32, 80 };
   absorbingSmall.BodyAbsorption = 0.05;
   checkUnpairedFields(opal::buildVolume(absorbingSmall)->renderVolume(), moved);
+  opal::ModelParameters oneWide = model;
+  oneWide.Dimensions = { 1, 200, 500 };
+  checkOneVoxelWidePaired(opal::buildVolume(oneWide)->renderVolume(), moved);
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

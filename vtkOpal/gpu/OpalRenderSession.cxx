@@ -172,35 +172,34 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
   return gpu::uvec2(static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32));
 }
 
-// Where a volume's fields live and how (docs/design.md §3.7): bound as
-// storage buffers, as pairs, while the widest (the light field's 16 bytes a
-// voxel, or a small volume's every-order tally grid, 32 bytes a node) fits
-// the device's maxStorageBufferRange and the pairs fit its memory
-// (`pairsFit`); else addressed by the shaders, unpaired, where the device
-// can: one load by address gives a voxel's value and the next one's, as a
-// pair does, so pairs would only double those fields; else bound, unpaired
-// (two loads), where the widest (8 bytes a voxel) fits the range; refused
-// naming both limits where it does not.
+// Where a volume's fields live and how (docs/design.md §3.7). Bound as
+// storage buffers while the widest (16 bytes a voxel: the paired light
+// field, and the every-order field whatever the pairing; or a small volume's
+// every-order tally grid, 32 bytes a node) fits the device's
+// maxStorageBufferRange: as pairs where they fit its memory (`pairsFit`).
+// Else addressed by the shaders, unpaired, where the device can: one load by
+// address gives a voxel's value and the next one's, as a pair does, so pairs
+// would only double those fields. Else bound and unpaired (two loads);
+// refused naming both limits beyond the range. Rows of one voxel keep their
+// pairs: their reads have no next voxel to take the neighbour from.
 std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const RenderVolume& volume, bool pairsFit)
 {
-  const auto widest = [&volume](bool paired) {
-    return std::max<std::uint64_t>(
-      volume.voxelCount() * (paired ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2)),
-      scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
-        sizeof(gpu::ScatteredLightNode));
-  };
+  const bool mayUnpair = volume.Dimensions[0] > 1;
+  const std::uint64_t widest = std::max<std::uint64_t>(volume.voxelCount() * sizeof(gpu::LightFieldPair),
+    scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
+      sizeof(gpu::ScatteredLightNode));
   const std::uint64_t range = context.limits().maxStorageBufferRange;
-  if (pairsFit && widest(true) <= range)
+  if (widest <= range && (pairsFit || !mayUnpair))
   {
     return { BufferPlacement::DeviceLocal, true };
   }
   if (context.bufferDeviceAddresses())
   {
-    return { BufferPlacement::DeviceAddressed, false };
+    return { BufferPlacement::DeviceAddressed, !mayUnpair };
   }
-  if (widest(false) > range)
+  if (widest > range)
   {
-    throw VulkanError("the volume's light field needs a " + std::to_string(widest(false)) +
+    throw VulkanError("the volume's light field needs a " + std::to_string(widest) +
         "-byte buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
         " bytes, and the device cannot address buffers (bufferDeviceAddress); use fewer voxels",
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
@@ -325,13 +324,13 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->PendingScatteredSeconds = -1;
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
-  // Fields and light field, refused up front if too large even unpaired.
-  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, false),
-    "the volume needs", "", "use fewer voxels");
+  // Fields and light field, laid out (fieldLayout), refused up front if too large.
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
   std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
     fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs));
+  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields),
+    "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);

@@ -49,7 +49,8 @@ struct FrameStages
   // SurfaceDistance and the light fields were held as pairs (a voxel's and
   // its +x neighbour's); false: one value per voxel, read by address (a
   // volume beyond one storage buffer's range, or pairs beyond the device's
-  // budget) or through the bindings (docs/design.md §3.7).
+  // budget) or, on a device that cannot address, through the bindings
+  // (docs/design.md §3.7). Rows of one voxel are always paired.
   bool PairedFields = true;
   bool Exposure = false;  // the automatic exposure's thumbnail was marched
   bool March = false;

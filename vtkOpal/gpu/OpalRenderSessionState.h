@@ -125,7 +125,7 @@ struct RenderSession::DeviceVolume
   BufferPlacement FieldPlacement = BufferPlacement::DeviceLocal;
   // SurfaceDistance and the light fields as pairs (a voxel's and its +x
   // neighbour's) where bound and the device holds them, else one value per
-  // voxel (always where addressed): PairedFields, docs/design.md §3.7.
+  // voxel (rows of one voxel always paired): PairedFields, docs/design.md §3.7.
   bool PairedFields = true;
   std::unique_ptr<VulkanBuffer> Addresses; // gpu::VolumeAddresses
   bool addressed() const { return this->FieldPlacement == BufferPlacement::DeviceAddressed; }
