@@ -55,17 +55,16 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldSi
 #define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) buffer LightField { LightFieldPair lightField[]; };
-layout(std430, set = 0, binding = LightFieldBinding) buffer LightFieldSingles { vec2 lightFieldSingles[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption { LightFieldPair lightAbsorption[]; };
-layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorptionSingles { vec2 lightAbsorptionSingles[]; };
 layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
-#define LIGHT_FIELD_SINGLE_AT(i) lightFieldSingles[i]
-#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorptionSingles[i]
+// Bound fields are always paired (opal_volume_fields.glsl): these are the pair's first.
+#define LIGHT_FIELD_SINGLE_AT(i) lightField[i].voxel
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[i].voxel
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]

@@ -40,8 +40,8 @@ OPAL_CONSTANT int ParametersBinding = 0;       // uniform RenderParameterBlock
 OPAL_CONSTANT int WavelengthTableBinding = 1;  // WavelengthBinRecord per wavelength
 OPAL_CONSTANT int VoxelCellBinding = 2;        // VoxelCell per voxel: ScatteringCoefficient and DomainId
 OPAL_CONSTANT int HighlightPixelsBinding = 3;  // uint per pixel: the pixels queued for the highlight
-// Binding 4, 5 and 17 hold pairs (a voxel's value and its +x neighbour's)
-// where the device holds them, else one value per voxel (PairedFields below).
+// Binding 4, 5 and 17 hold pairs (a voxel's value and its +x neighbour's);
+// fields read by address hold one value per voxel (PairedFields below).
 OPAL_CONSTANT int SurfaceDistanceBinding = 4;  // vec2 per voxel: its SurfaceDistance (mm, negative inside) and its +x neighbour's
 OPAL_CONSTANT int LightFieldBinding = 5;       // LightFieldPair per voxel
 OPAL_CONSTANT int DomainTableBinding = 6;      // DomainRecord per domain
@@ -345,10 +345,11 @@ struct HighlightWork
 };
 
 // PairedFields: SurfaceDistance and the light fields hold, per voxel, its
-// value and its +x neighbour's (a trilinear read takes four loads, not
-// eight); where the device cannot hold those, one value per voxel (float,
-// vec2 and vec2: 12 bytes per voxel less, 20 with absorption; docs/design.md
-// §3.7). Each pass that reads them takes the layout as a constant of its own.
+// value and its +x neighbour's (a bound trilinear read takes four loads, not
+// eight); read by address, one value per voxel (float, vec2 and vec2: 12
+// bytes per voxel less, 20 with absorption; docs/design.md §3.7), which one
+// load reads with the next. Each pass that reads them by address takes the
+// layout as a constant of its own.
 
 // Specialisation constants, by constant_id: each pass's layout(constant_id =
 // ...) and the host's pipeline keys name these ids, so neither side counts

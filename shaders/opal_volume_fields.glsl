@@ -4,15 +4,15 @@
 
 #include "opal_volume_addresses.glsl"
 
-// The fields' layout (PairedFields in the contract): the including pass
-// defines PAIRED_FIELDS_CONSTANT, its own constant id for it.
-layout(constant_id = PAIRED_FIELDS_CONSTANT) const bool PAIRED_FIELDS = true;
-
 // SurfaceDistance of each voxel and of its +x neighbour (the last voxel of a
 // row repeats its own): a trilinear read takes four loads instead of eight,
 // and surface tracing is most of what a pixel reads. Without PAIRED_FIELDS
-// the same buffer holds each voxel's own value only.
+// (PairedFields in the contract: only fields read by address, whose pass
+// defines PAIRED_FIELDS_CONSTANT, its own constant id) the same buffer holds
+// each voxel's own value only; bound fields are always paired, and their
+// unpaired accessors read the pair.
 #ifdef OPAL_VOLUME_ADDRESSES
+layout(constant_id = PAIRED_FIELDS_CONSTANT) const bool PAIRED_FIELDS = true;
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer VoxelCellRef { VoxelCell value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer SurfaceDistanceRef { vec2 value; };
 layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer SurfaceDistanceSingleRef { float value; };
@@ -24,11 +24,11 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Sur
 #else
 layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells { VoxelCell voxelCells[]; };
 layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { vec2 surfaceDistancePairs[]; };
-layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceSingles { float surfaceDistanceSingles[]; };
+const bool PAIRED_FIELDS = true;
 #define VOXEL_CELL_AT(i) voxelCells[i]
 #define SURFACE_DISTANCE_AT(i) surfaceDistancePairs[i]
-#define SURFACE_DISTANCE_SINGLE_AT(i) surfaceDistanceSingles[i]
-#define SURFACE_DISTANCE_FROM_AT(i) vec2(surfaceDistanceSingles[i], surfaceDistanceSingles[(i) + 1])
+#define SURFACE_DISTANCE_SINGLE_AT(i) surfaceDistancePairs[i].x
+#define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[i]
 #endif
 
 int voxelIndex(ivec3 c)

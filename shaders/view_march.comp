@@ -72,18 +72,17 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Sca
 #define SCATTERED_LIGHT_AT(i) ScatteredLightRef(voxelAddress(volumeAddresses.scatteredLight, (i), 16u)).value
 #else
 layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightField { LightFieldPairAsVec4 lightField[]; };
-layout(std430, set = 0, binding = LightFieldBinding) readonly buffer LightFieldSingles { vec2 lightFieldSingles[]; };
 layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer AbsorptionCells { vec2 absorptionCells[]; };
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
-layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorptionSingles { vec2 lightAbsorptionSingles[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
 #define LIGHT_FIELD_AT(i) lightField[i]
 #define LIGHT_ABSORPTION_AT(i) lightAbsorption[i]
-#define LIGHT_FIELD_SINGLE_AT(i) lightFieldSingles[i]
-#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorptionSingles[i]
-#define LIGHT_FIELD_FROM_AT(i) vec4(lightFieldSingles[i], lightFieldSingles[(i) + 1])
-#define LIGHT_ABSORPTION_FROM_AT(i) vec4(lightAbsorptionSingles[i], lightAbsorptionSingles[(i) + 1])
+// Bound fields are always paired (opal_volume_fields.glsl): these read the pair.
+#define LIGHT_FIELD_SINGLE_AT(i) lightField[i].xy
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[i].xy
+#define LIGHT_FIELD_FROM_AT(i) lightField[i]
+#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[i]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define SCATTERED_LIGHT_AT(i) scatteredLight[i]

@@ -217,21 +217,6 @@ std::set<std::string> checkShader(const std::string& shader, const std::string& 
       seen.insert(m[1].str() + " as vec4");
     }
   }
-  // The unpaired views of the same bindings (PairedFields off): one value
-  // per voxel, half a pair.
-  const std::regex single(R"(^(surfaceDistanceSingles|lightFieldSingles|lightAbsorptionSingles): offset 0,[^\n]*topLevelArrayStride (\d+)$)");
-  lines.clear();
-  lines.str(reflection);
-  while (std::getline(lines, text))
-  {
-    if (std::regex_match(text, m, single))
-    {
-      const std::size_t half = m[1] == "surfaceDistanceSingles" ? sizeof(float) : sizeof(LightFieldPair) / 2;
-      OPAL_CHECK(std::stoul(m[2]) == half,
-        shader + ": the unpaired view " + m[1].str() + " has stride " + m[2].str() + " = " + std::to_string(half));
-      seen.insert(m[1].str() + " unpaired");
-    }
-  }
   // The parameter block's size, where the shader declares it.
   const std::regex block(R"(ParameterBlock: offset -1, type [0-9a-f]+, size (\d+),)");
   if (std::regex_search(reflection, m, block))
@@ -264,8 +249,7 @@ int TestOpalShaderContract(int argc, char* argv[])
   {
     OPAL_CHECK(seen.count(name) == 1, name + " is declared by some pass and so compared");
   }
-  for (const char* view : { "lightField as vec4", "lightAbsorption as vec4", "surfaceDistanceSingles unpaired",
-         "lightFieldSingles unpaired", "lightAbsorptionSingles unpaired" })
+  for (const char* view : { "lightField as vec4", "lightAbsorption as vec4" })
   {
     OPAL_CHECK(seen.count(view) == 1, std::string("the march's ") + view + " is compared");
   }

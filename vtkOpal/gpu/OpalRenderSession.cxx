@@ -173,38 +173,32 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
 }
 
 // Where a volume's fields live and how (docs/design.md §3.7). Bound as
-// storage buffers while the widest (16 bytes a voxel: the paired light
-// field, and the every-order field whatever the pairing; or a small volume's
-// every-order tally grid, 32 bytes a node) fits the device's
-// maxStorageBufferRange: as pairs where they fit its memory (`pairsFit`).
-// Else addressed by the shaders, unpaired, where the device can: one load by
-// address gives a voxel's value and the next one's, as a pair does, so pairs
-// would only double those fields. Else bound and unpaired (two loads);
-// refused naming both limits beyond the range. Rows of one voxel keep their
-// pairs: their reads have no next voxel to take the neighbour from.
+// storage buffers, as pairs, while the widest (the light field's 16 bytes a
+// voxel, or a small volume's every-order tally grid, 32 bytes a node) fits
+// the device's maxStorageBufferRange and the pairs fit its memory
+// (`pairsFit`) or the device cannot address buffers. Else addressed by the
+// shaders, unpaired: one load by address gives a voxel's value and the next
+// one's, as a pair does, so pairs would only double those fields (rows of
+// one voxel keep them: their reads have no next voxel to take). Refused
+// naming both limits beyond the range on a device that cannot address.
 std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const RenderVolume& volume, bool pairsFit)
 {
-  const bool mayUnpair = volume.Dimensions[0] > 1;
   const std::uint64_t widest = std::max<std::uint64_t>(volume.voxelCount() * sizeof(gpu::LightFieldPair),
     scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
       sizeof(gpu::ScatteredLightNode));
   const std::uint64_t range = context.limits().maxStorageBufferRange;
-  if (widest <= range && (pairsFit || !mayUnpair))
+  if (widest <= range && (pairsFit || !context.bufferDeviceAddresses()))
   {
     return { BufferPlacement::DeviceLocal, true };
   }
-  if (context.bufferDeviceAddresses())
-  {
-    return { BufferPlacement::DeviceAddressed, !mayUnpair };
-  }
-  if (widest > range)
+  if (!context.bufferDeviceAddresses())
   {
     throw VulkanError("the volume's light field needs a " + std::to_string(widest) +
         "-byte buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
         " bytes, and the device cannot address buffers (bufferDeviceAddress); use fewer voxels",
       VK_ERROR_OUT_OF_DEVICE_MEMORY);
   }
-  return { BufferPlacement::DeviceLocal, false };
+  return { BufferPlacement::DeviceAddressed, volume.Dimensions[0] == 1 };
 }
 } // namespace
 

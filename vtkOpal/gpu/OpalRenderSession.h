@@ -49,8 +49,7 @@ struct FrameStages
   // SurfaceDistance and the light fields were held as pairs (a voxel's and
   // its +x neighbour's); false: one value per voxel, read by address (a
   // volume beyond one storage buffer's range, or pairs beyond the device's
-  // budget) or, on a device that cannot address, through the bindings
-  // (docs/design.md §3.7). Rows of one voxel are always paired.
+  // budget; docs/design.md §3.7). Rows of one voxel are always paired.
   bool PairedFields = true;
   bool Exposure = false;  // the automatic exposure's thumbnail was marched
   bool March = false;

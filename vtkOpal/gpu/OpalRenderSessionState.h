@@ -124,8 +124,8 @@ struct RenderSession::DeviceVolume
   // read them through the address table), else DeviceLocal (docs/design.md §3.7).
   BufferPlacement FieldPlacement = BufferPlacement::DeviceLocal;
   // SurfaceDistance and the light fields as pairs (a voxel's and its +x
-  // neighbour's) where bound and the device holds them, else one value per
-  // voxel (rows of one voxel always paired): PairedFields, docs/design.md §3.7.
+  // neighbour's) where bound, one value per voxel where addressed (rows of
+  // one voxel always paired): PairedFields, docs/design.md §3.7.
   bool PairedFields = true;
   std::unique_ptr<VulkanBuffer> Addresses; // gpu::VolumeAddresses
   bool addressed() const { return this->FieldPlacement == BufferPlacement::DeviceAddressed; }
