@@ -183,9 +183,8 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
 // naming both limits beyond the range on a device that cannot address.
 std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const RenderVolume& volume, bool pairsFit)
 {
-  const std::uint64_t widest = std::max<std::uint64_t>(volume.voxelCount() * sizeof(gpu::LightFieldPair),
-    scatteredLightGrid(glm::ivec3(volume.Dimensions[0], volume.Dimensions[1], volume.Dimensions[2])).size() *
-      sizeof(gpu::ScatteredLightNode));
+  const std::uint64_t widest = std::max<std::uint64_t>(
+    volume.voxelCount() * sizeof(gpu::LightFieldPair), scatteredLightGridBytes(volume.Dimensions));
   const std::uint64_t range = context.limits().maxStorageBufferRange;
   if (widest <= range && (pairsFit || !context.bufferDeviceAddresses()))
   {

@@ -40,9 +40,16 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
 // sums, Radiance and RGB.
 constexpr std::uint64_t ImageBytesPerPixel = sizeof(gpu::PixelColour) + sizeof(gpu::PixelBragg) +
   sizeof(gpu::PixelMirror) + 4 + 8 + sizeof(gpu::PixelSum) + 3 * sizeof(float) + 4;
+// The every-order tally grid's bytes on the device for a volume of
+// `dimensions` (its shape scatteredLightGrid's, §3.10).
+inline std::uint64_t scatteredLightGridBytes(const std::array<int, 3>& dimensions)
+{
+  return scatteredLightGrid(glm::ivec3(dimensions[0], dimensions[1], dimensions[2])).size() *
+    sizeof(gpu::ScatteredLightNode);
+}
 // The device fields of a volume of `dimensions` for frames with `p`: the
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
-// every-order tally grid (its shape scatteredLightGrid's), with its field per
+// every-order tally grid (scatteredLightGridBytes), with its field per
 // voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10),
 // its fields paired where `pairedFields` (§3.7).
 inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p,
@@ -52,10 +59,7 @@ inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, boo
   const std::uint64_t voxels =
     static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
     static_cast<std::uint64_t>(dimensions[2]);
-  const std::uint64_t gridBytes = everyOrder
-    ? scatteredLightGrid(glm::ivec3(dimensions[0], dimensions[1], dimensions[2])).size() *
-      sizeof(gpu::ScatteredLightNode)
-    : 0;
+  const std::uint64_t gridBytes = everyOrder ? scatteredLightGridBytes(dimensions) : 0;
   return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                     (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     gridBytes;
