@@ -332,8 +332,7 @@ VulkanContext::VulkanContext(const VulkanOptions& options)
     this->createMessenger();
   }
   this->choosePhysicalDevice(options);
-  this->createDevice();
-  this->BufferDeviceAddresses = this->BufferDeviceAddresses && !options.Simulated.WithoutBufferDeviceAddress;
+  this->createDevice(!options.Simulated.WithoutBufferDeviceAddress);
   this->createCommandObjects();
   this->Pipelines = std::make_unique<PipelineCache>(this->Device.get(), this->Properties);
   armDeviceLossFromEnvironment();
@@ -391,8 +390,9 @@ void VulkanContext::choosePhysicalDevice(const VulkanOptions& options)
   this->QueueFamily = static_cast<std::uint32_t>(computeQueueFamily(this->PhysicalDevice));
 }
 
-// The logical device with one compute queue.
-void VulkanContext::createDevice()
+// The logical device with one compute queue; buffer device addresses where
+// `bufferAddressesWanted` and the device has them.
+void VulkanContext::createDevice(bool bufferAddressesWanted)
 {
   const float priority = 1.0f;
   auto queueInfo = vulkanStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
@@ -410,7 +410,7 @@ void VulkanContext::createDevice()
     auto features = vulkanStruct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
     features.pNext = &vulkan12;
     vkGetPhysicalDeviceFeatures2(this->PhysicalDevice, &features);
-    this->BufferDeviceAddresses = vulkan12.bufferDeviceAddress == VK_TRUE;
+    this->BufferDeviceAddresses = bufferAddressesWanted && vulkan12.bufferDeviceAddress == VK_TRUE;
     vulkan12 = vulkanStruct<VkPhysicalDeviceVulkan12Features>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES);
     vulkan12.bufferDeviceAddress = this->BufferDeviceAddresses ? VK_TRUE : VK_FALSE;
     deviceInfo.pNext = &vulkan12;

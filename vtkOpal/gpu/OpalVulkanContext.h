@@ -44,7 +44,7 @@ struct VulkanOptions
     std::uint32_t MaxComputeWorkGroupCount = 0; // along x
     std::uint32_t MaxComputeWorkGroupInvocations = 0;
     std::uint32_t MaxStorageBufferRange = 0;
-    bool WithoutBufferDeviceAddress = false; // plan as a device that cannot address buffers
+    bool WithoutBufferDeviceAddress = false; // create the device without bufferDeviceAddress, as one lacking it
   } Simulated;
 };
 
@@ -139,7 +139,7 @@ private:
   // The constructor's steps, in order.
   void createMessenger();
   void choosePhysicalDevice(const VulkanOptions& options);
-  void createDevice();
+  void createDevice(bool bufferAddressesWanted);
   void createCommandObjects();
 
   // Declared in creation order: members are destroyed in reverse.
