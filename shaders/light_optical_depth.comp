@@ -49,6 +49,9 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldSi
 #define LIGHT_ABSORPTION_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 16u)).value
 #define LIGHT_FIELD_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightField, (i), 8u)).value
 #define LIGHT_ABSORPTION_SINGLE_AT(i) LightFieldSingleRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 8u)).value
+// Unpaired: voxel i's value and the next one's, in one load (as view_march.comp's).
+#define LIGHT_FIELD_FROM_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightField, (i), 8u)).value
+#define LIGHT_ABSORPTION_FROM_AT(i) LightFieldRef(voxelAddress(volumeAddresses.lightAbsorption, (i), 8u)).value
 #define ABSORPTION_CELL_AT(i) AbsorptionCellRef(voxelAddress(volumeAddresses.absorptionCells, (i), 8u)).value
 #define LIGHT_SHADOW_AT(i) LightShadowRef(voxelAddress(volumeAddresses.lightShadow, (i), 12u)).value
 #define ENTRY_VOXEL_AT(i) EntryVoxelRef(voxelAddress(volumeAddresses.entryVoxels, (i), 4u)).value
@@ -65,6 +68,8 @@ layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer Scatte
 // Bound fields are always paired (opal_volume_fields.glsl): these are the pair's first.
 #define LIGHT_FIELD_SINGLE_AT(i) lightField[i].voxel
 #define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[i].voxel
+#define LIGHT_FIELD_FROM_AT(i) lightField[i]
+#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[i]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
 #define LIGHT_SHADOW_AT(i) lightShadow[i]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]
@@ -132,30 +137,54 @@ void followShadow(inout ShadowWalk w, int domain, float length)
   }
 }
 
-// Stores a voxel's (optical depth, geometry factor) where the light field
-// keeps them: in its own pair, and as the +x neighbour in the pair before it
-// (in its own pair too at the end of a row), or without PAIRED_FIELDS in its
-// own place; its absorption depths likewise; its Bragg shadow with BRAGG_SHADOW.
+// The light field and the absorption's are read and written alike, each
+// through its accessors (PAIR_AT, SINGLE_AT, FROM_AT): these define, for the
+// field NAME, NAMEStore and NAMERow.
+// NAMEStore: a voxel's value where the field keeps it: in its own pair, and
+// as the +x neighbour in the pair before it (in its own pair too at the end of
+// a row), or without PAIRED_FIELDS in its own place.
+// NAMERow: a row of three voxels (m - 1, m, m + 1 along x), weighted by wx:
+// the pair at m - 1 holds the first two (without PAIRED_FIELDS, one load by
+// address reads the value at m - 1 and the next), the value at m + 1 the third.
+#define DEFINE_FIELD_ACCESS(NAME, PAIR_AT, SINGLE_AT, FROM_AT)                     \
+  void NAME##Store(int index, vec2 value)                                         \
+  {                                                                               \
+    if (!PAIRED_FIELDS)                                                           \
+    {                                                                             \
+      SINGLE_AT(index) = value;                                                   \
+      return;                                                                     \
+    }                                                                             \
+    int x = index % P.gridDimensions.x;                                           \
+    PAIR_AT(index).voxel = value;                                                 \
+    if (x > 0) PAIR_AT(index - 1).nextVoxel = value;                              \
+    if (x == P.gridDimensions.x - 1) PAIR_AT(index).nextVoxel = value;            \
+  }                                                                               \
+  vec2 NAME##Row(int first, vec3 wx)                                              \
+  {                                                                               \
+    LightFieldPair left; /* not a ?:, whose mixed struct types glslang stores invalidly */ \
+    vec2 right;                                                                   \
+    if (PAIRED_FIELDS)                                                            \
+    {                                                                             \
+      left = PAIR_AT(first);                                                      \
+      right = PAIR_AT(first + 2).voxel;                                           \
+    }                                                                             \
+    else                                                                          \
+    {                                                                             \
+      left = FROM_AT(first);                                                      \
+      right = SINGLE_AT(first + 2);                                               \
+    }                                                                             \
+    return wx.x * left.voxel + wx.y * left.nextVoxel + wx.z * right;             \
+  }
+DEFINE_FIELD_ACCESS(light, LIGHT_FIELD_AT, LIGHT_FIELD_SINGLE_AT, LIGHT_FIELD_FROM_AT)
+DEFINE_FIELD_ACCESS(absorption, LIGHT_ABSORPTION_AT, LIGHT_ABSORPTION_SINGLE_AT, LIGHT_ABSORPTION_FROM_AT)
+
+// Stores a voxel's (optical depth, geometry factor) in the light field, its
+// absorption depths likewise, its Bragg shadow with BRAGG_SHADOW.
 void storeLight(int index, LightSample light, ShadowWalk shadow)
 {
   if (BRAGG_SHADOW) LIGHT_SHADOW_AT(index) = shadow.record;
-  vec2 field = vec2(light.tau.x, light.geometry);
-  if (!PAIRED_FIELDS)
-  {
-    LIGHT_FIELD_SINGLE_AT(index) = field;
-    if (ABSORPTION) LIGHT_ABSORPTION_SINGLE_AT(index) = light.tau.yz;
-    return;
-  }
-  int x = index % P.gridDimensions.x;
-  LIGHT_FIELD_AT(index).voxel = field;
-  if (x > 0) LIGHT_FIELD_AT(index - 1).nextVoxel = field;
-  if (x == P.gridDimensions.x - 1) LIGHT_FIELD_AT(index).nextVoxel = field;
-  if (ABSORPTION)
-  {
-    LIGHT_ABSORPTION_AT(index).voxel = light.tau.yz;
-    if (x > 0) LIGHT_ABSORPTION_AT(index - 1).nextVoxel = light.tau.yz;
-    if (x == P.gridDimensions.x - 1) LIGHT_ABSORPTION_AT(index).nextVoxel = light.tau.yz;
-  }
+  lightStore(index, vec2(light.tau.x, light.geometry));
+  if (ABSORPTION) absorptionStore(index, light.tau.yz);
 }
 
 // A voxel's extinction coefficients at 550 nm: (mu_s, coloured mu_a, grey mu_a).
@@ -334,31 +363,6 @@ LightShadow shadowFromAbove(LightShadow up, int upDomain, int own, float length)
 vec3 quadraticWeights(float u)
 {
   return vec3(0.5 * u * (u - 1.0), 1.0 - u * u, 0.5 * u * (u + 1.0));
-}
-
-// A row of three voxels (m - 1, m, m + 1 along x) of the layer above: the
-// pair at m - 1 holds the first two, the pair at m + 1 the third (without
-// PAIRED_FIELDS, each its own).
-vec2 lightRow(int first, vec3 wx)
-{
-  if (!PAIRED_FIELDS)
-  {
-    return wx.x * LIGHT_FIELD_SINGLE_AT(first) + wx.y * LIGHT_FIELD_SINGLE_AT(first + 1) +
-      wx.z * LIGHT_FIELD_SINGLE_AT(first + 2);
-  }
-  LightFieldPair left = LIGHT_FIELD_AT(first), right = LIGHT_FIELD_AT(first + 2);
-  return wx.x * left.voxel + wx.y * left.nextVoxel + wx.z * right.voxel;
-}
-
-vec2 absorptionRow(int first, vec3 wx)
-{
-  if (!PAIRED_FIELDS)
-  {
-    return wx.x * LIGHT_ABSORPTION_SINGLE_AT(first) + wx.y * LIGHT_ABSORPTION_SINGLE_AT(first + 1) +
-      wx.z * LIGHT_ABSORPTION_SINGLE_AT(first + 2);
-  }
-  LightFieldPair left = LIGHT_ABSORPTION_AT(first), right = LIGHT_ABSORPTION_AT(first + 2);
-  return wx.x * left.voxel + wx.y * left.nextVoxel + wx.z * right.voxel;
 }
 
 // The largest SurfaceDistance of a row of three.
