@@ -149,18 +149,15 @@ std::vector<float> readEach(const VulkanBuffer& buffer, std::size_t count, Value
 } // namespace
 
 // The medium the every-order solve reads: its fields read back from the
-// device's cells (and absorption cells) and SurfaceDistance by the first
-// solve, then kept with the volume with its tally nodes' volumes, so a
-// session that renders single scattering never holds them on the host (8
-// bytes per voxel, 16 with absorption; docs/design.md §3.10).
+// device's cells (and absorption cells) and SurfaceDistance for each solve
+// and released after it (releaseScatteringMedium), so the host holds them (8
+// bytes per voxel, 16 with absorption) only while a solve runs, not beside the
+// frame's field; its tally nodes' volumes, a few MB, are kept for every later
+// light (docs/design.md §3.10).
 const ScatteringMedium& RenderSession::scatteringMedium()
 {
   DeviceVolume& v = *this->Volume;
   const std::size_t voxels = v.Shape.voxelCount();
-  if (v.Medium.Scattering.size() == voxels)
-  {
-    return v.Medium;
-  }
   // Read whole before it is kept: a read that throws (its staging round
   // beyond the memory limit, say) leaves no half-read medium for a later solve.
   std::vector<float> scattering =
@@ -174,11 +171,25 @@ const ScatteringMedium& RenderSession::scatteringMedium()
   v.Medium.Geometry.setSurfaceDistance(v.PairedFields
       ? readEach<gpu::vec2>(*v.SurfaceDistance, voxels, [](const gpu::vec2& pair) { return pair.x; })
       : readEach<float>(*v.SurfaceDistance, voxels, [](float value) { return value; }));
-  std::vector<double> nodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry); // for every later light too
+  if (v.Medium.NodeVolumes.empty())
+  {
+    v.Medium.NodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry);
+  }
   v.Medium.Scattering = std::move(scattering);
   v.Medium.Absorption = std::move(absorption);
-  v.Medium.NodeVolumes = std::move(nodeVolumes);
   return v.Medium;
+}
+
+void RenderSession::releaseScatteringMedium()
+{
+  if (!this->Volume)
+  {
+    return;
+  }
+  ScatteringMedium& medium = this->Volume->Medium;
+  std::vector<float>().swap(medium.Scattering);
+  std::vector<glm::vec2>().swap(medium.Absorption);
+  medium.Geometry.releaseSurfaceDistance();
 }
 
 // The light scattered more than once (docs/design.md §3.10), solved on the
@@ -187,6 +198,7 @@ const ScatteringMedium& RenderSession::scatteringMedium()
 bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
 {
   this->ScatteredLight.reset();
+  const MediumRelease release(*this);
   const ScatteringMedium& medium = this->scatteringMedium();
   const std::optional<opal::ScatteredLight> field = solveScatteredLight(
     medium, scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
@@ -295,6 +307,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   const ScatteringMedium* medium = nullptr;
   std::optional<std::vector<double>> mine;
   std::exception_ptr failure;
+  const MediumRelease release(*this);
   try
   {
     this->cancelFrame();

@@ -211,6 +211,19 @@ private:
   void readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const;
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   const ScatteringMedium& scatteringMedium();
+  void releaseScatteringMedium();
+  // Releases the medium's fields when a solve ends, however it ends.
+  struct MediumRelease
+  {
+    explicit MediumRelease(RenderSession& session)
+      : Session(session)
+    {
+    }
+    ~MediumRelease() { this->Session.releaseScatteringMedium(); }
+    MediumRelease(const MediumRelease&) = delete;
+    MediumRelease& operator=(const MediumRelease&) = delete;
+    RenderSession& Session;
+  };
   bool scatteredLightServes(const FrameSetup& setup) const;
   static ScatteredLightRequest scatteredLightRequest(const FrameSetup& setup);
   void holdScatteredLight(const FrameSetup& setup, const opal::ScatteredLight& field);

@@ -26,6 +26,8 @@ public:
   // refusing values whose signs disagree with the inside bits (or count).
   explicit VolumeGeometry(const RenderVolume& volume, bool keepSurfaceDistance = true);
   void setSurfaceDistance(std::vector<float> values);
+  // Frees the host copy of SurfaceDistance (the inside bits and the apex stay).
+  void releaseSurfaceDistance() { std::vector<float>().swap(this->SurfaceDistance); }
   bool hasSurfaceDistance() const { return !this->SurfaceDistance.empty(); }
 
   // Whether the voxel centre nearest a model-frame point lies inside the
