@@ -1,6 +1,7 @@
 // The Voronoi domain layout and the correlated diameters (docs/design.md
 // §2.9): the bucketed site search equals a brute-force weighted-nearest-site
-// search; the cells fill the opal without gaps; each ordered cell is one
+// search; the layout's runs hold each voxel's site, and their adjacency is
+// the voxels' faces'; the cells fill the opal without gaps; each ordered cell is one
 // domain; the ordered share is OrderedFraction and ordered cells cluster; the
 // boundary mesh of each ordered cell is closed; pieces equal the whole run;
 // the diameter field's autocorrelation follows its closed form, and length 0
@@ -69,6 +70,57 @@ void checkSearchEqualsBruteForce()
       " points, " + std::to_string(differing) + " differ");
 }
 
+// The layout's runs, and the CellId array filled from them, hold each
+// voxel's nearest site (searched anew per voxel, -1 outside), and the
+// adjacency from the runs is that of a scan of every voxel's six faces.
+void checkRunsEqualVoxels(const opal::ModelParameters& p, const opal::BuiltVolume& v)
+{
+  opal::RandomSequence random(p.Seed, opal::RandomStream::VoronoiCells);
+  const std::vector<opal::VoronoiSite> sites = opal::drawVoronoiSites(p, random);
+  const opal::VoronoiSiteSearch search(sites, { -p.SemiAxes[0], 0.0, -p.SemiAxes[2] }, p.SemiAxes);
+  const opal::HalfEllipsoid shape(p.SemiAxes);
+  const opal::Grid& grid = v.VoxelGrid;
+  const opal::VoronoiCellRuns& runs = v.Layout.cellRuns();
+  std::vector<std::int32_t> cells(static_cast<std::size_t>(grid.voxelCount()));
+  long long differing = 0;
+  for (int k = 0; k < grid.Dimensions[2]; ++k)
+    for (int j = 0; j < grid.Dimensions[1]; ++j)
+      for (int i = 0; i < grid.Dimensions[0]; ++i)
+      {
+        const std::size_t at = static_cast<std::size_t>(grid.linearIndex(i, j, k));
+        const std::array<double, 3> x = grid.position(i, j, k);
+        cells[at] = shape.contains(x) ? search.nearest(x) : -1;
+        differing += runs.cellAt(i, j, k) != cells[at] || v.CellId[at] != cells[at] ? 1 : 0;
+      }
+  OPAL_CHECK(differing == 0, "the runs and CellId hold each voxel's nearest site, " + std::to_string(differing) +
+      " voxels differ");
+  OPAL_CHECK(runs.runCount() * 4 < cells.size(), "the runs are fewer than a quarter of the voxels: " +
+      std::to_string(runs.runCount()) + " for " + std::to_string(cells.size()));
+  std::vector<std::vector<int>> scanned(sites.size());
+  for (int k = 0; k < grid.Dimensions[2]; ++k)
+    for (int j = 0; j < grid.Dimensions[1]; ++j)
+      for (int i = 0; i < grid.Dimensions[0]; ++i)
+        for (const std::array<int, 3>& n : { std::array<int, 3>{ i + 1, j, k }, std::array<int, 3>{ i, j + 1, k },
+               std::array<int, 3>{ i, j, k + 1 } })
+        {
+          const std::int32_t a = cells[static_cast<std::size_t>(grid.linearIndex(i, j, k))];
+          const std::int32_t b =
+            grid.contains(n[0], n[1], n[2]) ? cells[static_cast<std::size_t>(grid.linearIndex(n[0], n[1], n[2]))] : -1;
+          if (a >= 0 && b >= 0 && a != b)
+          {
+            scanned[static_cast<std::size_t>(a)].push_back(b);
+            scanned[static_cast<std::size_t>(b)].push_back(a);
+          }
+        }
+  for (std::vector<int>& list : scanned)
+  {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  OPAL_CHECK(opal::voronoiAdjacency(runs, static_cast<int>(sites.size())) == scanned,
+    "the adjacency of the runs is that of the voxels' faces");
+}
+
 // Cells fill the opal; a cell is wholly ordered (one domain) or wholly body.
 void checkCellsFillTheOpal(const opal::BuiltVolume& v)
 {
@@ -96,7 +148,7 @@ void checkPercolation(const opal::ModelParameters& p)
 {
   const auto v = opal::buildVolume(p);
   const opal::DomainLayout& layout = v->Layout;
-  const auto neighbours = opal::voronoiAdjacency(v->VoxelGrid, layout.cellIds(), layout.cellCount());
+  const auto neighbours = opal::voronoiAdjacency(layout.cellRuns(), layout.cellCount());
   int present = 0, ordered = 0;
   double orderedNeighbourShare = 0;
   for (int c = 0; c < layout.cellCount(); ++c)
@@ -188,6 +240,7 @@ int TestOpalVoronoiGrains(int, char*[])
   if (v)
   {
     checkCellsFillTheOpal(*v);
+    checkRunsEqualVoxels(p, *v);
     checkBoundariesClose(*v);
   }
   checkPercolation(voronoiModel(600, 0.1, 0.3));

@@ -77,31 +77,30 @@ CellBoundaryMesh orderedCellBoundaries(const Grid& grid, const DomainLayout& lay
     return mesh;
   }
   CornerIndex corners(grid, mesh);
-  const std::vector<std::int32_t>& cells = layout.cellIds();
+  const VoronoiCellRuns& cells = layout.cellRuns();
   for (int k = 0; k < grid.Dimensions[2]; ++k)
   {
     for (int j = 0; j < grid.Dimensions[1]; ++j)
     {
-      for (int i = 0; i < grid.Dimensions[0]; ++i)
+      const VoronoiCellRuns::Run* rowEnd = cells.rowEnd(j, k);
+      for (const VoronoiCellRuns::Run* run = cells.rowBegin(j, k); run != rowEnd; ++run)
       {
-        const std::int32_t cell = cells[static_cast<std::size_t>(grid.linearIndex(i, j, k))];
-        const int domain = cell >= 0 ? layout.cellDomains()[static_cast<std::size_t>(cell)] : -1;
-        if (domain < 0)
+        const int domain = layout.cellDomain(run->Cell);
+        for (int i = run->FirstX; domain >= 0 && i < cells.runEnd(run, rowEnd); ++i)
         {
-          continue;
-        }
-        const std::array<int, 3> ijk{ i, j, k };
-        for (int a = 0; a < 3; ++a)
-        {
-          for (int sign : { -1, 1 })
+          const std::array<int, 3> ijk{ i, j, k };
+          for (int a = 0; a < 3; ++a)
           {
-            std::array<int, 3> next = ijk;
-            next[a] += sign;
-            const bool sameCell = grid.contains(next[0], next[1], next[2]) &&
-              cells[static_cast<std::size_t>(grid.linearIndex(next[0], next[1], next[2]))] == cell;
-            if (!sameCell)
+            for (int sign : { -1, 1 })
             {
-              addFace(corners, mesh, ijk, a, sign, domain);
+              std::array<int, 3> next = ijk;
+              next[a] += sign;
+              const bool sameCell =
+                grid.contains(next[0], next[1], next[2]) && cells.cellAt(next[0], next[1], next[2]) == run->Cell;
+              if (!sameCell)
+              {
+                addFace(corners, mesh, ijk, a, sign, domain);
+              }
             }
           }
         }

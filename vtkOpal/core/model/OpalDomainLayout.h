@@ -7,6 +7,7 @@
 
 #include "OpalGrid.h"
 #include "OpalModelParameters.h"
+#include "OpalVoronoiCells.h"
 
 #include <array>
 #include <cstdint>
@@ -57,25 +58,21 @@ public:
 
   // Polygons: the diffraction voxels sorted by global index (x fastest), a
   // row of the grid a contiguous run. Empty for Voronoi cells: a voxel's
-  // domain is its cell's (cellDomainAt), and a list of the ordered voxels of
+  // domain is its cell's (cellDomain), and a list of the ordered voxels of
   // the whole grid would cost every process 16 bytes each.
   const std::vector<DomainVoxel>& voxels() const { return this->Voxels; }
 
   // First diffraction voxel at or after the global index.
   std::vector<DomainVoxel>::const_iterator lowerBound(std::int64_t index) const;
 
-  // Voronoi: the cell of every voxel of the grid (x fastest, -1 outside the
-  // opal) and each cell's domain (-1: disordered). Empty for polygons.
-  bool hasCells() const { return !this->CellIds.empty(); }
-  const std::vector<std::int32_t>& cellIds() const { return this->CellIds; }
+  // Voronoi: the cell of every voxel of the grid (-1 outside the opal), as
+  // runs along x, and each cell's domain (-1: disordered). Empty for polygons.
+  bool hasCells() const { return !this->CellRuns.empty(); }
+  const VoronoiCellRuns& cellRuns() const { return this->CellRuns; }
   const std::vector<int>& cellDomains() const { return this->CellDomains; }
   int cellCount() const { return static_cast<int>(this->CellDomains.size()); }
-  // Voronoi: the domain of the voxel at a global index (-1: none).
-  int cellDomainAt(std::int64_t index) const
-  {
-    const std::int32_t cell = this->CellIds[static_cast<std::size_t>(index)];
-    return cell >= 0 ? this->CellDomains[static_cast<std::size_t>(cell)] : -1;
-  }
+  // Voronoi: the domain of a cell (-1: none, or no cell).
+  int cellDomain(std::int32_t cell) const { return cell >= 0 ? this->CellDomains[static_cast<std::size_t>(cell)] : -1; }
 
 private:
   static DomainLayout buildPolygons(const ModelParameters& parameters, const std::function<bool(double)>& progress);
@@ -84,7 +81,7 @@ private:
 
   std::vector<Domain> Domains;
   std::vector<DomainVoxel> Voxels;
-  std::vector<std::int32_t> CellIds;
+  VoronoiCellRuns CellRuns;
   std::vector<int> CellDomains;
   int Requested = 0;
   bool Aborted = false;

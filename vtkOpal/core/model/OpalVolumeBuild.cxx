@@ -81,14 +81,15 @@ std::string volumeMemoryError(const ModelParameters& parameters, VolumeArrays ar
     static_cast<std::uint64_t>(parameters.Dimensions[1]) * static_cast<std::uint64_t>(parameters.Dimensions[2]);
   const bool piece = pieceVoxels > 0 && pieceVoxels < gridVoxels;
   const std::uint64_t voxels = piece ? pieceVoxels : gridVoxels;
-  // A Voronoi layout keeps the cell of every voxel of the grid (4 bytes);
-  // the piece's CellId array, with every array, its own voxels' (4 bytes).
+  // A Voronoi layout keeps the cells of the grid's voxels as runs
+  // (voronoiCellRunBytes); the piece's CellId array, with every array, its
+  // own voxels' (4 bytes).
   const bool voronoi = parameters.DomainLayout == DomainLayoutKind::Voronoi;
   const std::uint64_t absorptionBytes = parameters.absorbs() ? 4 + 4 : 0;
   const bool all = arrays == VolumeArrays::All;
   const std::uint64_t arrayBytes = all ? VolumeBytesPerVoxel : RenderVolumeBytesPerVoxel;
-  const std::uint64_t needed =
-    voxels * (arrayBytes + absorptionBytes + (voronoi && all ? 4 : 0)) + gridVoxels * (voronoi ? 4 : 0);
+  const std::uint64_t needed = voxels * (arrayBytes + absorptionBytes + (voronoi && all ? 4 : 0)) +
+    (voronoi ? voronoiCellRunBytes(parameters.Dimensions, parameters.VoronoiCellCount) : 0);
   const std::uint64_t available = physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {

@@ -62,6 +62,9 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
   // voxel's domain is its cell's).
   auto domainVoxel = this->Layout.lowerBound(grid.linearIndex(extent[0], j, k));
   const auto domainEnd = this->Layout.voxels().end();
+  const bool cells = this->Layout.hasCells();
+  const VoronoiCellRuns::Run* run = cells ? this->Layout.cellRuns().runAt(extent[0], j, k) : nullptr;
+  const VoronoiCellRuns::Run* rowEnd = cells ? this->Layout.cellRuns().rowEnd(j, k) : nullptr;
   for (int i = extent[0]; i <= extent[1]; ++i)
   {
     const std::int64_t o = rowStart + (i - extent[0]);
@@ -75,15 +78,19 @@ void VolumeFiller::fillRow(const std::array<int, 6>& extent, int j, int k, const
       : this->Shape.signedDistance(grid.position(std::min(i, mirror), j, k));
     out.SurfaceDistance[o] = static_cast<float>(distance);
     clearVoxel(o, out);
+    while (cells && run + 1 != rowEnd && run[1].FirstX <= i)
+    {
+      ++run;
+    }
     if (out.CellId)
     {
-      out.CellId[o] = this->Layout.cellIds()[static_cast<std::size_t>(globalIndex)];
+      out.CellId[o] = run->Cell;
     }
     while (domainVoxel != domainEnd && domainVoxel->Index < globalIndex)
     {
       ++domainVoxel;
     }
-    const int domain = this->Layout.hasCells() ? this->Layout.cellDomainAt(globalIndex)
+    const int domain = cells ? this->Layout.cellDomain(run->Cell)
       : domainVoxel != domainEnd && domainVoxel->Index == globalIndex ? domainVoxel->DomainId
                                                                       : -1;
     if (domain >= 0)

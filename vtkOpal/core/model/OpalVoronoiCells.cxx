@@ -216,62 +216,138 @@ int VoronoiSiteSearch::nearest(const std::array<double, 3>& x) const
   return best;
 }
 
-std::vector<std::int32_t> assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape,
-  const VoronoiSiteSearch& search, const std::function<bool(double)>& progress)
+VoronoiCellRuns::VoronoiCellRuns(
+  const std::array<int, 3>& dimensions, std::vector<std::int64_t> rowStart, std::vector<Run> runs)
+  : Dimensions(dimensions)
+  , RowStart(std::move(rowStart))
+  , Runs(std::move(runs))
 {
-  std::vector<std::int32_t> cells(static_cast<std::size_t>(grid.voxelCount()), -1);
-  const int nz = grid.Dimensions[2];
+}
+
+const VoronoiCellRuns::Run* VoronoiCellRuns::runAt(int i, int j, int k) const
+{
+  const Run* end = this->rowEnd(j, k);
+  // The last run starting at or before i (the first starts at 0).
+  return std::upper_bound(this->rowBegin(j, k), end, i, [](int x, const Run& run) { return x < run.FirstX; }) - 1;
+}
+
+namespace
+{
+// A row's cells as runs, appended to `runs`.
+void appendRuns(const std::vector<std::int32_t>& line, std::vector<VoronoiCellRuns::Run>& runs)
+{
+  for (std::size_t i = 0; i < line.size(); ++i)
+  {
+    if (i == 0 || line[i] != line[i - 1])
+    {
+      runs.push_back({ static_cast<std::int32_t>(i), line[i] });
+    }
+  }
+}
+} // namespace
+
+VoronoiCellRuns assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape, const VoronoiSiteSearch& search,
+  const std::function<bool(double)>& progress)
+{
+  const int nx = grid.Dimensions[0], ny = grid.Dimensions[1], nz = grid.Dimensions[2];
+  std::vector<std::int64_t> rowStart(1, 0);
+  rowStart.reserve(static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz) + 1);
+  std::vector<VoronoiCellRuns::Run> runs;
   const int chunk = std::max(1, nz / 20);
   for (int k0 = 0; k0 < nz; k0 += chunk)
   {
     const int k1 = std::min(nz, k0 + chunk);
+    // Each layer's rows encoded apart, then appended in order.
+    std::vector<std::vector<VoronoiCellRuns::Run>> layers(static_cast<std::size_t>(k1 - k0));
+    std::vector<std::vector<std::int64_t>> layerRowEnds(layers.size());
     parallelFor(k0, k1, [&](int begin, int end) {
+      std::vector<std::int32_t> line(static_cast<std::size_t>(nx));
       for (int k = begin; k < end; ++k)
       {
-        for (int j = 0; j < grid.Dimensions[1]; ++j)
+        const std::size_t layer = static_cast<std::size_t>(k - k0);
+        for (int j = 0; j < ny; ++j)
         {
-          for (int i = 0; i < grid.Dimensions[0]; ++i)
+          for (int i = 0; i < nx; ++i)
           {
             const std::array<double, 3> x = grid.position(i, j, k);
-            if (shape.contains(x))
-            {
-              cells[static_cast<std::size_t>(grid.linearIndex(i, j, k))] = search.nearest(x);
-            }
+            line[static_cast<std::size_t>(i)] = shape.contains(x) ? search.nearest(x) : -1;
           }
+          appendRuns(line, layers[layer]);
+          layerRowEnds[layer].push_back(static_cast<std::int64_t>(layers[layer].size()));
         }
       }
     });
+    for (std::size_t layer = 0; layer < layers.size(); ++layer)
+    {
+      const std::int64_t offset = static_cast<std::int64_t>(runs.size());
+      runs.insert(runs.end(), layers[layer].begin(), layers[layer].end());
+      for (std::int64_t rowEnd : layerRowEnds[layer])
+      {
+        rowStart.push_back(offset + rowEnd);
+      }
+    }
     if (progress && !progress(static_cast<double>(k1) / nz))
     {
       return {};
     }
   }
-  return cells;
+  runs.shrink_to_fit();
+  return VoronoiCellRuns(grid.Dimensions, std::move(rowStart), std::move(runs));
 }
 
-std::vector<std::vector<int>> voronoiAdjacency(const Grid& grid, const std::vector<std::int32_t>& cells, int cellCount)
+std::uint64_t voronoiCellRunBytes(const std::array<int, 3>& dimensions, int cellCount)
+{
+  const double voxels = static_cast<double>(dimensions[0]) * dimensions[1] * dimensions[2];
+  const double cellsAcross = std::min(1.0, std::cbrt(std::max(cellCount, 1) / voxels)) * dimensions[0];
+  const double rows = static_cast<double>(dimensions[1]) * dimensions[2];
+  return static_cast<std::uint64_t>(rows * ((cellsAcross + 2) * sizeof(VoronoiCellRuns::Run) + sizeof(std::int64_t)));
+}
+
+namespace
+{
+// Calls link(a, b) for the cells of every pair of overlapping runs of two rows.
+template <typename Link>
+void linkOverlappingRuns(const VoronoiCellRuns& cells, int j0, int k0, int j1, int k1, Link&& link)
+{
+  const VoronoiCellRuns::Run *a = cells.rowBegin(j0, k0), *aEnd = cells.rowEnd(j0, k0);
+  const VoronoiCellRuns::Run *b = cells.rowBegin(j1, k1), *bEnd = cells.rowEnd(j1, k1);
+  while (a != aEnd && b != bEnd)
+  {
+    link(a->Cell, b->Cell);
+    const int aStop = cells.runEnd(a, aEnd), bStop = cells.runEnd(b, bEnd);
+    a += aStop <= bStop ? 1 : 0;
+    b += bStop <= aStop ? 1 : 0;
+  }
+}
+} // namespace
+
+std::vector<std::vector<int>> voronoiAdjacency(const VoronoiCellRuns& cells, int cellCount)
 {
   std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(cellCount));
-  const std::int64_t strides[3] = { 1, grid.Dimensions[0],
-    static_cast<std::int64_t>(grid.Dimensions[0]) * grid.Dimensions[1] };
-  for (int k = 0; k < grid.Dimensions[2]; ++k)
-  {
-    for (int j = 0; j < grid.Dimensions[1]; ++j)
+  const auto link = [&neighbours](std::int32_t here, std::int32_t there) {
+    if (here >= 0 && there >= 0 && here != there)
     {
-      for (int i = 0; i < grid.Dimensions[0]; ++i)
+      neighbours[static_cast<std::size_t>(here)].push_back(there);
+      neighbours[static_cast<std::size_t>(there)].push_back(here);
+    }
+  };
+  const std::array<int, 3>& dims = cells.dimensions();
+  for (int k = 0; k < dims[2]; ++k)
+  {
+    for (int j = 0; j < dims[1]; ++j)
+    {
+      const VoronoiCellRuns::Run* begin = cells.rowBegin(j, k);
+      for (const VoronoiCellRuns::Run* run = begin + 1; run < cells.rowEnd(j, k); ++run)
       {
-        const std::int64_t v = grid.linearIndex(i, j, k);
-        const int here = cells[static_cast<std::size_t>(v)];
-        const int ijk[3] = { i, j, k };
-        for (int a = 0; a < 3; ++a)
-        {
-          const int there = ijk[a] + 1 < grid.Dimensions[a] ? cells[static_cast<std::size_t>(v + strides[a])] : -1;
-          if (here >= 0 && there >= 0 && here != there)
-          {
-            neighbours[static_cast<std::size_t>(here)].push_back(there);
-            neighbours[static_cast<std::size_t>(there)].push_back(here);
-          }
-        }
+        link(run[-1].Cell, run->Cell);
+      }
+      if (j + 1 < dims[1])
+      {
+        linkOverlappingRuns(cells, j, k, j + 1, k, link);
+      }
+      if (k + 1 < dims[2])
+      {
+        linkOverlappingRuns(cells, j, k, j, k + 1, link);
       }
     }
   }

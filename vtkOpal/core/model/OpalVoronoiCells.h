@@ -65,13 +65,61 @@ private:
   std::vector<int> Candidates;
 };
 
-// The cell of every voxel of the grid (x fastest), -1 outside the opal.
+// The cell of every voxel of the grid (-1 outside the opal), run-length
+// encoded along x: a row's run of one cell's voxels is one (first x, cell)
+// pair. Cells tens of voxels across then take a fraction of a byte per voxel,
+// where an id per voxel took 4 (docs/design.md §2.9).
+class VoronoiCellRuns
+{
+public:
+  struct Run
+  {
+    std::int32_t FirstX = 0;
+    std::int32_t Cell = -1;
+  };
+
+  VoronoiCellRuns() = default;
+  // rowStart[r], r = j + ny k: the first of row r's runs in `runs`, the last
+  // entry their count; each row's runs start at x = 0, increase in x, and
+  // two in a row never hold the same cell.
+  VoronoiCellRuns(const std::array<int, 3>& dimensions, std::vector<std::int64_t> rowStart, std::vector<Run> runs);
+
+  bool empty() const { return this->RowStart.empty(); }
+  const std::array<int, 3>& dimensions() const { return this->Dimensions; }
+  // Row (j, k)'s runs, [rowBegin, rowEnd).
+  const Run* rowBegin(int j, int k) const { return this->Runs.data() + this->RowStart[this->rowOf(j, k)]; }
+  const Run* rowEnd(int j, int k) const { return this->Runs.data() + this->RowStart[this->rowOf(j, k) + 1]; }
+  // The run of row (j, k) that holds voxel i.
+  const Run* runAt(int i, int j, int k) const;
+  std::int32_t cellAt(int i, int j, int k) const { return this->runAt(i, j, k)->Cell; }
+  // Where the run ends: the next run's first x, or the row's end.
+  int runEnd(const Run* run, const Run* rowEnd) const { return run + 1 != rowEnd ? run[1].FirstX : this->Dimensions[0]; }
+  std::size_t runCount() const { return this->Runs.size(); }
+
+private:
+  std::size_t rowOf(int j, int k) const
+  {
+    return static_cast<std::size_t>(j) + static_cast<std::size_t>(this->Dimensions[1]) * static_cast<std::size_t>(k);
+  }
+
+  std::array<int, 3> Dimensions{};
+  std::vector<std::int64_t> RowStart;
+  std::vector<Run> Runs;
+};
+
+// The cell of every voxel of the grid, -1 outside the opal.
 // progress(fraction) may return false to abort: then the result is empty.
-std::vector<std::int32_t> assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape,
-  const VoronoiSiteSearch& search, const std::function<bool(double)>& progress = nullptr);
+VoronoiCellRuns assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape, const VoronoiSiteSearch& search,
+  const std::function<bool(double)>& progress = nullptr);
+
+// About the bytes of a grid's runs for `cellCount` cells: a row crosses about
+// its length over a cell's diameter of them (at least one voxel), plus the
+// outside on either side.
+std::uint64_t voronoiCellRunBytes(const std::array<int, 3>& dimensions, int cellCount);
 
 // Each cell's neighbours (sorted): two cells are adjacent where a voxel of
-// each shares a face.
-std::vector<std::vector<int>> voronoiAdjacency(const Grid& grid, const std::vector<std::int32_t>& cells, int cellCount);
+// each shares a face: along x, consecutive runs of a row; along y and z,
+// overlapping runs of neighbouring rows.
+std::vector<std::vector<int>> voronoiAdjacency(const VoronoiCellRuns& cells, int cellCount);
 
 } // namespace opal

@@ -17,14 +17,21 @@ namespace
 // Share of the layout's progress spent assigning voxels to cells.
 constexpr double AssignShare = 0.9;
 
-std::vector<std::uint8_t> cellsWithVoxels(const std::vector<std::int32_t>& cells, int cellCount)
+std::vector<std::uint8_t> cellsWithVoxels(const VoronoiCellRuns& cells, int cellCount)
 {
   std::vector<std::uint8_t> has(static_cast<std::size_t>(cellCount), 0);
-  for (std::int32_t c : cells)
+  const std::array<int, 3>& dims = cells.dimensions();
+  for (int k = 0; k < dims[2]; ++k)
   {
-    if (c >= 0)
+    for (int j = 0; j < dims[1]; ++j)
     {
-      has[static_cast<std::size_t>(c)] = 1;
+      for (const VoronoiCellRuns::Run* run = cells.rowBegin(j, k); run != cells.rowEnd(j, k); ++run)
+      {
+        if (run->Cell >= 0)
+        {
+          has[static_cast<std::size_t>(run->Cell)] = 1;
+        }
+      }
     }
   }
   return has;
@@ -53,16 +60,16 @@ DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::fun
   RandomSequence random(p.Seed, RandomStream::VoronoiCells);
   const std::vector<VoronoiSite> sites = drawVoronoiSites(p, random);
   const VoronoiSiteSearch search(sites, { -p.SemiAxes[0], 0.0, -p.SemiAxes[2] }, p.SemiAxes);
-  layout.CellIds = assignVoronoiCells(grid, shape, search,
+  layout.CellRuns = assignVoronoiCells(grid, shape, search,
     [&progress](double f) { return !progress || progress(AssignShare * f); });
-  if (layout.CellIds.empty())
+  if (layout.CellRuns.empty())
   {
     layout.Aborted = true;
     return layout;
   }
   const int cellCount = static_cast<int>(sites.size());
-  const std::vector<std::uint8_t> ordered = orderedCells(voronoiAdjacency(grid, layout.CellIds, cellCount),
-    cellsWithVoxels(layout.CellIds, cellCount), p.OrderedFraction, random);
+  const std::vector<std::uint8_t> ordered = orderedCells(voronoiAdjacency(layout.CellRuns, cellCount),
+    cellsWithVoxels(layout.CellRuns, cellCount), p.OrderedFraction, random);
   layout.CellDomains.assign(static_cast<std::size_t>(cellCount), -1);
   for (int c = 0; c < cellCount; ++c)
   {
