@@ -1,5 +1,6 @@
 #include "OpalCellBoundaries.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace opal
@@ -8,24 +9,38 @@ namespace opal
 namespace
 {
 // Voxel corners are the nodes of a lattice one larger than the grid each
-// way; each gets its point the first time a face uses it (a dense table: as
-// large as the volume's int arrays, and much faster than hashing).
+// way; each gets its point the first time a face uses it. The faces of a
+// layer of voxels (z = k) use the corner planes k and k + 1 only, and the
+// layers go in order, so two dense planes (much faster than hashing) give
+// the ids a table of every corner would, for a plane's bytes instead of the
+// volume's.
 class CornerIndex
 {
 public:
   CornerIndex(const Grid& grid, CellBoundaryMesh& mesh)
     : VoxelGrid(grid)
     , Mesh(mesh)
-    , Ids(static_cast<std::size_t>(grid.Dimensions[0] + 1) * static_cast<std::size_t>(grid.Dimensions[1] + 1) *
-          static_cast<std::size_t>(grid.Dimensions[2] + 1), -1)
+    , PlaneSize(static_cast<std::size_t>(grid.Dimensions[0] + 1) * static_cast<std::size_t>(grid.Dimensions[1] + 1))
+    , Planes{ std::vector<int>(PlaneSize, -1), std::vector<int>(PlaneSize, -1) }
   {
+  }
+
+  // The faces of voxel layer k come next: planes k and k + 1.
+  void startLayer(int k)
+  {
+    if (k == this->Low + 1)
+    {
+      std::swap(this->Planes[0], this->Planes[1]);
+      std::fill(this->Planes[1].begin(), this->Planes[1].end(), -1);
+      this->Low = k;
+    }
   }
 
   int at(const std::array<int, 3>& corner)
   {
-    const std::size_t key = static_cast<std::size_t>(corner[0]) +
-      (this->VoxelGrid.Dimensions[0] + 1ULL) * (corner[1] + (this->VoxelGrid.Dimensions[1] + 1ULL) * corner[2]);
-    int& id = this->Ids[key];
+    const std::size_t key =
+      static_cast<std::size_t>(corner[0]) + (this->VoxelGrid.Dimensions[0] + 1ULL) * static_cast<std::size_t>(corner[1]);
+    int& id = this->Planes[static_cast<std::size_t>(corner[2] - this->Low)][key];
     if (id < 0)
     {
       id = static_cast<int>(this->Mesh.Points.size());
@@ -42,7 +57,9 @@ public:
 private:
   const Grid& VoxelGrid;
   CellBoundaryMesh& Mesh;
-  std::vector<int> Ids;
+  std::size_t PlaneSize;
+  std::array<std::vector<int>, 2> Planes; // corner planes Low and Low + 1
+  int Low = 0;
 };
 
 // The face of voxel ijk on the side `sign` (+1 or -1) of axis a, facing out.
@@ -80,6 +97,7 @@ CellBoundaryMesh orderedCellBoundaries(const Grid& grid, const DomainLayout& lay
   const VoronoiCellRuns& cells = layout.cellRuns();
   for (int k = 0; k < grid.Dimensions[2]; ++k)
   {
+    corners.startLayer(k);
     for (int j = 0; j < grid.Dimensions[1]; ++j)
     {
       const VoronoiCellRuns::Run* rowEnd = cells.rowEnd(j, k);
