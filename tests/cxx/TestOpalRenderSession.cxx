@@ -12,6 +12,7 @@
 #include "OpalVolumeBuild.h"
 #include "OpalVulkanError.h"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <stdexcept>
@@ -93,13 +94,27 @@ void checkScatteredLightStages(opal::RenderSession& session, opal::RenderParamet
 // ranks share the solve, docs/design.md §8.1), by a session that has rendered
 // nothing yet (a rank's first update), then the frame: the image a frame's
 // own solve gives, pixel for pixel. (Its field per voxel was once written
-// before the session's buffers were bound, so not at all.)
+// before the session's buffers were bound, so not at all.) Either way the
+// progress only rises, to 1 (the frame's light pass and solve once both
+// reported from 0 to 0.2, as did the shared solve and then the frame).
+bool risesToOne(const std::vector<double>& seen)
+{
+  return !seen.empty() && std::is_sorted(seen.begin(), seen.end()) && seen.back() == 1.0;
+}
+
 void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& volume, opal::RenderParameters p)
 {
   p.ScatteringOrders = opal::ScatteringOrdersKind::All;
   p.ScatteringPhotons = 2000;
   p.LightPosition = { 2.0, 60.0, 1.0 };
-  const opal::RenderImage own = rendered.render(p).Image;
+  std::vector<double> seen;
+  const opal::RenderProgress record = [&seen](double fraction) {
+    seen.push_back(fraction);
+    return true;
+  };
+  const opal::RenderImage own = rendered.render(p, record).Image;
+  OPAL_CHECK(risesToOne(seen), "a frame's progress through its light pass and solve only rises, to 1");
+  seen.clear();
   opaltest::SceneRenderer fresh(opal::VulkanOptions{}); // a session that has rendered nothing, as a rank's first update
   opal::RenderSession& session = fresh.Session;
   session.setVolume(volume);
@@ -111,11 +126,13 @@ void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& v
       [&shares, share](const std::optional<std::vector<double>>& mine) {
         shares[static_cast<std::size_t>(share)] = *mine;
         return share == 0 ? std::optional<std::vector<std::vector<double>>>(shares) : std::nullopt;
-      });
+      },
+      share == 0 ? record : nullptr);
     OPAL_CHECK(solved == (share == 0), "share " + std::to_string(share) + " of a solve ahead of its frame");
   }
-  const opal::RenderFrame ahead = session.render(frame);
+  const opal::RenderFrame ahead = session.render(frame, record);
   OPAL_CHECK(identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
+  OPAL_CHECK(risesToOne(seen), "the progress of a solve ahead of its frame, then the frame's, only rises, to 1");
 }
 
 // Where the device's budget cannot hold the every-order field per voxel (16

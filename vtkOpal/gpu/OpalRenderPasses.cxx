@@ -71,7 +71,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
     const int swept = std::min(layersPerSubmit, top + 1);
     this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
     top -= swept;
-    if (!progress.report(0.2 * (layers - 1 - top) / layers))
+    if (!progress.stageDone(static_cast<double>(layers - 1 - top) / layers))
     {
       return false;
     }
@@ -83,7 +83,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
   return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-    [&progress](double done) { return progress.report(0.2 * done); });
+    [&progress](double done) { return progress.stageDone(done); });
 }
 
 // `pass` (a light pass's mode over voxel ranges) over every voxel, in
@@ -201,7 +201,7 @@ bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progres
   const MediumRelease release(*this);
   const ScatteringMedium& medium = this->scatteringMedium();
   const std::optional<opal::ScatteredLight> field = solveScatteredLight(
-    medium, scatteredLightRequest(setup), [&progress](double done) { return progress.report(0.2 * done); });
+    medium, scatteredLightRequest(setup), [&progress](double done) { return progress.stageDone(done); });
   if (!field)
   {
     return false;
@@ -318,9 +318,10 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     }
     setup = this->setUpFrame(frame);
     Progress progress(callback);
+    progress.stage(0.0, FrameLightShare); // the frame's light pass then reports none (renderFrame)
     medium = &this->scatteringMedium();
     mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares,
-      [&progress](double done) { return progress.report(0.2 * done); });
+      [&progress](double done) { return progress.stageDone(done); });
   }
   catch (...)
   {
@@ -629,7 +630,7 @@ bool RenderSession::measureExposure(const FrameSetup& setup, Progress& progress,
 {
   const std::array<int, 2>& size = setup.Thumbnail;
   // One ray per pixel: the thumbnail's median needs no edges.
-  if (!this->marchRegion(setup, MarchTarget{ size, { 0, 0, size[0], size[1] }, false, 1 }, progress, 0.2, 0.25))
+  if (!this->marchRegion(setup, MarchTarget{ size, { 0, 0, size[0], size[1] }, false, 1 }, progress, FrameLightShare, 0.25))
   {
     return false;
   }

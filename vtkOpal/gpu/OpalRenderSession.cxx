@@ -449,6 +449,11 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   Progress progress(callback);
 
   const auto lightStart = Clock::now();
+  // The first FrameLightShare of the progress: the light pass, and half of it
+  // the every-order solve where the frame runs it; a solve the processes
+  // shared ahead of the frame reported it all (solveScatteredLightShared).
+  const bool solves = scattersEveryOrder(setup.Parameters) && !this->scatteredLightServes(setup);
+  progress.stage(sharedSolveSeconds >= 0 ? FrameLightShare : 0.0, FrameLightShare * (solves ? 0.5 : 1.0));
   // The light field holds a light in the model's frame: a new camera alone keeps it.
   frame.Ran.LightPass = !(this->LightField && *this->LightField == lightFieldKey(setup));
   if (frame.Ran.LightPass && !this->runLightPass(setup, progress))
@@ -457,6 +462,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   }
   this->runShadowTable(setup);
   timings.LightPass = secondsSince(lightStart);
+  progress.stage(FrameLightShare * 0.5, FrameLightShare);
   if (!this->prepareScatteredLight(setup, sharedSolveSeconds, progress, frame))
   {
     return frame;

@@ -35,6 +35,9 @@ inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
   const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
   return sizeof(gpu::VoxelCell) + surfaceDistance + lightField + (absorbs ? sizeof(gpu::vec2) + lightField : 0);
 }
+// A frame's progress before its march: the light pass and the every-order
+// solve (renderFrame), then the exposure's thumbnail up to 0.25.
+constexpr double FrameLightShare = 0.2;
 // The image buffers' bytes per pixel on the device (prepareFrameBuffers):
 // XYZ, Bragg and mirror images, highlight and edge queues, the edge pixels'
 // sums, Radiance and RGB.
@@ -175,14 +178,24 @@ struct RenderSession::FrameSetup
 
 // The caller's progress over the stages of a frame: light pass 20%, march
 // 75%, colour 5%. False once the caller asked to abort.
+// A frame's progress: the frame's fraction done (report), or a stage's
+// (stageDone) placed in the window the frame gave it (stage), so that the
+// fraction the caller sees only rises, whichever stages run.
 class RenderSession::Progress
 {
 public:
   explicit Progress(const RenderProgress& callback) : Callback(callback) {}
   bool report(double fraction) { return !this->Callback || this->Callback(fraction); }
+  void stage(double from, double to)
+  {
+    this->From = from;
+    this->To = to;
+  }
+  bool stageDone(double done) { return this->report(this->From + (this->To - this->From) * done); }
 
 private:
   const RenderProgress& Callback;
+  double From = 0.0, To = 1.0;
 };
 
 } // namespace opal
