@@ -169,6 +169,16 @@ void VulkanBuffer::upload(const void* source, std::uint64_t bytes)
   });
 }
 
+void VulkanBuffer::inStagingRounds(std::uint64_t bytes, BufferPlacement placement, const std::string& what,
+  const std::function<void(std::uint64_t first, std::uint64_t count, VulkanBuffer& staging)>& round) const
+{
+  VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + what, placement);
+  for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
+  {
+    round(first, std::min(bytes - first, FillRoundBytes), staging);
+  }
+}
+
 void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
 {
   if (this->Mapped || bytes == 0)
@@ -179,21 +189,16 @@ void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
     }
     return;
   }
-  VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + " (staging)", BufferPlacement::HostVisible);
-  for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
-  {
-    const std::uint64_t count = std::min(bytes - first, FillRoundBytes);
-    write(first, count, staging.Mapped);
-    this->Context.submitAndWait([&](VkCommandBuffer commands) {
-      const VkBufferCopy region{ 0, first, count };
-      vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
-      auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-      barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
-        &barrier, 0, nullptr, 0, nullptr);
+  this->inStagingRounds(bytes, BufferPlacement::HostVisible, " (staging)",
+    [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
+      write(first, count, staging.Mapped);
+      this->Context.submitAndWait([&](VkCommandBuffer commands) {
+        const VkBufferCopy region{ 0, first, count };
+        vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
+        barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+      });
     });
-  }
 }
 
 void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
@@ -206,22 +211,19 @@ void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
     }
     return;
   }
-  VulkanBuffer staging(this->Context, std::min(bytes, FillRoundBytes), this->What + " (read-back staging)",
-    BufferPlacement::HostReadback);
-  for (std::uint64_t first = 0; first < bytes; first += FillRoundBytes)
-  {
-    const std::uint64_t count = std::min(bytes - first, FillRoundBytes);
-    this->Context.submitAndWait([&](VkCommandBuffer commands) {
-      barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_TRANSFER_READ_BIT);
-      const VkBufferCopy region{ first, 0, count };
-      vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
-      barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-        VK_ACCESS_HOST_READ_BIT);
+  this->inStagingRounds(bytes, BufferPlacement::HostReadback, " (read-back staging)",
+    [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
+      this->Context.submitAndWait([&](VkCommandBuffer commands) {
+        barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+          VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy region{ first, 0, count };
+        vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
+        barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+          VK_ACCESS_HOST_READ_BIT);
+      });
+      reader(first, count, staging.Mapped);
     });
-    reader(first, count, staging.Mapped);
-  }
 }
 
 } // namespace opal

@@ -81,6 +81,10 @@ public:
 
 private:
   void allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what);
+  // `bytes` of the buffer in rounds of at most FillRoundBytes through one
+  // staging buffer of `placement` (fill, read): round(first, count, staging).
+  void inStagingRounds(std::uint64_t bytes, BufferPlacement placement, const std::string& what,
+    const std::function<void(std::uint64_t first, std::uint64_t count, VulkanBuffer& staging)>& round) const;
 
   VulkanContext& Context;
   std::uint64_t Size;
