@@ -84,6 +84,39 @@ void addFace(CornerIndex& corners, CellBoundaryMesh& mesh, const std::array<int,
   mesh.Faces.push_back(face);
   mesh.FaceDomain.push_back(domain);
 }
+
+// A row's runs along x.
+struct RowRuns
+{
+  const VoronoiCellRuns::Run* Begin;
+  const VoronoiCellRuns::Run* End;
+};
+
+// Whether voxel i + sign of the row (i in `run`, which ends before x = end)
+// lies in the run's cell: inside the run, or in a neighbouring run of the
+// same cell; no search, as the row's runs are at hand.
+bool besideAlongRow(const RowRuns& row, const VoronoiCellRuns::Run* run, int end, int i, int sign)
+{
+  if (i + sign >= run->FirstX && i + sign < end)
+  {
+    return true;
+  }
+  if (sign < 0)
+  {
+    return run != row.Begin && run[-1].Cell == run->Cell;
+  }
+  return run + 1 != row.End && run[1].Cell == run->Cell;
+}
+
+// Whether the voxel beside `ijk` on the side `sign` of axis a lies in the
+// cell of `run` (looked up among its row's runs).
+bool besideInCell(const Grid& grid, const VoronoiCellRuns& cells, const VoronoiCellRuns::Run* run,
+  const std::array<int, 3>& ijk, int a, int sign)
+{
+  std::array<int, 3> next = ijk;
+  next[a] += sign;
+  return grid.contains(next[0], next[1], next[2]) && cells.cellAt(next[0], next[1], next[2]) == run->Cell;
+}
 } // namespace
 
 CellBoundaryMesh orderedCellBoundaries(const Grid& grid, const DomainLayout& layout)
@@ -100,21 +133,20 @@ CellBoundaryMesh orderedCellBoundaries(const Grid& grid, const DomainLayout& lay
     corners.startLayer(k);
     for (int j = 0; j < grid.Dimensions[1]; ++j)
     {
-      const VoronoiCellRuns::Run* rowEnd = cells.rowEnd(j, k);
-      for (const VoronoiCellRuns::Run* run = cells.rowBegin(j, k); run != rowEnd; ++run)
+      const RowRuns row{ cells.rowBegin(j, k), cells.rowEnd(j, k) };
+      for (const VoronoiCellRuns::Run* run = row.Begin; run != row.End; ++run)
       {
         const int domain = layout.cellDomain(run->Cell);
-        for (int i = run->FirstX; domain >= 0 && i < cells.runEnd(run, rowEnd); ++i)
+        const int end = cells.runEnd(run, row.End);
+        for (int i = run->FirstX; domain >= 0 && i < end; ++i)
         {
           const std::array<int, 3> ijk{ i, j, k };
           for (int a = 0; a < 3; ++a)
           {
             for (int sign : { -1, 1 })
             {
-              std::array<int, 3> next = ijk;
-              next[a] += sign;
               const bool sameCell =
-                grid.contains(next[0], next[1], next[2]) && cells.cellAt(next[0], next[1], next[2]) == run->Cell;
+                a == 0 ? besideAlongRow(row, run, end, i, sign) : besideInCell(grid, cells, run, ijk, a, sign);
               if (!sameCell)
               {
                 addFace(corners, mesh, ijk, a, sign, domain);
