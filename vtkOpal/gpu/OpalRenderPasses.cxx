@@ -83,7 +83,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
   return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-    [&progress](double done) { return progress.stageDone(done); });
+    progress.stageCallback());
 }
 
 // `pass` (a light pass's mode over voxel ranges) over every voxel, in
@@ -201,7 +201,7 @@ bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progres
   const MediumRelease release(*this);
   const ScatteringMedium& medium = this->scatteringMedium();
   const std::optional<opal::ScatteredLight> field = solveScatteredLight(
-    medium, scatteredLightRequest(setup), [&progress](double done) { return progress.stageDone(done); });
+    medium, scatteredLightRequest(setup), progress.stageCallback());
   if (!field)
   {
     return false;
@@ -321,7 +321,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     progress.stage(0.0, FrameLightShare); // the frame's light pass then reports none (renderFrame)
     medium = &this->scatteringMedium();
     mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares,
-      [&progress](double done) { return progress.stageDone(done); });
+      progress.stageCallback());
   }
   catch (...)
   {

@@ -15,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -176,8 +177,6 @@ struct RenderSession::FrameSetup
   }
 };
 
-// The caller's progress over the stages of a frame: light pass 20%, march
-// 75%, colour 5%. False once the caller asked to abort.
 // A frame's progress: the frame's fraction done (report), or a stage's
 // (stageDone) placed in the window the frame gave it (stage), so that the
 // fraction the caller sees only rises, whichever stages run.
@@ -192,6 +191,11 @@ public:
     this->To = to;
   }
   bool stageDone(double done) { return this->report(this->From + (this->To - this->From) * done); }
+  // stageDone as the callback a pass or a solve takes (its fraction done).
+  std::function<bool(double)> stageCallback()
+  {
+    return [this](double done) { return this->stageDone(done); };
+  }
 
 private:
   const RenderProgress& Callback;
