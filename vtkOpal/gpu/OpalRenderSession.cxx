@@ -199,6 +199,18 @@ std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const
   }
   return { BufferPlacement::DeviceAddressed, volume.Dimensions[0] == 1 };
 }
+// The volume's grid and optics without its arrays, which the session does not
+// keep (the device holds their values).
+RenderVolume shapeOf(const RenderVolume& volume)
+{
+  RenderVolume shape = volume;
+  shape.ScatteringCoefficient = nullptr;
+  shape.DomainId = nullptr;
+  shape.SurfaceDistance = nullptr;
+  shape.AbsorptionCoefficient = nullptr;
+  shape.AbsorptionExponent = nullptr;
+  return shape;
+}
 } // namespace
 
 // SurfaceDistance and the light fields (the absorption's where it absorbs)
@@ -216,6 +228,21 @@ void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, Devi
     : deviceVoxelField<float>(context, voxels, "SurfaceDistance volume", v.FieldPlacement, {},
         [&volume](std::size_t i) { return volume.SurfaceDistance[i]; });
   v.LightField = deviceLocalBuffer(context, voxels * lightFieldBytes, "light field", nullptr, v.FieldPlacement);
+}
+
+// The light pass's own buffers: the Bragg shadows' placeholder (a frame with
+// EnergyConservation allocates them), a layer's entry voxels and the queues,
+// one per layer, emptied on the device before every sweep (docs/design.md §3.3).
+void RenderSession::allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v)
+{
+  VulkanContext& context = *this->Context;
+  v.LightShadow =
+    deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, v.FieldPlacement);
+  const std::size_t layerVoxels = static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[2];
+  v.EntryVoxels = deviceLocalBuffer(
+    context, layerVoxels * sizeof(std::uint32_t), "light entry voxels (a layer)", nullptr, v.FieldPlacement);
+  v.EntryQueues = deviceLocalBuffer(
+    context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
 }
 
 bool RenderSession::LightFieldKey::operator==(const LightFieldKey& other) const
@@ -334,15 +361,8 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->AbsorptionCells = absorptionBuffer(context, volume, skin, placement);
   this->uploadSurfaceAndLightFields(volume, *uploaded);
-  uploaded->LightShadow =
-    deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, placement);
-  const std::size_t layerVoxels = static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[2];
-  uploaded->EntryVoxels =
-    deviceLocalBuffer(context, layerVoxels * sizeof(std::uint32_t), "light entry voxels (a layer)", nullptr, placement);
+  this->allocateLightPassBuffers(volume, *uploaded);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
-  // The light pass's queues, emptied on the device before every sweep.
-  uploaded->EntryQueues = deviceLocalBuffer(
-    context, static_cast<std::uint64_t>(volume.Dimensions[1]) * sizeof(gpu::DispatchQueue), "light entry queues");
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
   uploaded->DomainTable = deviceLocalBuffer(context, records.size() * sizeof(gpu::DomainRecord), "domain table",
     records.empty() ? nullptr : records.data());
@@ -352,12 +372,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->ScatteredLight = scatteredLightPlaceholder(context, placement);
   uploaded->ScatteredLightGrid = deviceLocalBuffer(
     context, sizeof(gpu::ScatteredLightNode), "scattered light tally grid placeholder", nullptr, placement);
-  uploaded->Shape = volume;
-  uploaded->Shape.ScatteringCoefficient = nullptr;
-  uploaded->Shape.DomainId = nullptr;
-  uploaded->Shape.SurfaceDistance = nullptr;
-  uploaded->Shape.AbsorptionCoefficient = nullptr;
-  uploaded->Shape.AbsorptionExponent = nullptr;
+  uploaded->Shape = shapeOf(volume);
   this->Volume = std::move(uploaded);
   this->bindBuffers();
   this->PendingUploadSeconds = secondsSince(start);

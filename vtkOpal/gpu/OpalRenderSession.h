@@ -193,6 +193,7 @@ private:
   bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;
   void writeParameterBlock(FrameSetup& setup) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
+  void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more
