@@ -6,9 +6,12 @@ the wall time of each, the render's stages (gather, upload, light pass,
 every-order solve, march, the rest) and the peak resident memory with the
 render session's peak of device buffers (host memory on lavapipe), and from rank 0's
 figures an estimate for the 10 um stone (16 x 8 x 20 mm, 1600 x 800 x 2000
-voxels). A run whose ranks would together need more than this machine's
-memory is skipped, saying so: each rank holds its piece of the volume's
-arrays and the device fields of the whole volume (and the gathered arrays
+voxels). The estimate's bytes per voxel are the peak's beyond the process's
+own footprint, which a volume of a few voxels rendered first measures
+(pvbatch, the Vulkan device and its pipelines, the image: ~0.5 GB on lavapipe
+whatever the volume), so that they are not spread over the voxels. A run
+whose ranks would together need more than this machine's memory is skipped,
+saying so: each rank holds its piece of the volume's arrays and the device fields of the whole volume (and the gathered arrays
 until their upload), ~54 / ranks + 64 bytes per voxel (fitted to 320 x 160 x
 400 on 1, 2 and 4 ranks, the process included; 13 / ranks with the render's
 arrays). ARRAYS is the volume's OutputArrays: all (the default) or render
@@ -19,7 +22,7 @@ import resource
 import sys
 import time
 
-from paraview.simple import LoadPlugin
+from paraview.simple import Delete, LoadPlugin
 from paraview import servermanager
 from vtkmodules.vtkCommonCore import vtkDoubleArray
 from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
@@ -82,10 +85,26 @@ def report(render, volume_seconds, render_seconds, peak_mb):
     return device_mb
 
 
-def estimate(volume_seconds, bytes_per_voxel, device_mb):
+def process_footprint():
+    """The process's peak, in MB, once it has rendered a volume of a few voxels
+    (its Vulkan device started and its pipelines built); that render is then
+    deleted. Its device peak too (the image's buffers)."""
+    small = OpalVolume(Dimensions=[8, 4, 10], DomainCount=10, OutputArrays=arrays)  # noqa: F821 (from the plugin)
+    render = OpalSpectralRender(Input=small)  # noqa: F821
+    render.UpdatePipeline(0.0)
+    fields = render.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
+    device = fields.GetArray("DeviceMemoryPeak")
+    device_mb = device.GetValue(0) / 2**20 if device is not None else 0.0
+    Delete(render)
+    Delete(small)
+    controller.Barrier()
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, device_mb
+
+
+def estimate(volume_seconds, bytes_per_voxel, device_bytes_per_voxel):
     """The 10 um stone from this run's per-voxel costs (rank 0 prints): the
     fastest rank's volume time per voxel and rank (rank 0 also builds the
-    domain polygons), and the memory per voxel beyond the process before the volume."""
+    domain polygons), and the memory per voxel beyond the process's own footprint."""
     fastest = vtkDoubleArray()
     fastest.InsertNextValue(volume_seconds)
     fastest_all = vtkDoubleArray()
@@ -96,14 +115,17 @@ def estimate(volume_seconds, bytes_per_voxel, device_mb):
     build_ns = fastest_all.GetValue(0) * ranks / voxels * 1e9
     print(f"  10 um estimate (1600x800x2000 = {stone / 1e9:.2f} G voxels) from this run: volume "
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
-          f"{bytes_per_voxel:.0f} bytes per voxel here ({device_mb * 2**20 / voxels:.0f} of them device buffers, "
-          f"the image's included), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
+          f"{bytes_per_voxel:.0f} bytes per voxel here beyond the process's own footprint "
+          f"({device_bytes_per_voxel:.0f} of them device buffers), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
           f"(the device fields of the whole volume on every rank)", flush=True)
 
 
 # No rank leaves early (pvbatch under MPI must reach its end on every rank).
 if fits():
-    baseline_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # the process before the volume
+    baseline_mb, baseline_device_mb = process_footprint()
+    if rank == 0:
+        print(f"  the process's own footprint (a render of 8x4x10 voxels): {baseline_mb:.0f} MB "
+              f"(of which device buffers {baseline_device_mb:.0f} MB)", flush=True)
     volume = OpalVolume(Dimensions=dimensions, OutputArrays=arrays)  # noqa: F821 (from the plugin)
     volume_seconds = timed(volume)
     render = OpalSpectralRender(Input=volume)  # noqa: F821
@@ -112,7 +134,8 @@ if fits():
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
     device_mb = report(render, volume_seconds, render_seconds, peak_mb)
     if device_mb is not None:
-        estimate(volume_seconds, (peak_mb - baseline_mb) * 2**20 / voxels, device_mb)
+        estimate(volume_seconds, (peak_mb - baseline_mb) * 2**20 / voxels,
+                 (device_mb - baseline_device_mb) * 2**20 / voxels)
         # Every order of scattering, the volume and its light pass kept: the
         # ranks share the photon solve (its stage, "every order").
         render.ScatteringOrders = "all"
