@@ -67,13 +67,24 @@ std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkI
 bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
   std::vector<char>& bytes, vtkIdType roundBytes)
 {
+  const std::vector<vtkIdType> offsets = RankOffsets(lengths);
+  bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
+  return GatherBytesTo(
+    controller, mine, lengths,
+    [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
+      std::copy_n(data, count, bytes.data() + offsets[rank] + first);
+    },
+    roundBytes);
+}
+
+bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
+  const ByteSink& sink, vtkIdType roundBytes)
+{
   const int ranks = controller->GetNumberOfProcesses();
   const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
   // The window holds a round of every rank: no larger than the longest bytes need.
   const vtkIdType round =
     std::max<vtkIdType>(1, std::min<vtkIdType>({ roundBytes, (VTK_INT_MAX - 1) / ranks, longest }));
-  const std::vector<vtkIdType> offsets = RankOffsets(lengths);
-  bytes.resize(static_cast<std::size_t>(offsets.back() + lengths.back()));
   std::vector<char> window(static_cast<std::size_t>(round * ranks));
   const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
   for (vtkIdType start = 0; start < longest; start += round)
@@ -91,7 +102,10 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
     }
     for (int r = 0; r < ranks; ++r)
     {
-      std::copy_n(window.data() + places[r], counts[r], bytes.data() + offsets[r] + start);
+      if (counts[r] > 0)
+      {
+        sink(r, start, counts[r], window.data() + places[r]);
+      }
     }
   }
   return true;

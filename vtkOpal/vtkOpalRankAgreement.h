@@ -7,6 +7,7 @@
 #include "vtkOpalModule.h" // for the export macro
 #include "vtkType.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,12 @@ VTKOPAL_EXPORT std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* c
 constexpr vtkIdType RoundBytes = vtkIdType(64) << 20;
 VTKOPAL_EXPORT bool GatherBytes(vtkMultiProcessController* controller, const char* mine,
   const std::vector<vtkIdType>& lengths, std::vector<char>& bytes, vtkIdType roundBytes = RoundBytes);
+// GatherBytes with each round handed to `sink` as it arrives (rank r's bytes
+// [first, first + count) at `data`) instead of kept: a caller that places
+// them holds one round, not every rank's bytes.
+using ByteSink = std::function<void(int rank, vtkIdType first, vtkIdType count, const char* data)>;
+VTKOPAL_EXPORT bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine,
+  const std::vector<vtkIdType>& lengths, const ByteSink& sink, vtkIdType roundBytes = RoundBytes);
 // Where each rank's bytes begin in GatherBytes's `bytes`, from its `lengths`.
 std::vector<vtkIdType> RankOffsets(const std::vector<vtkIdType>& lengths);
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "OpalRenderSession.h"
+#include "vtkOpalRankShares.h"
 
 #include <functional>
 
@@ -23,11 +24,7 @@ namespace vtkOpalSharedScatteredLight
 // says so aborts the request on every rank; one whose share fails (it says
 // why) leaves the others to solve alone. An exception from the session is
 // rethrown only once no rank can wait for this one.
-struct Result
-{
-  int Shares = 0;       // the ranks that traced the field this rank now holds (0: none was shared)
-  bool Aborted = false; // a rank aborted its share: every rank's request aborts
-};
+using Result = vtkOpalRankShares::Result;
 Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
   const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted);
 } // namespace vtkOpalSharedScatteredLight

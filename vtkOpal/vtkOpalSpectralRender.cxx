@@ -6,6 +6,7 @@
 #include "OpalVulkanError.h"
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalSharedLightField.h"
 #include "vtkOpalSharedScatteredLight.h"
 #include "vtkOpalRenderOutput.h"
 #include "vtkOpalVolumePieces.h"
@@ -242,6 +243,7 @@ int vtkOpalSpectralRender::RequestData(
   const int* extent = request.Extent.data();
   this->LastErrorText.clear();
   this->LastScatteredLightShares = 0;
+  this->LastLightFieldShares = 0;
   vtkInformation* inputInformation = inputVector[0]->GetInformationObject(0);
   RenderOutcome outcome =
     this->GatherVolume(input, inputInformation) ? RenderOutcome::Rendered : RenderOutcome::Failed;
@@ -251,7 +253,7 @@ int vtkOpalSpectralRender::RequestData(
   {
     piece = this->ResolvePiece(inputInformation, input, extent);
   }
-  outcome = this->ShareScatteredLight(outcome, piece ? &*piece : nullptr, input);
+  outcome = this->ShareBeforeFrame(outcome, piece ? &*piece : nullptr, input);
   if (outcome == RenderOutcome::Rendered && !piece)
   {
     output->Initialize();
@@ -429,7 +431,7 @@ opal::ResolvedFrame vtkOpalSpectralRender::ResolvePiece(
   return resolved;
 }
 
-vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareScatteredLight(
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareBeforeFrame(
   RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input)
 {
   if (vtkOpalRankAgreement::Ranks(this->Controller) < 2)
@@ -439,15 +441,31 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareScatteredLight(
   const RenderOutcome uploaded = sofar == RenderOutcome::Rendered && piece
     ? this->Guarded([&] { return this->UploadVolume(this->VolumeOf(input)) ? sofar : RenderOutcome::Failed; })
     : sofar;
-  const bool ready = uploaded == RenderOutcome::Rendered && piece;
-  return this->Guarded([&] {
-    const vtkOpalSharedScatteredLight::Result shared = vtkOpalSharedScatteredLight::Solve(this->Controller,
-      ready ? this->RenderSession.get() : nullptr, uploaded != RenderOutcome::Rendered,
-      ready ? *piece : opal::ResolvedFrame{}, this->RequestProgress(),
-      [this] { return this->GetAbortExecute() != 0; });
+  // Each step is called by every rank whatever the one before left it with:
+  // with this rank's session and frame where it is ready, and whether it
+  // has failed the request already. A rank that aborted its share aborts
+  // the request on every rank (said by none).
+  using Step = std::function<vtkOpalRankShares::Result(opal::RenderSession*, bool, const opal::ResolvedFrame&)>;
+  const auto share = [&](RenderOutcome before, const Step& step) {
+    const bool ready = before == RenderOutcome::Rendered && piece;
+    return this->Guarded([&] {
+      const vtkOpalRankShares::Result shared = step(ready ? this->RenderSession.get() : nullptr,
+        before != RenderOutcome::Rendered, ready ? *piece : opal::ResolvedFrame{});
+      return shared.Aborted ? RenderOutcome::Aborted : before;
+    });
+  };
+  const auto aborted = [this] { return this->GetAbortExecute() != 0; };
+  const RenderOutcome lit = share(uploaded, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+    const vtkOpalRankShares::Result shared =
+      vtkOpalSharedLightField::March(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
+    this->LastLightFieldShares = shared.Shares;
+    return shared;
+  });
+  return share(lit, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+    const vtkOpalRankShares::Result shared =
+      vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
     this->LastScatteredLightShares = shared.Shares;
-    // A rank that aborted its share aborts the request on every rank (said by none).
-    return shared.Aborted ? RenderOutcome::Aborted : uploaded;
+    return shared;
   });
 }
 
@@ -463,6 +481,10 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
     if (frame.Ran.ScatteredLight && this->LastScatteredLightShares == 0)
     {
       this->LastScatteredLightShares = 1; // solved alone, in the frame
+    }
+    if (frame.Ran.LightPass && this->LastLightFieldShares == 0)
+    {
+      this->LastLightFieldShares = 1; // marched or swept alone, in the frame
     }
     if (this->Publish(frame, output))
     {

@@ -122,6 +122,12 @@ public:
   /// ranks share the photons, one process solves alone (1); 0 where the
   /// request solved none (single scattering, or a field held from before).
   vtkGetMacro(LastScatteredLightShares, int);
+  /// How many ranks computed the light field that this rank's last data
+  /// request used (docs/design.md §8.1): under MPI the ranks share the march
+  /// per voxel of a light low or to the side; 1 where the frame computed it
+  /// alone (a light above is swept by each rank alone); 0 where the request
+  /// computed none (a light field held from before served).
+  vtkGetMacro(LastLightFieldShares, int);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -219,9 +225,10 @@ private:
   opal::ResolvedFrame ResolvePiece(vtkInformation* inputInformation, vtkImageData* input, const int extent[6]) const;
   // Under MPI, collective, every rank between the gather and its frame:
   // the ranks that render a piece (nullptr: none; so far `sofar`) upload the
-  // volume, and they share every order's photon solve
+  // volume, and they share the light field's march per voxel
+  // (vtkOpalSharedLightField), then every order's photon solve
   // (vtkOpalSharedScatteredLight).
-  RenderOutcome ShareScatteredLight(RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input);
+  RenderOutcome ShareBeforeFrame(RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input);
   // Renders this rank's piece of the image into `output`.
   RenderOutcome RenderExtent(const opal::ResolvedFrame& piece, vtkImageData* input, vtkImageData* output);
 
@@ -295,6 +302,7 @@ private:
   vtkOpalVolumePieces::GatheredVolume Gathered;
   double LastGatherSeconds = 0;
   int LastScatteredLightShares = 0;
+  int LastLightFieldShares = 0;
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

@@ -10,7 +10,8 @@ tolerance only allows for a different CPU path).
 The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too). The grains case renders the pinfire preset's grains; the fire
 case the fire-opal preset (an absorbing body, coupled-wave fcc, every order)
-lit low from the side, its every-order photon solve shared by the ranks.
+lit low from the side, its light field's march from every voxel and its
+every-order photon solve shared by the ranks.
 The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
@@ -72,6 +73,14 @@ else:
         check("every-order field traced by 1 rank(s)" in alone, "one process solves the every-order field alone:\n" + alone)
         check(f"every-order field traced by {ranks} rank(s)" in together,
               f"the {ranks} ranks share the every-order solve:\n" + together)
+        # The light low to the side: the ranks share its march from every
+        # voxel (each a share of the rows, docs/design.md §8.1).
+        check("light field computed by 1 rank(s)" in alone, "one process marches the light field alone:\n" + alone)
+        check(f"light field computed by {ranks} rank(s)" in together,
+              f"the {ranks} ranks share the light field's march:\n" + together)
+    if kind in ("render", "grains"):
+        # The light above: each rank sweeps the layers alone.
+        check("light field computed by 1 rank(s)" in together, "each rank sweeps the light from above alone:\n" + together)
 
 
 def read(reader_class, path):

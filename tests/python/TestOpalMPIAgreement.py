@@ -5,7 +5,8 @@ on any rank, and no hang (each run is bounded; a hang fails the test);
 ranks that agree render. With every order of scattering the ranks share the
 photon solve; a rank without a device, or one aborting inside the shared
 solve (which aborts every rank's request), leaves every rank without an image
-piece, and none hangs.
+piece, and none hangs. With the light low to the side the ranks share its
+march from every voxel, and an abort inside it ends every rank's request alike.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -68,4 +69,21 @@ shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image
 check(len(images) == ranks and all(points == 0 for points in images.values()),
       f"an abort in the shared solve on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
 check(shares == {r: 0 for r in range(ranks)}, f"and every rank aborts with it, none solving alone: {shares}")
+
+
+def light_shares(output):
+    return {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares \d+ light (\d+)", output)}
+
+
+output = run_ranks("side")
+check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
+      f"the light to the side: ranks that agree render their pieces:\n{output[-3000:]}")
+check(light_shares(output) == {r: ranks for r in range(ranks)},
+      f"the light to the side: all {ranks} ranks marched the light field together: {light_shares(output)}")
+output = run_ranks("side-abort")
+images = images_of(output)
+check(len(images) == ranks and all(points == 0 for points in images.values()),
+      f"an abort in the shared light march on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
+check(light_shares(output) == {r: 0 for r in range(ranks)},
+      f"and every rank aborts with it, none marching alone: {light_shares(output)}")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

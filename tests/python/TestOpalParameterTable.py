@@ -35,6 +35,7 @@ PROXIES = {
         "DeviceMemoryLimit": "the device's memory limit, not the frame",
         "LastGatherSeconds": "what the last update measured (information only), not a setting",
         "LastScatteredLightShares": "what the last update did (information only), not a setting",
+        "LastLightFieldShares": "what the last update did (information only), not a setting",
     }),
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",

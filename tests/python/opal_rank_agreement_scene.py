@@ -2,10 +2,13 @@
 `StepSize` 0.5 in the settings case, a bad `ViewAngle` in the information
 case; with every order of scattering in the every-order case, and in the
 abort case with rank 1 asking to abort at its first progress (inside the
-ranks' shared photon solve). Each rank then prints whether it holds an image
-piece and how many ranks traced its every-order field ("rank R image POINTS
-shares S"), so the driver sees that none holds part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort"""
+ranks' shared photon solve); in the side case the light low to the side (the
+ranks share its march from every voxel), and in the side-abort case with
+rank 1 asking to abort at the end of its share of that march. Each rank then prints whether it
+holds an image piece and how many ranks traced its every-order field and
+computed its light field ("rank R image POINTS shares S light L"), so the
+driver sees that none holds part of a failed image.
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|side|side-abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -20,8 +23,14 @@ volume = OpalVolume(Dimensions=[40, 20, 50], DomainCount=30)  # noqa: F821 (from
 render = OpalSpectralRender(Input=volume, ImageSize=[48, 36])  # noqa: F821
 if case in ("every-order", "abort"):
     render.ScatteringOrders = "all"
+if case in ("side", "side-abort"):
+    render.LightPosition = [60, 10, 0]
 if rank == 1 and case == "abort":
     render.GetClientSideObject().AddObserver("ProgressEvent", lambda filter, _: filter.SetAbortExecute(1))
+if rank == 1 and case == "side-abort":
+    # At the march's first progress (the request's own start reports 0).
+    render.GetClientSideObject().AddObserver(
+        "ProgressEvent", lambda filter, _: filter.GetProgress() > 0 and filter.SetAbortExecute(1))
 if rank == 1 and case == "settings":
     render.StepSize = 0.5
 if rank == 1 and case == "information":
@@ -30,4 +39,5 @@ render.UpdatePipeline()
 image = render.GetClientSideObject().GetOutputDataObject(0)
 render.UpdatePropertyInformation()
 shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
-print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares}", flush=True)
+light = render.GetProperty("LastLightFieldShares").GetElement(0)
+print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares} light {light}", flush=True)

@@ -37,6 +37,7 @@ SaveData(output, proxy=result, DataMode="Binary")
 if len(arguments) > 6:
     result.UpdatePropertyInformation()
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")
+    print("light field computed by", result.GetProperty("LastLightFieldShares").GetElement(0), "rank(s)")
 if again:
     result.DeviceMemoryLimit = 16000  # MB: a new session
     SaveData(output.replace(".pvti", "-again.pvti"), proxy=result, DataMode="Binary")

@@ -83,19 +83,18 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
   return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-    progress.stageCallback());
+    progress.stageCallback(), 0, this->Volume->Shape.voxelCount());
 }
 
-// `pass` (a light pass's mode over voxel ranges) over every voxel, in
+// `pass` (a light pass's mode over voxel ranges) over voxels [begin, end), in
 // submits `pacer` sizes; `keepGoing` (the fraction done) after each, false stops.
-bool RenderSession::dispatchOverVoxels(
-  const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing)
+bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer,
+  const std::function<bool(double)>& keepGoing, std::size_t begin, std::size_t end)
 {
-  const std::size_t voxels = this->Volume->Shape.voxelCount();
-  for (std::size_t first = 0; first < voxels;)
+  for (std::size_t first = begin; first < end;)
   {
     const auto count = static_cast<std::int32_t>(
-      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), 1 << 30)), voxels - first));
+      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), 1 << 30)), end - first));
     const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -103,7 +102,7 @@ bool RenderSession::dispatchOverVoxels(
     });
     pacer.measured(count, secondsSince(start));
     first += static_cast<std::size_t>(count);
-    if (keepGoing && !keepGoing(static_cast<double>(first) / voxels))
+    if (keepGoing && !keepGoing(static_cast<double>(first - begin) / static_cast<double>(end - begin)))
     {
       return false;
     }
@@ -284,7 +283,8 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
 // shape) uploaded: a solve shared by processes holds its grid before them.
 void RenderSession::writeScatteredField()
 {
-  this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr);
+  this->dispatchOverVoxels(
+    this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr, 0, this->Volume->Shape.voxelCount());
   this->Volume->ScatteredFieldPending = false;
 }
 
@@ -318,7 +318,9 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     }
     setup = this->setUpFrame(frame);
     Progress progress(callback);
-    progress.stage(0.0, FrameLightShare); // the frame's light pass then reports none (renderFrame)
+    // After a light field the processes marched (its first half), and the
+    // frame's light pass then reports none (renderFrame).
+    progress.stage(this->PendingLightSeconds >= 0 ? FrameLightShare * 0.5 : 0.0, FrameLightShare);
     medium = &this->scatteringMedium();
     mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares,
       progress.stageCallback());

@@ -342,6 +342,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->LightField.reset();
   this->ScatteredLight.reset();
   this->PendingScatteredSeconds = -1;
+  this->PendingLightSeconds = -1;
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, laid out (fieldLayout), refused up front if too large.
@@ -450,6 +451,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   RenderTimings& timings = frame.Image.Timings;
   // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.
   const double sharedSolveSeconds = std::exchange(this->PendingScatteredSeconds, -1.0);
+  const double sharedLightSeconds = std::exchange(this->PendingLightSeconds, -1.0); // marchLightFieldShared's
   const auto setupStart = Clock::now();
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;
@@ -476,7 +478,8 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
     return frame;
   }
   this->runShadowTable(setup);
-  timings.LightPass = secondsSince(lightStart);
+  timings.LightPass = secondsSince(lightStart) + std::max(0.0, sharedLightSeconds);
+  frame.Ran.LightPass = frame.Ran.LightPass || sharedLightSeconds >= 0;
   progress.stage(FrameLightShare * 0.5, FrameLightShare);
   if (!this->prepareScatteredLight(setup, sharedSolveSeconds, progress, frame))
   {

@@ -127,6 +127,23 @@ public:
   bool solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares, const ScoresExchange& exchange,
     const RenderProgress& progress = nullptr);
 
+  // The light field marched per voxel (a light low or to the side, §3.3) by
+  // several processes together, before their frames (§8.1), as the solve
+  // above: needsLightMarch, whether `frame` would march it (no light field
+  // held serves it, and the light is not above the grid, whose sweep goes
+  // layer after layer), having checked what render() checks;
+  // marchLightFieldShared marches share `share` of `shares` of the voxels
+  // (whole rows), hands its fields' bytes to `exchange`, which sends them and
+  // gives every share's, as they arrive, to the sink (share, first byte,
+  // count, bytes) and says whether all arrived, and holds the whole field
+  // for the frames that follow. `exchange` is called exactly once, as above;
+  // false if the march was aborted or a share failed: a frame then marches alone.
+  using ShareSink = std::function<void(int share, std::uint64_t first, std::uint64_t count, const char* bytes)>;
+  using FieldExchange = std::function<bool(const std::optional<std::vector<char>>& mine, const ShareSink& sink)>;
+  bool needsLightMarch(const ResolvedFrame& frame) const;
+  bool marchLightFieldShared(const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange,
+    const RenderProgress& progress = nullptr);
+
   // Whether the frame's eye is inside the opal (which render refuses); false
   // without a volume. It reads only the host copy of the volume's surface,
   // so it may run beside a background frame.
@@ -207,7 +224,9 @@ private:
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   bool sweepLightLayers(bool braggShadow, Progress& progress);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
-  bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing);
+  bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing,
+    std::size_t first, std::size_t end);
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> lightPassFields(bool braggShadow) const;
   bool prepareScatteredLight(const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame);
   void readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const;
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
@@ -285,6 +304,7 @@ private:
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
   double PendingScatteredSeconds = -1; // >= 0: solveScatteredLightShared solved the field the next frame reads
+  double PendingLightSeconds = -1;     // >= 0: marchLightFieldShared marched the light field the next frame reads
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
   // Each pass's work per submit, from its last submit's cost (docs/design.md
   // §3.7); until measured, what took a fraction of a second on lavapipe.

@@ -164,9 +164,7 @@ VulkanBuffer::~VulkanBuffer()
 
 void VulkanBuffer::upload(const void* source, std::uint64_t bytes)
 {
-  this->fill(bytes, [source](std::uint64_t first, std::uint64_t count, void* into) {
-    std::memcpy(into, static_cast<const char*>(source) + first, count);
-  });
+  this->write(0, bytes, source);
 }
 
 void VulkanBuffer::inStagingRounds(std::uint64_t bytes, BufferPlacement placement, const std::string& what,
@@ -181,11 +179,23 @@ void VulkanBuffer::inStagingRounds(std::uint64_t bytes, BufferPlacement placemen
 
 void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
 {
+  this->fillRange(0, bytes, write);
+}
+
+void VulkanBuffer::write(std::uint64_t begin, std::uint64_t bytes, const void* source)
+{
+  this->fillRange(begin, bytes, [source](std::uint64_t first, std::uint64_t count, void* into) {
+    std::memcpy(into, static_cast<const char*>(source) + first, count);
+  });
+}
+
+void VulkanBuffer::fillRange(std::uint64_t begin, std::uint64_t bytes, const ContentWriter& write)
+{
   if (this->Mapped || bytes == 0)
   {
     if (bytes > 0)
     {
-      write(0, bytes, this->Mapped);
+      write(0, bytes, static_cast<char*>(this->Mapped) + begin);
     }
     return;
   }
@@ -193,7 +203,7 @@ void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
     [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
       write(first, count, staging.Mapped);
       this->Context.submitAndWait([&](VkCommandBuffer commands) {
-        const VkBufferCopy region{ 0, first, count };
+        const VkBufferCopy region{ 0, begin + first, count };
         vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
         barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -201,13 +211,13 @@ void VulkanBuffer::fill(std::uint64_t bytes, const ContentWriter& write)
     });
 }
 
-void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
+void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const ContentReader& reader) const
 {
   if (this->Mapped || bytes == 0)
   {
     if (bytes > 0)
     {
-      reader(0, bytes, this->Mapped);
+      reader(0, bytes, static_cast<const char*>(this->Mapped) + begin);
     }
     return;
   }
@@ -217,7 +227,7 @@ void VulkanBuffer::read(std::uint64_t bytes, const ContentReader& reader) const
         barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
           VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
           VK_ACCESS_TRANSFER_READ_BIT);
-        const VkBufferCopy region{ first, 0, count };
+        const VkBufferCopy region{ begin + first, 0, count };
         vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
         barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
           VK_ACCESS_HOST_READ_BIT);

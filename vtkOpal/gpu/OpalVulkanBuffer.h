@@ -72,7 +72,12 @@ public:
   // mapped memory, else in rounds through a staging buffer of at most
   // FillRoundBytes, as fill writes them.
   using ContentReader = std::function<void(std::uint64_t first, std::uint64_t count, const void* from)>;
-  void read(std::uint64_t bytes, const ContentReader& reader) const;
+  void read(std::uint64_t bytes, const ContentReader& reader) const { this->readRange(0, bytes, reader); }
+  // read for bytes [begin, begin + bytes) of the buffer (`first` counts from begin).
+  void readRange(std::uint64_t begin, std::uint64_t bytes, const ContentReader& reader) const;
+  // Copies `bytes` from the host into bytes [begin, begin + bytes) of the
+  // buffer, as fill does (the rest of the buffer kept).
+  void write(std::uint64_t begin, std::uint64_t bytes, const void* source);
   // A round's bytes: a multiple of every field's value (at most 16 bytes).
   static constexpr std::uint64_t FillRoundBytes = std::uint64_t(64) << 20;
   // Records: the whole buffer set to zero on the device, then a barrier so
@@ -80,6 +85,8 @@ public:
   void recordClear(VkCommandBuffer commands) const;
 
 private:
+  // fill for bytes [begin, begin + bytes) (`first` counts from begin).
+  void fillRange(std::uint64_t begin, std::uint64_t bytes, const ContentWriter& write);
   void allocate(VkMemoryRequirements requirements, BufferPlacement placement, const std::string& what);
   // `bytes` of the buffer in rounds of at most FillRoundBytes through one
   // staging buffer of `placement` (fill, read): round(first, count, staging).

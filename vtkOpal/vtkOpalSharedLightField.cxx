@@ -1,0 +1,18 @@
+#include "vtkOpalSharedLightField.h"
+
+namespace vtkOpalSharedLightField
+{
+vtkOpalRankShares::Result March(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
+  const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted)
+{
+  return vtkOpalRankShares::Share(controller, failed,
+    session ? std::function<bool()>([&] { return session->needsLightMarch(frame); }) : nullptr, aborted,
+    "the light field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
+      return session->marchLightFieldShared(frame, share, shares,
+        [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+          return exchange(mine, sink).Complete;
+        },
+        progress);
+    });
+}
+} // namespace vtkOpalSharedLightField
