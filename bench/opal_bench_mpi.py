@@ -1,7 +1,8 @@
 """Scaling bench under MPI (run with `mpiexec -np N pvbatch --symmetric`):
 builds the opal volume (each rank its piece) and renders the 640 x 480 frame
 (each rank its piece of the image, from the whole volume), then again with
-every order of scattering (the ranks sharing its photon solve), printing per rank
+every order of scattering (the ranks sharing its photon solve) and with the
+light low to the side (the ranks sharing its march from every voxel), printing per rank
 the wall time of each, the render's stages (gather, upload, light pass,
 every-order solve, march, the rest) and the peak resident memory with the
 render session's peak of device buffers (host memory on lavapipe), and from rank 0's
@@ -145,3 +146,13 @@ if fits():
         if rank == 0:
             print(f"  every order, traced by {shares} rank(s):", flush=True)
         report(render, 0.0, every_order_seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+        # The light low to the side, single scattering: the light pass marches
+        # from every voxel, and the ranks share it (its stage, "light pass").
+        render.ScatteringOrders = "single"
+        render.LightPosition = [60, 10, 0]
+        side_seconds = timed(render)
+        render.UpdatePropertyInformation()
+        marched = render.GetProperty("LastLightFieldShares").GetElement(0)
+        if rank == 0:
+            print(f"  the light low to the side (single scattering), its field marched by {marched} rank(s):", flush=True)
+        report(render, 0.0, side_seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
