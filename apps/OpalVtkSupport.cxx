@@ -14,6 +14,7 @@
 #include "vtkXMLPImageDataWriter.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -21,7 +22,6 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <regex>
 #include <vector>
 
 namespace
@@ -140,6 +140,37 @@ public:
   std::string Error;
 };
 
+// The Source of each <Piece> element of a summary's text (VTK writes
+// `<Piece Extent="..." Source="name"/>`), where it is a plain name (no '/').
+std::vector<std::string> pieceSources(const std::string& text)
+{
+  const auto wordChar = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_'; };
+  const std::string tag = "<Piece", key = "Source=\"";
+  std::vector<std::string> sources;
+  for (std::size_t at = text.find(tag); at != std::string::npos; at = text.find(tag, at + 1))
+  {
+    const std::size_t end = std::min(text.find('>', at), text.size());
+    std::size_t source = text.find(key, at);
+    while (source < end && wordChar(text[source - 1])) // a longer name ending in Source
+    {
+      source = text.find(key, source + 1);
+    }
+    const std::size_t first = source + key.size();
+    const std::size_t last = source < end ? text.find('"', first) : std::string::npos;
+    const bool pieceTag = at + tag.size() >= text.size() || !wordChar(text[at + tag.size()]); // not <PieceX
+    if (!pieceTag || last == std::string::npos || last == first)
+    {
+      continue;
+    }
+    const std::string name = text.substr(first, last - first);
+    if (name.find('/') == std::string::npos)
+    {
+      sources.push_back(name);
+    }
+  }
+  return sources;
+}
+
 // The piece files an earlier summary at `summary` names that the new set
 // does not write again (an earlier run with more pieces), so that they go
 // with it: only plain names beside it (a summary cannot name a file
@@ -149,15 +180,13 @@ std::vector<std::filesystem::path> stalePieces(
 {
   std::ifstream in(summary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  static const std::regex pieceSource(R"re(<Piece\b[^>]*\bSource="([^"/]+)")re");
   std::vector<std::filesystem::path> stale;
-  for (auto match = std::sregex_iterator(text.begin(), text.end(), pieceSource); match != std::sregex_iterator();
-       ++match)
+  for (const std::string& name : pieceSources(text))
   {
-    const std::filesystem::path piece = summary.parent_path() / (*match)[1].str();
+    const std::filesystem::path piece = summary.parent_path() / name;
     std::error_code error;
     const bool regular = std::filesystem::is_regular_file(std::filesystem::symlink_status(piece, error));
-    if (regular && (*match)[1] != "." && (*match)[1] != ".." &&
+    if (regular && name != "." && name != ".." &&
       std::find(written.begin(), written.end(), piece) == written.end() &&
       std::find(stale.begin(), stale.end(), piece) == stale.end())
     {
