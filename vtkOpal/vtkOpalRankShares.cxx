@@ -118,7 +118,8 @@ Outcome exchange(vtkMultiProcessController* controller, const std::vector<int>& 
   for (const int rank : sharers)
   {
     const std::size_t r = static_cast<std::size_t>(rank);
-    const char sent = stateLengths[r] > 0 ? states[static_cast<std::size_t>(places[r])] : static_cast<char>(ShareFailed);
+    const char sent =
+      stateLengths[r] > 0 ? states[static_cast<std::size_t>(places[r])] : static_cast<char>(ShareFailed);
     outcome.Complete = outcome.Complete && sent == ShareDone;
     outcome.Aborted = outcome.Aborted || sent == ShareAborted;
   }

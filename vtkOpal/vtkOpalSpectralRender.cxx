@@ -455,12 +455,13 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareBeforeFrame(
     });
   };
   const auto aborted = [this] { return this->GetAbortExecute() != 0; };
-  const RenderOutcome lit = share(uploaded, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
-    const vtkOpalRankShares::Result shared =
-      vtkOpalSharedLightField::March(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
-    this->LastLightFieldShares = shared.Shares;
-    return shared;
-  });
+  const RenderOutcome lit =
+    share(uploaded, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+      const vtkOpalRankShares::Result shared =
+        vtkOpalSharedLightField::March(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
+      this->LastLightFieldShares = shared.Shares;
+      return shared;
+    });
   return share(lit, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
     const vtkOpalRankShares::Result shared =
       vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);

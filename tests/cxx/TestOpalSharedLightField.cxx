@@ -67,7 +67,8 @@ opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::Vulk
   OPAL_CHECK(last.needsLightMarch(frame) == !whole, what + ": the session then holds the light field, or not");
   const opal::RenderFrame rendered = last.render(frame);
   const auto messages = last.context().validationMessages();
-  OPAL_CHECK(messages.empty(), what + ": the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
+  OPAL_CHECK(messages.empty(),
+    what + ": the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
   return rendered;
 }
 } // namespace
@@ -102,10 +103,12 @@ int TestOpalSharedLightField(int, char*[])
   // Below the paired fields (VoxelCell 8, SurfaceDistance 8, light field 16,
   // absorption cells 8 and their light field 16, the Bragg shadows 12): one value per voxel, by address.
   unpaired.MemoryLimitBytes = stone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
-  for (const auto& [options, how] : { std::pair<opal::VulkanOptions, std::string>{ {}, "paired" }, { unpaired, "unpaired" } })
+  const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" } };
+  for (const auto& [options, how] : layouts)
   {
     const opal::RenderFrame shared = sharedFrame(stone, options, frame, true, how);
-    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, alone.Image),
+    OPAL_CHECK(
+      shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, alone.Image),
       how + ": the shares' field gives the image of a session that marched alone, value for value");
     OPAL_CHECK(shared.Ran.PairedFields == (how == "paired"), how + ": the fields are held " + how);
   }

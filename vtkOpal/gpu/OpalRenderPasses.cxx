@@ -312,10 +312,7 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   {
     this->cancelFrame();
     this->ScatteredLight.reset();
-    if (!this->Volume)
-    {
-      throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
-    }
+    this->requireVolume();
     setup = this->setUpFrame(frame);
     Progress progress(callback);
     // After a light field the processes marched (its first half), and the

@@ -441,12 +441,17 @@ void RenderSession::cancelFrame()
   this->Background.reset();
 }
 
-RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
+void RenderSession::requireVolume() const
 {
   if (!this->Volume)
   {
     throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
   }
+}
+
+RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
+{
+  this->requireVolume();
   RenderFrame frame;
   RenderTimings& timings = frame.Image.Timings;
   // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.

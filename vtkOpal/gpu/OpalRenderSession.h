@@ -204,6 +204,8 @@ private:
   RenderFrame renderFrame(const ResolvedFrame& frame, const RenderProgress& progress);
   static LightFieldKey lightFieldKey(const FrameSetup& setup);
   static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
+  // Throws, saying so, where no volume was set.
+  void requireVolume() const;
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
   bool scatteredLightFromGrid(const FrameSetup& setup) const;

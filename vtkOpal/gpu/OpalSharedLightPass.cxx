@@ -110,10 +110,7 @@ bool RenderSession::marchLightFieldShared(
   {
     this->cancelFrame();
     this->LightField.reset();
-    if (!this->Volume)
-    {
-      throw std::invalid_argument("The render has no volume; connect an Opal Volume.");
-    }
+    this->requireVolume();
     setup = this->setUpFrame(frame);
     this->checkMemoryBudget(*setup);
     this->prepareFrameBuffers(*setup); // the parameter block the pass reads
