@@ -7,11 +7,14 @@
 #include "OpalTestHarness.h"
 #include "opal_render_contract.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cstddef>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <map>
-#include <regex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -173,56 +176,114 @@ std::string prefixOf(const std::string& name)
   return {};
 }
 
+// A member line of glslang's reflection, "NAME: offset N, ..." with
+// "topLevelArrayStride S" at its end for an array; nullopt for other lines.
+struct ReflectedMember
+{
+  std::string Name;
+  std::size_t Offset = 0;
+  std::optional<std::size_t> Stride;
+};
+
+bool allOf(const std::string& text, bool (*test)(char))
+{
+  return !text.empty() && std::all_of(text.begin(), text.end(), test);
+}
+
+bool digit(char c)
+{
+  return std::isdigit(static_cast<unsigned char>(c)) != 0;
+}
+
+std::optional<ReflectedMember> reflectedMember(const std::string& line)
+{
+  const std::string offsetKey = ": offset ", strideKey = "topLevelArrayStride ";
+  const std::size_t colon = line.find(offsetKey);
+  const auto nameChar = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || (c != '\0' && std::strchr("_[].", c) != nullptr);
+  };
+  if (colon == std::string::npos || !allOf(line.substr(0, colon), +nameChar))
+  {
+    return std::nullopt;
+  }
+  const std::size_t first = colon + offsetKey.size(), comma = line.find(',', first);
+  if (comma == std::string::npos || !allOf(line.substr(first, comma - first), digit))
+  {
+    return std::nullopt;
+  }
+  ReflectedMember member{ line.substr(0, colon), std::stoul(line.substr(first, comma - first)), std::nullopt };
+  const std::size_t stride = line.rfind(strideKey);
+  if (stride != std::string::npos && stride > comma && allOf(line.substr(stride + strideKey.size()), digit))
+  {
+    member.Stride = std::stoul(line.substr(stride + strideKey.size()));
+  }
+  return member;
+}
+
+// The size glslang reflects for the parameter block
+// ("ParameterBlock: offset -1, type HEX, size N,"), where the shader declares it.
+std::optional<std::size_t> parameterBlockSize(const std::string& reflection)
+{
+  const std::string key = "ParameterBlock: offset -1, type ", sizeKey = ", size ";
+  for (std::size_t at = reflection.find(key); at != std::string::npos; at = reflection.find(key, at + 1))
+  {
+    const std::size_t type = at + key.size(), size = reflection.find(sizeKey, type);
+    const std::size_t comma = size == std::string::npos ? size : reflection.find(',', size + sizeKey.size());
+    const auto hex = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0 || (c >= 'a' && c <= 'f'); };
+    if (comma != std::string::npos && allOf(reflection.substr(type, size - type), +hex) &&
+      allOf(reflection.substr(size + sizeKey.size(), comma - size - sizeKey.size()), digit))
+    {
+      return std::stoul(reflection.substr(size + sizeKey.size(), comma - size - sizeKey.size()));
+    }
+  }
+  return std::nullopt;
+}
+
 // Checks each reflected contract member of one shader; returns the names seen.
 std::set<std::string> checkShader(const std::string& shader, const std::string& reflection)
 {
   std::set<std::string> seen;
-  const std::regex line(R"(^([A-Za-z_\[\]0-9.]+): offset (\d+),[^\n]*?(topLevelArrayStride (\d+))?$)");
   std::istringstream lines(reflection);
   std::string text;
-  std::smatch m;
   while (std::getline(lines, text))
   {
-    if (!std::regex_match(text, m, line) || prefixOf(m[1]).empty())
+    const std::optional<ReflectedMember> member = reflectedMember(text);
+    if (!member)
+    {
+      continue;
+    }
+    const std::string& name = member->Name;
+    // The march's vec4 views of the light fields (LightFieldPairAsVec4): one
+    // element a LightFieldPair.
+    if ((name == "lightField" || name == "lightAbsorption") && member->Offset == 0 && member->Stride)
+    {
+      OPAL_CHECK(*member->Stride == sizeof(LightFieldPair), shader + ": the vec4 view " + name + " has stride " +
+          std::to_string(*member->Stride) + " = sizeof(LightFieldPair) " + std::to_string(sizeof(LightFieldPair)));
+      seen.insert(name + " as vec4");
+    }
+    if (prefixOf(name).empty())
     {
       continue; // not a member of the contract's structs
     }
-    const std::string name = m[1];
     const auto expected = expectedOffsets().find(name);
     OPAL_CHECK(expected != expectedOffsets().end(), shader + ": " + name + " is checked by this test's table");
     if (expected != expectedOffsets().end())
     {
-      OPAL_CHECK(std::stoul(m[2]) == expected->second, shader + ": " + name + " at GLSL offset " + m[2].str() +
-          ", C++ offset " + std::to_string(expected->second));
+      OPAL_CHECK(member->Offset == expected->second, shader + ": " + name + " at GLSL offset " +
+          std::to_string(member->Offset) + ", C++ offset " + std::to_string(expected->second));
     }
     const auto stride = expectedStrides.find(prefixOf(name));
-    if (m[4].matched && stride != expectedStrides.end())
+    if (member->Stride && stride != expectedStrides.end())
     {
-      OPAL_CHECK(std::stoul(m[4]) == stride->second, shader + ": " + name + " array stride " + m[4].str() +
-          " = sizeof " + std::to_string(stride->second));
+      OPAL_CHECK(*member->Stride == stride->second, shader + ": " + name + " array stride " +
+          std::to_string(*member->Stride) + " = sizeof " + std::to_string(stride->second));
     }
     seen.insert(name);
   }
-  // The march's vec4 views of the light fields (LightFieldPairAsVec4): one
-  // element a LightFieldPair.
-  const std::regex view(R"(^(lightField|lightAbsorption): offset 0,[^\n]*topLevelArrayStride (\d+)$)");
-  lines.clear();
-  lines.str(reflection);
-  while (std::getline(lines, text))
+  if (const std::optional<std::size_t> size = parameterBlockSize(reflection))
   {
-    if (std::regex_match(text, m, view))
-    {
-      OPAL_CHECK(std::stoul(m[2]) == sizeof(LightFieldPair), shader + ": the vec4 view " + m[1].str() + " has stride " +
-          m[2].str() + " = sizeof(LightFieldPair) " + std::to_string(sizeof(LightFieldPair)));
-      seen.insert(m[1].str() + " as vec4");
-    }
-  }
-  // The parameter block's size, where the shader declares it.
-  const std::regex block(R"(ParameterBlock: offset -1, type [0-9a-f]+, size (\d+),)");
-  if (std::regex_search(reflection, m, block))
-  {
-    OPAL_CHECK(std::stoul(m[1]) == sizeof(RenderParameterBlock),
-      shader + ": the parameter block's size " + m[1].str() + " = sizeof " + std::to_string(sizeof(RenderParameterBlock)));
+    OPAL_CHECK(*size == sizeof(RenderParameterBlock), shader + ": the parameter block's size " +
+        std::to_string(*size) + " = sizeof " + std::to_string(sizeof(RenderParameterBlock)));
   }
   return seen;
 }
