@@ -121,6 +121,17 @@ def estimate(volume_seconds, bytes_per_voxel, device_bytes_per_voxel):
           f"(the device fields of the whole volume on every rank)", flush=True)
 
 
+def shared_stage(render, heading, shares_property):
+    """Renders again with the settings just changed and prints its figures
+    under `heading`, given how many ranks shared the step `shares_property` counts."""
+    seconds = timed(render)
+    render.UpdatePropertyInformation()
+    shares = render.GetProperty(shares_property).GetElement(0)
+    if rank == 0:
+        print("  " + heading.format(shares), flush=True)
+    report(render, 0.0, seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+
+
 # No rank leaves early (pvbatch under MPI must reach its end on every rank).
 if fits():
     baseline_mb, baseline_device_mb = process_footprint()
@@ -140,19 +151,10 @@ if fits():
         # Every order of scattering, the volume and its light pass kept: the
         # ranks share the photon solve (its stage, "every order").
         render.ScatteringOrders = "all"
-        every_order_seconds = timed(render)
-        render.UpdatePropertyInformation()
-        shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
-        if rank == 0:
-            print(f"  every order, traced by {shares} rank(s):", flush=True)
-        report(render, 0.0, every_order_seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+        shared_stage(render, "every order, traced by {} rank(s):", "LastScatteredLightShares")
         # The light low to the side, single scattering: the light pass marches
         # from every voxel, and the ranks share it (its stage, "light pass").
         render.ScatteringOrders = "single"
         render.LightPosition = [60, 10, 0]
-        side_seconds = timed(render)
-        render.UpdatePropertyInformation()
-        marched = render.GetProperty("LastLightFieldShares").GetElement(0)
-        if rank == 0:
-            print(f"  the light low to the side (single scattering), its field marched by {marched} rank(s):", flush=True)
-        report(render, 0.0, side_seconds, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0)
+        shared_stage(render, "the light low to the side (single scattering), its field marched by {} rank(s):",
+                     "LastLightFieldShares")
