@@ -437,7 +437,7 @@ int voxelOfInvocation()
   {
     return local < int(queues[work.layer].count) ? int(ENTRY_VOXEL_AT(local)) : -1;
   }
-  return local < nx * P.gridDimensions.z ? local % nx + nx * (work.layer + ny * (local / nx)) : -1;
+  return local < nx * work.count ? local % nx + nx * (work.layer + ny * (work.first + local / nx)) : -1;
 }
 
 void main()

@@ -301,8 +301,9 @@ struct VolumeAddresses
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in
-// LightPassMarchTowardsLight and LightPassScatteredField, the layer y = layer
-// in the other two modes.
+// LightPassMarchTowardsLight and LightPassScatteredField; the layer y = layer
+// in the other two modes, LightPassSweepFromAbove sweeping its rows
+// z = first to first + count - 1 (a share of the layer, docs/design.md §8.1).
 struct LightPassWork
 {
   int first;

@@ -20,12 +20,13 @@ enum ShareCode
   Failed = 2,    // has failed the request: no rank exchanges shares
 };
 
-// What a sharer says of its share.
+// What a sharer says of its share in a round.
 enum ShareState : char
 {
   ShareFailed = 0,
   ShareDone = 1,
   ShareAborted = 2,
+  ShareGoesOn = 3, // a round before the last: its bytes are what the others need to go on
 };
 
 // The exchange's rounds: a round of every rank is held at once (4 MiB each),
@@ -77,27 +78,58 @@ int shareOf(vtkMultiProcessController* controller, const std::vector<int>& share
   return share == sharers.end() ? -1 : static_cast<int>(share - sharers.begin());
 }
 
-// Collective over every rank: a sharer sends its share (`mine`), a bystander
-// nothing (`mine` nullptr); every share's bytes go to `sink` as they arrive.
-Outcome exchange(vtkMultiProcessController* controller, const std::vector<int>& sharers,
-  const std::optional<std::vector<char>>* mine, bool aborted, const Sink& sink, const std::string& what)
+// A round's outcome, and whether every sharer goes on to another.
+struct Round
+{
+  Outcome Said;
+  bool GoesOn = false;
+};
+
+// The sharers' states of a round (a byte each; a bystander, `state`
+// nullptr, sends none), in sharer order.
+std::vector<char> statesOf(vtkMultiProcessController* controller, const std::vector<int>& sharers, const char* state)
 {
   namespace agreement = vtkOpalRankAgreement;
-  // First each sharer's state (a byte; a bystander sends none), then the
-  // shares' bytes straight from `mine`, in rounds of ShareRoundBytes: a round's
-  // window (a round of every rank) is all the exchange holds besides them.
-  const char state = mine && *mine ? ShareDone : aborted ? ShareAborted : ShareFailed;
-  const std::vector<vtkIdType> stateLengths = agreement::GatherLengths(controller, mine ? 1 : 0);
+  const std::vector<vtkIdType> lengths = agreement::GatherLengths(controller, state ? 1 : 0);
+  std::vector<char> sent;
+  if (!agreement::GatherBytes(controller, state, lengths, sent))
+  {
+    return {};
+  }
+  // A sharer's state is its one byte, at its place among the ranks that sent one.
+  const std::vector<vtkIdType> places = agreement::RankOffsets(lengths);
   std::vector<char> states;
-  const std::vector<char>* bytes = mine && *mine ? &**mine : nullptr;
+  for (const int rank : sharers)
+  {
+    const std::size_t r = static_cast<std::size_t>(rank);
+    states.push_back(lengths[r] > 0 ? sent[static_cast<std::size_t>(places[r])] : static_cast<char>(ShareFailed));
+  }
+  return states;
+}
+
+// Collective over every rank: a round of the exchange. First each sharer's
+// state (`state`; a bystander nullptr), then the bytes straight from `bytes`
+// (a bystander's none), in rounds of ShareRoundBytes: a round's window (a
+// round of every rank) is all the exchange holds besides them. Where every
+// sharer goes on, each one's bytes go to `sink`; else the shares of those
+// done (the last exchange).
+Round exchangeRound(vtkMultiProcessController* controller, const std::vector<int>& sharers, const char* state,
+  const std::vector<char>* bytes, const Sink& sink, const std::string& what)
+{
+  namespace agreement = vtkOpalRankAgreement;
+  const std::vector<char> states = statesOf(controller, sharers, state);
   const std::vector<vtkIdType> lengths =
     agreement::GatherLengths(controller, bytes ? static_cast<vtkIdType>(bytes->size()) : 0);
+  const bool goesOn = !states.empty() && std::all_of(states.begin(), states.end(), [](char s) { return s == ShareGoesOn; });
   std::vector<int> shareOfRank(lengths.size(), -1);
-  for (std::size_t s = 0; s < sharers.size(); ++s)
+  for (std::size_t s = 0; s < sharers.size() && !states.empty(); ++s)
   {
-    shareOfRank[static_cast<std::size_t>(sharers[s])] = static_cast<int>(s);
+    if (goesOn || states[s] == ShareDone)
+    {
+      shareOfRank[static_cast<std::size_t>(sharers[s])] = static_cast<int>(s);
+    }
   }
-  const bool exchanged = agreement::GatherBytes(controller, &state, stateLengths, states) &&
+  const bool exchanged = !states.empty() &&
     agreement::GatherBytesTo(
       controller, bytes ? bytes->data() : nullptr, lengths,
       [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
@@ -112,18 +144,25 @@ Outcome exchange(vtkMultiProcessController* controller, const std::vector<int>& 
   {
     throw std::runtime_error("The ranks could not exchange " + what + ".");
   }
-  // A sharer's state is its one byte, at its place among the ranks that sent one.
-  const std::vector<vtkIdType> places = agreement::RankOffsets(stateLengths);
-  Outcome outcome{ true, false };
-  for (const int rank : sharers)
+  Round round{ { true, false }, goesOn };
+  for (const char s : states)
   {
-    const std::size_t r = static_cast<std::size_t>(rank);
-    const char sent =
-      stateLengths[r] > 0 ? states[static_cast<std::size_t>(places[r])] : static_cast<char>(ShareFailed);
-    outcome.Complete = outcome.Complete && sent == ShareDone;
-    outcome.Aborted = outcome.Aborted || sent == ShareAborted;
+    round.Said.Complete = round.Said.Complete && (goesOn || s == ShareDone);
+    round.Said.Aborted = round.Said.Aborted || s == ShareAborted;
   }
-  return outcome;
+  return round;
+}
+
+// A bystander's part: every round, with nothing, until the last.
+bool standBy(vtkMultiProcessController* controller, const std::vector<int>& sharers, const std::string& what)
+{
+  const auto ignore = [](int, std::uint64_t, std::uint64_t, const char*) {};
+  Round round;
+  do
+  {
+    round = exchangeRound(controller, sharers, nullptr, nullptr, ignore, what);
+  } while (round.GoesOn);
+  return round.Said.Aborted;
 }
 } // namespace
 
@@ -143,15 +182,21 @@ Result Share(vtkMultiProcessController* controller, bool failed, const std::func
   const int share = shareOf(controller, sharers);
   if (share < 0)
   {
-    const auto ignore = [](int, std::uint64_t, std::uint64_t, const char*) {};
-    return { 0, exchange(controller, sharers, nullptr, false, ignore, what).Aborted };
+    return { 0, standBy(controller, sharers, what) };
   }
   Outcome outcome;
-  const bool done = run(share, static_cast<int>(sharers.size()),
-    [&](const std::optional<std::vector<char>>& mine, const Sink& sink) {
-      outcome = exchange(controller, sharers, &mine, aborted(), sink, what);
-      return outcome;
-    });
+  Exchanger exchanger;
+  exchanger.Last = [&](const std::optional<std::vector<char>>& mine, const Sink& sink) {
+    const char state = mine ? ShareDone : aborted() ? ShareAborted : ShareFailed;
+    outcome = exchangeRound(controller, sharers, &state, mine ? &*mine : nullptr, sink, what).Said;
+    return outcome;
+  };
+  exchanger.Round = [&](const std::vector<char>& mine, const Sink& sink) {
+    const char state = ShareGoesOn;
+    outcome = exchangeRound(controller, sharers, &state, &mine, sink, what).Said;
+    return outcome;
+  };
+  const bool done = run(share, static_cast<int>(sharers.size()), exchanger);
   return { done ? static_cast<int>(sharers.size()) : 0, outcome.Aborted };
 }
 } // namespace vtkOpalRankShares

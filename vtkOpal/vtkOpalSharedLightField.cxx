@@ -6,11 +6,15 @@ vtkOpalRankShares::Result March(vtkMultiProcessController* controller, opal::Ren
   const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted)
 {
   return vtkOpalRankShares::Share(controller, failed,
-    session ? std::function<bool()>([&] { return session->needsLightMarch(frame); }) : nullptr, aborted,
+    session ? std::function<bool()>([&] { return session->needsLightPass(frame); }) : nullptr, aborted,
     "the light field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
-      return session->marchLightFieldShared(frame, share, shares,
+      return session->shareLightPass(
+        frame, share, shares,
         [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
           return exchange(mine, sink).Complete;
+        },
+        [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+          return exchange.round(mine, sink).Complete;
         },
         progress);
     });

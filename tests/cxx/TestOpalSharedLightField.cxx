@@ -1,22 +1,32 @@
-// The light field marched per voxel by processes together (docs/design.md
-// §8.1), played in one process: three sessions each march a share of the
-// voxels' rows, and the one that puts every share together renders the image
-// a session that marched alone renders, value for value. fire-opal lit from
-// the side carries every field a share holds (the light field, its
-// absorption's, the Bragg shadows of energy conservation), and the shares'
-// bytes arrive in small pieces that cut across fields and records, with the
-// fields paired (bound) and one value per voxel (addressed). A share whose
-// exchange is not whole leaves no light field held: the frame marches alone,
-// to the same image. A light above the grid is not marched per voxel.
+// The light field computed by processes together (docs/design.md §8.1),
+// played by three sessions on three threads: each computes a share of the
+// layers' rows, and the one that puts every share together renders the image
+// a session that computed the field alone renders, value for value.
+// fire-opal carries every field a share holds (the light field, its
+// absorption's, the Bragg shadows of energy conservation), with the fields
+// paired (bound) and one value per voxel (addressed); the shares' bytes
+// arrive in small pieces that cut across fields and records. Lit from the
+// side, each share marches from its voxels; lit from above, obliquely
+// enough that a path drifts across rows, each sweeps its rows layer after
+// layer and passes its edge rows to the shares beside it after each layer
+// (without them a share's edge reads nothing above). A share that fails, or
+// aborts midway through the layers, ends every share's exchange: no field
+// is held, and the frame computes it alone, to the same image.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
+#include "OpalVolumeGeometry.h"
 #include "OpalVolumeBuild.h"
 
 #include <algorithm>
+#include <array>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace
@@ -27,56 +37,160 @@ bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
     a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
 }
 
-// Hands `bytes` (share `share`'s) to `sink` in pieces of `piece` bytes.
-void inPieces(const opal::RenderSession::ShareSink& sink, int share, const std::vector<char>& bytes, std::size_t piece)
+// The processes' exchange: in each round every share posts its bytes (a
+// layer's edge rows, or its last: nullopt where it stopped) and, once all
+// have, is handed the others' in pieces of 1000 bytes, a size that is no
+// multiple of any record's. A round goes on where every share posted a
+// layer's; the last is whole where every share posted its bytes.
+class Meeting
 {
-  for (std::size_t first = 0; first < bytes.size(); first += piece)
-  {
-    sink(share, first, std::min(piece, bytes.size() - first), bytes.data() + first);
-  }
-}
+public:
+  explicit Meeting(int shares) : Posts(static_cast<std::size_t>(shares)) {}
 
-// Shares 1 and 2 march and keep their bytes (their exchange not whole);
-// share 0 marches last and, where `whole`, is handed theirs. The image share
-// 0's session then renders.
-opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::VulkanOptions& options,
-  const opal::ResolvedFrame& frame, bool whole, const std::string& what)
+  bool meet(int share, bool last, const std::optional<std::vector<char>>& bytes, const opal::RenderSession::ShareSink& sink)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    this->Changed.wait(lock, [&] { return !this->Reading; }); // the round before fully read
+    this->Posts[static_cast<std::size_t>(share)] = { last, bytes };
+    if (++this->Arrived == static_cast<int>(this->Posts.size()))
+    {
+      this->Reading = true;
+      this->Changed.notify_all();
+    }
+    this->Changed.wait(lock, [&] { return this->Reading; });
+    const bool goesOn = std::none_of(this->Posts.begin(), this->Posts.end(), [](const Post& p) { return p.Last; });
+    const bool whole =
+      std::all_of(this->Posts.begin(), this->Posts.end(), [](const Post& p) { return p.Last && p.Bytes; });
+    for (std::size_t from = 0; from < this->Posts.size(); ++from)
+    {
+      const Post& post = this->Posts[from];
+      for (std::size_t first = 0; post.Bytes && (goesOn || post.Last) && first < post.Bytes->size(); first += 1000)
+      {
+        sink(static_cast<int>(from), first, std::min<std::size_t>(1000, post.Bytes->size() - first),
+          post.Bytes->data() + first);
+      }
+    }
+    if (++this->Left == static_cast<int>(this->Posts.size()))
+    {
+      this->Arrived = this->Left = 0;
+      this->Reading = false;
+      this->Changed.notify_all();
+    }
+    return last ? whole : goesOn;
+  }
+
+private:
+  struct Post
+  {
+    bool Last = false;
+    std::optional<std::vector<char>> Bytes;
+  };
+  std::mutex Mutex;
+  std::condition_variable Changed;
+  std::vector<Post> Posts;
+  int Arrived = 0, Left = 0;
+  bool Reading = false;
+};
+
+// How a share of the three ends: whole, or share 1 failing (its bytes not
+// sent) or aborting when half its layers are done.
+enum class Ending
 {
-  std::vector<std::vector<char>> shares(3);
+  Whole,
+  ShareFails,
+  ShareAborts,
+};
+
+// Three sessions compute their shares on three threads; share 0's session
+// then renders the frame.
+opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::VulkanOptions& options,
+  const opal::ResolvedFrame& frame, Ending ending, const std::string& what)
+{
+  constexpr int Shares = 3;
   std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
-  for (int share : { 1, 2, 0 })
+  for (int share = 0; share < Shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
-    opal::RenderSession& session = sessions.back()->Session;
-    session.setVolume(volume);
-    OPAL_CHECK(session.needsLightMarch(frame), what + ": a fresh session would march the light per voxel");
-    const bool marched = session.marchLightFieldShared(frame, share, 3,
-      [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
-        shares[static_cast<std::size_t>(share)] = *mine;
-        if (share != 0 || !whole)
-        {
-          return false;
-        }
-        inPieces(sink, 1, shares[1], 1000); // not a multiple of any record's bytes
-        inPieces(sink, 2, shares[2], shares[2].size());
-        return true;
-      });
-    OPAL_CHECK(marched == (share == 0 && whole), what + ": share " + std::to_string(share) + " holds the field");
+    sessions.back()->Session.setVolume(volume);
+    OPAL_CHECK(sessions.back()->Session.needsLightPass(frame), what + ": a fresh session would compute the light field");
   }
-  opal::RenderSession& last = sessions.back()->Session;
-  OPAL_CHECK(last.needsLightMarch(frame) == !whole, what + ": the session then holds the light field, or not");
-  const opal::RenderFrame rendered = last.render(frame);
-  const auto messages = last.context().validationMessages();
+  Meeting meeting(Shares);
+  std::vector<char> held(Shares, 0);
+  std::vector<std::exception_ptr> failures(Shares);
+  std::vector<std::thread> threads;
+  for (int share = 0; share < Shares; ++share)
+  {
+    threads.emplace_back([&, share] {
+      const bool troubled = share == 1;
+      try
+      {
+        held[static_cast<std::size_t>(share)] = sessions[static_cast<std::size_t>(share)]->Session.shareLightPass(
+          frame, share, Shares,
+          [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+            const bool fails = troubled && ending == Ending::ShareFails;
+            return meeting.meet(share, true, fails ? std::nullopt : mine, sink);
+          },
+          [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+            return meeting.meet(share, false, mine, sink);
+          },
+          [&](double done) { return !(troubled && ending == Ending::ShareAborts && done > 0.1); });
+      }
+      catch (...)
+      {
+        failures[static_cast<std::size_t>(share)] = std::current_exception();
+      }
+    });
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  for (int share = 0; share < Shares; ++share)
+  {
+    OPAL_CHECK(!failures[static_cast<std::size_t>(share)], what + ": share " + std::to_string(share) + " throws nothing");
+    OPAL_CHECK(held[static_cast<std::size_t>(share)] == (ending == Ending::Whole),
+      what + ": share " + std::to_string(share) + (ending == Ending::Whole ? " holds" : " does not hold") + " the field");
+  }
+  opal::RenderSession& first = sessions.front()->Session;
+  OPAL_CHECK(first.needsLightPass(frame) == (ending != Ending::Whole),
+    what + ": the session then holds the light field, or not");
+  const opal::RenderFrame rendered = first.render(frame);
+  const auto messages = first.context().validationMessages();
   OPAL_CHECK(messages.empty(),
     what + ": the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
   return rendered;
+}
+
+void checkLight(const opal::RenderVolume& stone, opal::RenderParameters p, const std::array<double, 3>& light,
+  Ending broken, const std::string& where)
+{
+  p.LightPosition = light;
+  const opal::ResolvedFrame frame = opal::resolveFrame(p);
+  opaltest::SceneRenderer alone({});
+  alone.Session.setVolume(stone);
+  const opal::RenderFrame lone = alone.Session.render(frame);
+  OPAL_CHECK(lone.Status == opal::FrameStatus::Completed, where + ": a session alone renders the frame");
+  opal::VulkanOptions unpaired;
+  // Below the paired fields (VoxelCell 8, SurfaceDistance 8, light field 16,
+  // absorption cells 8 and their light field 16, the Bragg shadows 12): one value per voxel, by address.
+  unpaired.MemoryLimitBytes = stone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
+  const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" } };
+  for (const auto& [options, how] : layouts)
+  {
+    const opal::RenderFrame shared = sharedFrame(stone, options, frame, Ending::Whole, where + ", " + how);
+    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
+      where + ", " + how + ": the shares' field gives the image of a session that computed it alone, value for value");
+    OPAL_CHECK(shared.Ran.PairedFields == (how == "paired"), where + ", " + how + ": the fields are held " + how);
+  }
+  const opal::RenderFrame partial = sharedFrame(stone, {}, frame, broken, where + ", a share stopping");
+  OPAL_CHECK(partial.Ran.LightPass && identical(partial.Image, lone.Image),
+    where + ", a share stopping: the frame computes the light alone, to the same image");
 }
 } // namespace
 
 int TestOpalSharedLightField(int, char*[])
 {
-  auto renderer = opaltest::makeRenderer();
-  if (!renderer)
+  if (!opaltest::makeRenderer())
   {
     return opaltest::noDeviceReturnCode();
   }
@@ -91,34 +205,14 @@ int TestOpalSharedLightField(int, char*[])
   const opal::VolumeRenderHints hints = opal::renderHints(opal::presetIndexByName("fire-opal"), model.RefractiveIndex);
   p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
   p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
-  p.LightPosition = { 30.0, 12.0, 4.0 }; // low to the side: the per-voxel march
   const opal::ResolvedFrame frame = opal::resolveFrame(p);
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters) && stone.absorbs(),
     "set-up: an absorbing body with energy conservation's Bragg shadows");
-
-  renderer->Session.setVolume(stone);
-  const opal::RenderFrame alone = renderer->Session.render(frame);
-  OPAL_CHECK(alone.Status == opal::FrameStatus::Completed, "a session alone renders the frame");
-  opal::VulkanOptions unpaired;
-  // Below the paired fields (VoxelCell 8, SurfaceDistance 8, light field 16,
-  // absorption cells 8 and their light field 16, the Bragg shadows 12): one value per voxel, by address.
-  unpaired.MemoryLimitBytes = stone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
-  const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" } };
-  for (const auto& [options, how] : layouts)
-  {
-    const opal::RenderFrame shared = sharedFrame(stone, options, frame, true, how);
-    OPAL_CHECK(
-      shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, alone.Image),
-      how + ": the shares' field gives the image of a session that marched alone, value for value");
-    OPAL_CHECK(shared.Ran.PairedFields == (how == "paired"), how + ": the fields are held " + how);
-  }
-  const opal::RenderFrame partial = sharedFrame(stone, {}, frame, false, "a share missing");
-  OPAL_CHECK(partial.Ran.LightPass && identical(partial.Image, alone.Image),
-    "a share missing: the frame marches the light alone, to the same image");
-
-  opal::RenderParameters above = p;
-  above.LightPosition = { 0.0, 60.0, 0.0 };
-  OPAL_CHECK(!renderer->Session.needsLightMarch(opal::resolveFrame(above)),
-    "a light above the grid is swept layer after layer, not marched per voxel");
+  const opal::VolumeGeometry geometry(stone, false);
+  const std::array<double, 3> side{ 30.0, 12.0, 4.0 }, above{ 4.0, 60.0, 12.0 };
+  OPAL_CHECK(!geometry.lightAboveGrid({ side[0], side[1], side[2] }) && geometry.lightAboveGrid({ above[0], above[1], above[2] }),
+    "set-up: one light marched from every voxel, one swept from above");
+  checkLight(stone, p, side, Ending::ShareFails, "lit from the side");
+  checkLight(stone, p, above, Ending::ShareAborts, "lit from above");
   return opaltest::finish("TestOpalSharedLightField");
 }

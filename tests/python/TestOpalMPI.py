@@ -73,14 +73,13 @@ else:
         check("every-order field traced by 1 rank(s)" in alone, "one process solves the every-order field alone:\n" + alone)
         check(f"every-order field traced by {ranks} rank(s)" in together,
               f"the {ranks} ranks share the every-order solve:\n" + together)
-        # The light low to the side: the ranks share its march from every
-        # voxel (each a share of the rows, docs/design.md §8.1).
-        check("light field computed by 1 rank(s)" in alone, "one process marches the light field alone:\n" + alone)
+    if kind in renders:
+        # The ranks share the light field (each a share of the layers' rows,
+        # docs/design.md §8.1): marched from every voxel with the light low to
+        # the side (fire), swept layer after layer with it above (render, grains).
+        check("light field computed by 1 rank(s)" in alone, "one process computes the light field alone:\n" + alone)
         check(f"light field computed by {ranks} rank(s)" in together,
-              f"the {ranks} ranks share the light field's march:\n" + together)
-    if kind in ("render", "grains"):
-        # The light above: each rank sweeps the layers alone.
-        check("light field computed by 1 rank(s)" in together, "each rank sweeps the light from above alone:\n" + together)
+              f"the {ranks} ranks share the light field:\n" + together)
 
 
 def read(reader_class, path):

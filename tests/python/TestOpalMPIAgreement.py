@@ -5,8 +5,9 @@ on any rank, and no hang (each run is bounded; a hang fails the test);
 ranks that agree render. With every order of scattering the ranks share the
 photon solve; a rank without a device, or one aborting inside the shared
 solve (which aborts every rank's request), leaves every rank without an image
-piece, and none hangs. With the light low to the side the ranks share its
-march from every voxel, and an abort inside it ends every rank's request alike.
+piece, and none hangs. The ranks share the light field: its sweep with the
+light above, its march from every voxel with the light low to the side; an
+abort inside either ends every rank's request alike.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -49,10 +50,17 @@ def expect_refused(case, sentence, rank1_environment=None):
     check(said == ranks, f"{case}: every rank says '{sentence}' once, said {said} times:\n{output[-3000:]}")
 
 
+
+def light_shares(output):
+    return {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares \d+ light (\d+)", output)}
+
+
 output = run_ranks("same")
 images = images_of(output)
 check(len(images) == ranks and all(points > 0 for points in images.values()),
       f"ranks that agree render their pieces: {images}\n{output[-3000:]}")
+check(light_shares(output) == {r: ranks for r in range(ranks)},
+      f"the light above: all {ranks} ranks swept the light field together: {light_shares(output)}")
 expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
 expect_refused("information", "ViewAngle")
 expect_refused("same", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
@@ -69,12 +77,15 @@ shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image
 check(len(images) == ranks and all(points == 0 for points in images.values()),
       f"an abort in the shared solve on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
 check(shares == {r: 0 for r in range(ranks)}, f"and every rank aborts with it, none solving alone: {shares}")
+check(light_shares(output) == {r: ranks for r in range(ranks)},
+      f"the abort came after the ranks' shared light field: {light_shares(output)}")
 
-
-def light_shares(output):
-    return {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares \d+ light (\d+)", output)}
-
-
+output = run_ranks("above-abort")
+images = images_of(output)
+check(len(images) == ranks and all(points == 0 for points in images.values()),
+      f"an abort in the shared sweep on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
+check(light_shares(output) == {r: 0 for r in range(ranks)},
+      f"and every rank aborts with it, none sweeping alone: {light_shares(output)}")
 output = run_ranks("side")
 check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
       f"the light to the side: ranks that agree render their pieces:\n{output[-3000:]}")

@@ -1,14 +1,17 @@
 """pvbatch --symmetric helper: every rank renders a small opal, rank 1 with
 `StepSize` 0.5 in the settings case, a bad `ViewAngle` in the information
 case; with every order of scattering in the every-order case, and in the
-abort case with rank 1 asking to abort at its first progress above 0
-(inside the ranks' shared photon solve); in the side case the light low to the side (the
-ranks share its march from every voxel), and in the side-abort case with
-rank 1 asking to abort likewise, at the end of its share of that march. Each rank then prints whether it
-holds an image piece and how many ranks traced its every-order field and
-computed its light field ("rank R image POINTS shares S light L"), so the
-driver sees that none holds part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|side|side-abort"""
+abort case with rank 1 asking to abort at its first progress above 0.1
+(past the ranks' shared light field, inside their shared photon solve); in
+the above-abort case with rank 1 asking to abort at its first progress above
+0 (inside the ranks' sweep of the light from above); in the side case the
+light low to the side (the ranks share its march from every voxel), and in
+the side-abort case with rank 1 asking to abort at its first progress above
+0 (inside that march). Each rank then prints whether it holds an image piece
+and how many ranks traced its every-order field and computed its light field
+("rank R image POINTS shares S light L"), so the driver sees that none holds
+part of a failed image.
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -25,10 +28,12 @@ if case in ("every-order", "abort"):
     render.ScatteringOrders = "all"
 if case in ("side", "side-abort"):
     render.LightPosition = [60, 10, 0]
-if rank == 1 and case in ("abort", "side-abort"):
-    # At the shared step's first progress (the request's own start reports 0).
+if rank == 1 and case in ("abort", "above-abort", "side-abort"):
+    # The request's own start reports 0; with every order, the shared light
+    # field's last progress 0.1 (docs/design.md §8.1).
+    after = 0.1 if case == "abort" else 0.0
     render.GetClientSideObject().AddObserver(
-        "ProgressEvent", lambda filter, _: filter.GetProgress() > 0 and filter.SetAbortExecute(1))
+        "ProgressEvent", lambda filter, _: filter.GetProgress() > after and filter.SetAbortExecute(1))
 if rank == 1 and case == "settings":
     render.StepSize = 0.5
 if rank == 1 and case == "information":

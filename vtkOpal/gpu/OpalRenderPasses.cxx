@@ -32,7 +32,7 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
     this->prepareShadowField();
   }
   const bool completed = this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light)
-    ? this->sweepLightLayers(braggShadow, progress)
+    ? this->sweepLightLayers(braggShadow, progress, { 0, this->Volume->Shape.Dimensions[2] })
     : this->marchLightPerVoxel(braggShadow, progress);
   if (completed)
   {
@@ -42,18 +42,20 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 }
 
 // Layer by layer from the top: each layer reads the one above.
-bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
+bool RenderSession::sweepLightLayers(
+  bool braggShadow, Progress& progress, std::pair<int, int> rows, const std::function<bool(int layer)>& afterLayer)
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
   const int layers = dims[1];
-  const auto groups = static_cast<std::uint32_t>((dims[0] * dims[2] + gpu::LightPassGroupSize - 1) /
-    gpu::LightPassGroupSize);
+  const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * (rows.second - rows.first);
+  const auto groups = static_cast<std::uint32_t>((layerVoxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
   const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
   const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow);
-  const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * dims[2];
   for (int top = layers - 1; top >= 0;)
   {
-    const int layersPerSubmit = static_cast<int>(std::clamp<std::int64_t>(this->SweepPacer.items() / layerVoxels, 1, layers));
+    const int layersPerSubmit = afterLayer
+      ? 1
+      : static_cast<int>(std::clamp<std::int64_t>(this->SweepPacer.items() / std::max<std::int64_t>(layerVoxels, 1), 1, layers));
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
       if (top == layers - 1)
@@ -62,7 +64,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
       }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
-        const gpu::LightPassWork work{ 0, 0, layer };
+        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer };
         sweep.dispatch(commands, work, groups);
         enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
           static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
@@ -71,7 +73,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress)
     const int swept = std::min(layersPerSubmit, top + 1);
     this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
     top -= swept;
-    if (!progress.stageDone(static_cast<double>(layers - 1 - top) / layers))
+    if (!progress.stageDone(static_cast<double>(layers - 1 - top) / layers) || (afterLayer && top >= 0 && !afterLayer(top + 1)))
     {
       return false;
     }

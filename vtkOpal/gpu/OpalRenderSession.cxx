@@ -456,7 +456,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   RenderTimings& timings = frame.Image.Timings;
   // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.
   const double sharedSolveSeconds = std::exchange(this->PendingScatteredSeconds, -1.0);
-  const double sharedLightSeconds = std::exchange(this->PendingLightSeconds, -1.0); // marchLightFieldShared's
+  const double sharedLightSeconds = std::exchange(this->PendingLightSeconds, -1.0); // shareLightPass's
   const auto setupStart = Clock::now();
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;

@@ -127,22 +127,28 @@ public:
   bool solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares, const ScoresExchange& exchange,
     const RenderProgress& progress = nullptr);
 
-  // The light field marched per voxel (a light low or to the side, §3.3) by
-  // several processes together, before their frames (§8.1), as the solve
-  // above: needsLightMarch, whether `frame` would march it (no light field
-  // held serves it, and the light is not above the grid, whose sweep goes
-  // layer after layer), having checked what render() checks;
-  // marchLightFieldShared marches share `share` of `shares` of the voxels
-  // (whole rows), hands its fields' bytes to `exchange`, which sends them and
-  // gives every share's, as they arrive, to the sink (share, first byte,
-  // count, bytes) and says whether all arrived, and holds the whole field
-  // for the frames that follow. `exchange` is called exactly once, as above;
-  // false if the march was aborted or a share failed: a frame then marches alone.
+  // The light field (§3.3) computed by several processes together, before
+  // their frames (§8.1), as the solve above: needsLightPass, whether `frame`
+  // would compute it (no light field held serves it), having checked what
+  // render() checks. shareLightPass computes share `share` of `shares`: the
+  // rows z = ⌊share nz / shares⌋ to ⌊(share + 1) nz / shares⌋ of every layer.
+  // A light low or to the side is marched from each of their voxels. A light
+  // above the grid is swept layer after layer; after each layer but the last
+  // the share's rows of it that the shares beside read go to `layer`, which
+  // sends them, gives every other share's to the sink as they arrive, and
+  // says whether every share goes on (false, or a throw, ends the exchange:
+  // neither is called again). Then the share's fields' bytes go to
+  // `exchange`, which sends them, gives every share's to the sink (share,
+  // first byte, count, bytes) and says whether all arrived, and the whole
+  // field is held for the frames that follow. `exchange` is called exactly
+  // once unless `layer` ended the exchange, as above; false if the pass was
+  // aborted or a share failed: a frame then computes the field alone.
   using ShareSink = std::function<void(int share, std::uint64_t first, std::uint64_t count, const char* bytes)>;
   using FieldExchange = std::function<bool(const std::optional<std::vector<char>>& mine, const ShareSink& sink)>;
-  bool needsLightMarch(const ResolvedFrame& frame) const;
-  bool marchLightFieldShared(const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange,
-    const RenderProgress& progress = nullptr);
+  using LayerExchange = std::function<bool(const std::vector<char>& mine, const ShareSink& sink)>;
+  bool needsLightPass(const ResolvedFrame& frame) const;
+  bool shareLightPass(const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange,
+    const LayerExchange& layer, const RenderProgress& progress = nullptr);
 
   // Whether the frame's eye is inside the opal (which render refuses); false
   // without a volume. It reads only the host copy of the volume's surface,
@@ -224,7 +230,10 @@ private:
   void bindBuffers();
   void addressFields(std::vector<const VulkanBuffer*>& buffers) const;
   bool runLightPass(const FrameSetup& setup, Progress& progress);
-  bool sweepLightLayers(bool braggShadow, Progress& progress);
+  // Rows z in [rows.first, rows.second) of every layer; `afterLayer` (where
+  // given) after each layer but the last, one layer a submit, false stops.
+  bool sweepLightLayers(bool braggShadow, Progress& progress, std::pair<int, int> rows,
+    const std::function<bool(int layer)>& afterLayer = nullptr);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing,
     std::size_t first, std::size_t end);
@@ -306,7 +315,7 @@ private:
   std::optional<std::array<double, 4>> WavelengthSampling;    // range, step and illuminant of the table
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
   double PendingScatteredSeconds = -1; // >= 0: solveScatteredLightShared solved the field the next frame reads
-  double PendingLightSeconds = -1;     // >= 0: marchLightFieldShared marched the light field the next frame reads
+  double PendingLightSeconds = -1;     // >= 0: shareLightPass computed the light field the next frame reads
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
   // Each pass's work per submit, from its last submit's cost (docs/design.md
   // §3.7); until measured, what took a fraction of a second on lavapipe.

@@ -1,13 +1,15 @@
-// The light field marched per voxel by several processes together, each a
-// share of the voxels, before their frames (docs/design.md §8.1).
+// The light field computed by several processes together, each a share of
+// the voxels, before their frames (docs/design.md §8.1).
 #include "OpalRenderSession.h"
 
 #include "OpalRenderSessionState.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -20,54 +22,126 @@ using namespace sessiondetail;
 
 namespace
 {
-// Voxels [first, end) of share `share` of `shares`: whole rows, so that each
-// row's pairs (a voxel's and its +x neighbour's, §3.7) are one share's writes.
-std::pair<std::size_t, std::size_t> shareVoxels(const std::array<int, 3>& dims, int share, int shares)
+// Rows z [first, second) of every layer: share `share` of `shares`, each a
+// slab of whole rows, so that each row's pairs (a voxel's and its +x
+// neighbour's, §3.7) are one share's writes and its voxels one range.
+std::pair<int, int> shareRows(const std::array<int, 3>& dims, int share, int shares)
 {
-  const std::size_t rows = static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(dims[2]);
-  const auto rowAt = [&](int s) { return rows * static_cast<std::size_t>(s) / static_cast<std::size_t>(shares); };
-  const auto width = static_cast<std::size_t>(dims[0]);
-  return { rowAt(share) * width, rowAt(share + 1) * width };
+  const auto rowAt = [&](int s) { return static_cast<int>(static_cast<std::int64_t>(dims[2]) * s / shares); };
+  return { rowAt(share), rowAt(share + 1) };
+}
+
+// Voxel ranges [first, end), in the order a share's bytes carry them.
+using Runs = std::vector<std::pair<std::size_t, std::size_t>>;
+
+// The voxels of rows z [rows.first, rows.second) of every layer: one range.
+Runs slabOf(const std::array<int, 3>& dims, std::pair<int, int> rows)
+{
+  const std::size_t slab = static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
+  return { { slab * static_cast<std::size_t>(rows.first), slab * static_cast<std::size_t>(rows.second) } };
+}
+
+// The sweep's halo (docs/design.md §8.1): lightAboveGrid bounds a path's
+// sideways move per layer below half a voxel, so the node nearest to where a
+// voxel's path crosses the layer above is in the voxel's own row z, and its
+// 3 x 3 read spans rows z - 1 to z + 1; a second row keeps a margin for the
+// shader's rounding.
+constexpr int HaloRows = 2;
+
+// Layer `layer`'s first and last HaloRows rows of `rows` (all of them where
+// fewer), one range each: what the shares beside read of it.
+Runs haloOf(const std::array<int, 3>& dims, std::pair<int, int> rows, int layer)
+{
+  const auto nx = static_cast<std::size_t>(dims[0]);
+  Runs runs;
+  for (int z = rows.first; z < rows.second; ++z)
+  {
+    if (z < rows.first + HaloRows || z >= rows.second - HaloRows)
+    {
+      const std::size_t first = nx * (static_cast<std::size_t>(layer) + static_cast<std::size_t>(dims[1]) * z);
+      runs.emplace_back(first, first + nx);
+    }
+  }
+  return runs;
 }
 
 using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;
 
-// A share's bytes: each field's records of voxels [first, end), field after field.
-std::vector<char> readShare(const Fields& fields, std::pair<std::size_t, std::size_t> voxels)
+// Bytes of `runs`: each field's records of each run, field after field.
+std::vector<char> readShare(const Fields& fields, const Runs& runs)
 {
   std::vector<char> bytes;
   for (const auto& [buffer, record] : fields)
   {
-    const std::size_t at = bytes.size();
-    bytes.resize(at + (voxels.second - voxels.first) * record);
-    buffer->readRange(voxels.first * record, (voxels.second - voxels.first) * record,
-      [&bytes, at](std::uint64_t first, std::uint64_t count, const void* from) {
-        std::memcpy(bytes.data() + at + first, from, count);
-      });
+    for (const auto& [first, end] : runs)
+    {
+      const std::size_t at = bytes.size();
+      bytes.resize(at + (end - first) * record);
+      buffer->readRange(first * record, (end - first) * record,
+        [&bytes, at](std::uint64_t from, std::uint64_t count, const void* data) {
+          std::memcpy(bytes.data() + at + from, data, count);
+        });
+    }
   }
   return bytes;
 }
 
-// Bytes [first, first + count) of a share of `voxels` (as readShare lays
-// them out) written into the fields, a field's part at a time.
-void writeShare(const Fields& fields, std::pair<std::size_t, std::size_t> voxels, std::uint64_t first,
-  std::uint64_t count, const char* bytes)
+// Bytes [first, first + count) of `runs` (as readShare lays them out)
+// written into the fields, a run's part at a time.
+void writeShare(const Fields& fields, const Runs& runs, std::uint64_t first, std::uint64_t count, const char* bytes)
 {
-  std::uint64_t fieldStart = 0;
+  std::uint64_t runStart = 0;
   for (const auto& [buffer, record] : fields)
   {
-    const std::uint64_t fieldBytes = (voxels.second - voxels.first) * record;
-    const std::uint64_t from = std::max(first, fieldStart), to = std::min(first + count, fieldStart + fieldBytes);
-    if (from < to)
+    for (const auto& [voxel, end] : runs)
     {
-      buffer->write(voxels.first * record + (from - fieldStart), to - from, bytes + (from - first));
+      const std::uint64_t runBytes = (end - voxel) * record;
+      const std::uint64_t from = std::max(first, runStart), to = std::min(first + count, runStart + runBytes);
+      if (from < to)
+      {
+        buffer->write(voxel * record + (from - runStart), to - from, bytes + (from - first));
+      }
+      runStart += runBytes;
     }
-    fieldStart += fieldBytes;
   }
 }
+
+// A sink that writes the other shares' runs into the fields, keeping the
+// first failure to rethrow once the exchange is over (a throw inside it
+// would leave the processes' exchange midway).
+struct SharePlacer
+{
+  const Fields& Into;
+  int Own;
+  std::function<Runs(int share)> RunsOf;
+  std::exception_ptr Failure;
+
+  void operator()(int share, std::uint64_t first, std::uint64_t count, const char* bytes)
+  {
+    if (share == this->Own || this->Into.empty() || this->Failure)
+    {
+      return;
+    }
+    try
+    {
+      writeShare(this->Into, this->RunsOf(share), first, count, bytes);
+    }
+    catch (...)
+    {
+      this->Failure = std::current_exception();
+    }
+  }
+  void rethrow() const
+  {
+    if (this->Failure)
+    {
+      std::rethrow_exception(this->Failure);
+    }
+  }
+};
 } // namespace
 
-bool RenderSession::needsLightMarch(const ResolvedFrame& frame) const
+bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
 {
   if (!this->Volume)
   {
@@ -75,8 +149,7 @@ bool RenderSession::needsLightMarch(const ResolvedFrame& frame) const
   }
   const FrameSetup setup = this->setUpFrame(frame);
   this->checkMemoryBudget(setup);
-  const bool held = this->LightField && *this->LightField == lightFieldKey(setup);
-  return !held && !this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light);
+  return !(this->LightField && *this->LightField == lightFieldKey(setup));
 }
 
 // The light pass's per-voxel fields, in the order a share carries them, with
@@ -98,14 +171,15 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::lightPassFie
   return fields;
 }
 
-bool RenderSession::marchLightFieldShared(
-  const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const RenderProgress& callback)
+bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange,
+  const LayerExchange& layer, const RenderProgress& callback)
 {
   const auto start = Clock::now();
   std::optional<FrameSetup> setup;
   std::optional<std::vector<char>> mine;
   std::exception_ptr failure;
   Fields fields; // none until known: other shares' bytes then go nowhere
+  bool exchanging = true; // false once a layer's exchange ended the exchange
   try
   {
     this->cancelFrame();
@@ -121,12 +195,25 @@ bool RenderSession::marchLightFieldShared(
     }
     Progress progress(callback);
     progress.stage(0.0, FrameLightShare * (scattersEveryOrder(setup->Parameters) ? 0.5 : 1.0));
-    const auto voxels = shareVoxels(this->Volume->Shape.Dimensions, share, shares);
+    const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
+    const std::pair<int, int> rows = shareRows(dims, share, shares);
     fields = this->lightPassFields(braggShadow);
-    if (this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-          progress.stageCallback(), voxels.first, voxels.second))
+    const auto exchangeLayer = [&](int swept) {
+      std::vector<char> halo = readShare(fields, haloOf(dims, rows, swept));
+      SharePlacer place{ fields, share, [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); }, {} };
+      exchanging = false; // a throw ends it too
+      exchanging = layer(halo, std::ref(place));
+      place.rethrow();
+      return exchanging;
+    };
+    const Runs slab = slabOf(dims, rows);
+    const bool computed = this->Volume->Medium.Geometry.lightAboveGrid(setup->Camera.Light)
+      ? this->sweepLightLayers(braggShadow, progress, rows, exchangeLayer)
+      : this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
+          progress.stageCallback(), slab.front().first, slab.front().second);
+    if (computed)
     {
-      mine = readShare(fields, voxels);
+      mine = readShare(fields, slab);
     }
   }
   catch (...)
@@ -135,12 +222,14 @@ bool RenderSession::marchLightFieldShared(
     mine.reset();
     fields.clear();
   }
-  const bool whole = exchange(mine, [&](int from, std::uint64_t first, std::uint64_t count, const char* bytes) {
-    if (from != share && !fields.empty())
-    {
-      writeShare(fields, shareVoxels(this->Volume->Shape.Dimensions, from, shares), first, count, bytes);
-    }
-  });
+  SharePlacer place{ fields, share,
+    [&](int from) { return slabOf(this->Volume->Shape.Dimensions, shareRows(this->Volume->Shape.Dimensions, from, shares)); },
+    {} };
+  const bool whole = exchanging && exchange(mine, std::ref(place));
+  if (!failure)
+  {
+    failure = place.Failure;
+  }
   if (failure)
   {
     std::rethrow_exception(failure);
