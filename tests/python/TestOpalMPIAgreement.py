@@ -80,21 +80,23 @@ check(shares == {r: 0 for r in range(ranks)}, f"and every rank aborts with it, n
 check(light_shares(output) == {r: ranks for r in range(ranks)},
       f"the abort came after the ranks' shared light field: {light_shares(output)}")
 
-output = run_ranks("above-abort")
-images = images_of(output)
-check(len(images) == ranks and all(points == 0 for points in images.values()),
-      f"an abort in the shared sweep on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
-check(light_shares(output) == {r: 0 for r in range(ranks)},
-      f"and every rank aborts with it, none sweeping alone: {light_shares(output)}")
+
+def expect_light_abort(case, step):
+    """Rank 1 aborts inside the ranks' shared light `step`: every rank ends,
+    none with an image piece, none computing the light field alone."""
+    output = run_ranks(case)
+    images = images_of(output)
+    check(len(images) == ranks and all(points == 0 for points in images.values()),
+          f"an abort in the shared {step} on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
+    check(light_shares(output) == {r: 0 for r in range(ranks)},
+          f"{case}: every rank aborts with it, none computing the light field alone: {light_shares(output)}")
+
+
+expect_light_abort("above-abort", "sweep from above")
 output = run_ranks("side")
 check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
       f"the light to the side: ranks that agree render their pieces:\n{output[-3000:]}")
 check(light_shares(output) == {r: ranks for r in range(ranks)},
       f"the light to the side: all {ranks} ranks marched the light field together: {light_shares(output)}")
-output = run_ranks("side-abort")
-images = images_of(output)
-check(len(images) == ranks and all(points == 0 for points in images.values()),
-      f"an abort in the shared light march on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
-check(light_shares(output) == {r: 0 for r in range(ranks)},
-      f"and every rank aborts with it, none marching alone: {light_shares(output)}")
+expect_light_abort("side-abort", "light march")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")
