@@ -112,7 +112,8 @@ std::vector<char> statesOf(vtkMultiProcessController* controller, const std::vec
 // (a bystander's none), in rounds of ShareRoundBytes: a round's window (a
 // round of every rank) is all the exchange holds besides them. Where every
 // sharer goes on, each one's bytes go to `sink`; else the shares of those
-// done (the last exchange).
+// done (the last exchange), but not to a sharer that said it goes on (a
+// share's bytes are not its edge's).
 Round exchangeRound(vtkMultiProcessController* controller, const std::vector<int>& sharers, const char* state,
   const std::vector<char>* bytes, const Sink& sink, const std::string& what)
 {
@@ -122,9 +123,10 @@ Round exchangeRound(vtkMultiProcessController* controller, const std::vector<int
     agreement::GatherLengths(controller, bytes ? static_cast<vtkIdType>(bytes->size()) : 0);
   const bool goesOn = !states.empty() && std::all_of(states.begin(), states.end(), [](char s) { return s == ShareGoesOn; });
   std::vector<int> shareOfRank(lengths.size(), -1);
+  const bool mineGoesOn = state && *state == ShareGoesOn;
   for (std::size_t s = 0; s < sharers.size() && !states.empty(); ++s)
   {
-    if (goesOn || states[s] == ShareDone)
+    if (goesOn || (!mineGoesOn && states[s] == ShareDone))
     {
       shareOfRank[static_cast<std::size_t>(sharers[s])] = static_cast<int>(s);
     }

@@ -11,7 +11,8 @@
 // layer and passes its edge rows to the shares beside it after each layer
 // (without them a share's edge reads nothing above). A share that fails, or
 // aborts midway through the layers, ends every share's exchange: no field
-// is held, and the frame computes it alone, to the same image.
+// is held, and the frame computes it alone, to the same image. With fewer
+// rows than shares, a share of none takes part all the same.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -214,5 +215,19 @@ int TestOpalSharedLightField(int, char*[])
     "set-up: one light marched from every voxel, one swept from above");
   checkLight(stone, p, side, Ending::ShareFails, "lit from the side");
   checkLight(stone, p, above, Ending::ShareAborts, "lit from above");
+
+  // Fewer rows than shares: share 0 holds none, sweeps nothing and still
+  // takes part in every layer's round.
+  model.Dimensions = { 40, 20, 2 };
+  const auto thinVolume = opal::buildVolume(model);
+  const opal::RenderVolume thin = thinVolume->renderVolume(); // a view of thinVolume's arrays
+  opaltest::SceneRenderer alone({});
+  alone.Session.setVolume(thin);
+  p.LightPosition = above;
+  const opal::ResolvedFrame thinFrame = opal::resolveFrame(p);
+  const opal::RenderFrame lone = alone.Session.render(thinFrame);
+  const opal::RenderFrame shared = sharedFrame(thin, {}, thinFrame, Ending::Whole, "two rows, three shares");
+  OPAL_CHECK(lone.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
+    "two rows, three shares: the shares' field gives the lone session's image, value for value");
   return opaltest::finish("TestOpalSharedLightField");
 }

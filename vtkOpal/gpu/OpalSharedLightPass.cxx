@@ -65,6 +65,13 @@ Runs haloOf(const std::array<int, 3>& dims, std::pair<int, int> rows, int layer)
   return runs;
 }
 
+// Whether the row of voxel `voxel` lies in the halo of `rows`, which their sweep reads.
+bool readsRow(const std::array<int, 3>& dims, std::pair<int, int> rows, std::size_t voxel)
+{
+  const auto z = static_cast<int>(voxel / (static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1])));
+  return (z >= rows.first - HaloRows && z < rows.first) || (z >= rows.second && z < rows.second + HaloRows);
+}
+
 using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;
 
 // Bytes of `runs`: each field's records of each run, field after field.
@@ -86,9 +93,13 @@ std::vector<char> readShare(const Fields& fields, const Runs& runs)
   return bytes;
 }
 
+// Whether a run (by its first voxel) is written where it arrives; none: all.
+using Wanted = std::function<bool(std::size_t firstVoxel)>;
+
 // Bytes [first, first + count) of `runs` (as readShare lays them out)
-// written into the fields, a run's part at a time.
-void writeShare(const Fields& fields, const Runs& runs, std::uint64_t first, std::uint64_t count, const char* bytes)
+// written into the fields, a run's part at a time, the runs `wanted` only.
+void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, std::uint64_t first, std::uint64_t count,
+  const char* bytes)
 {
   std::uint64_t runStart = 0;
   for (const auto& [buffer, record] : fields)
@@ -97,7 +108,7 @@ void writeShare(const Fields& fields, const Runs& runs, std::uint64_t first, std
     {
       const std::uint64_t runBytes = (end - voxel) * record;
       const std::uint64_t from = std::max(first, runStart), to = std::min(first + count, runStart + runBytes);
-      if (from < to)
+      if (from < to && (!wanted || wanted(voxel)))
       {
         buffer->write(voxel * record + (from - runStart), to - from, bytes + (from - first));
       }
@@ -114,6 +125,7 @@ struct SharePlacer
   const Fields& Into;
   int Own;
   std::function<Runs(int share)> RunsOf;
+  Wanted Keeps; // the runs this share reads; none: all
   std::exception_ptr Failure;
 
   void operator()(int share, std::uint64_t first, std::uint64_t count, const char* bytes)
@@ -124,7 +136,7 @@ struct SharePlacer
     }
     try
     {
-      writeShare(this->Into, this->RunsOf(share), first, count, bytes);
+      writeShare(this->Into, this->RunsOf(share), this->Keeps, first, count, bytes);
     }
     catch (...)
     {
@@ -200,7 +212,8 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
     fields = this->lightPassFields(braggShadow);
     const auto exchangeLayer = [&](int swept) {
       std::vector<char> halo = readShare(fields, haloOf(dims, rows, swept));
-      SharePlacer place{ fields, share, [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); }, {} };
+      SharePlacer place{ fields, share, [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); },
+        [&](std::size_t voxel) { return readsRow(dims, rows, voxel); }, {} };
       exchanging = false; // a throw ends it too
       exchanging = layer(halo, std::ref(place));
       place.rethrow();
@@ -224,7 +237,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
   }
   SharePlacer place{ fields, share,
     [&](int from) { return slabOf(this->Volume->Shape.Dimensions, shareRows(this->Volume->Shape.Dimensions, from, shares)); },
-    {} };
+    {}, {} };
   const bool whole = exchanging && exchange(mine, std::ref(place));
   if (!failure)
   {
