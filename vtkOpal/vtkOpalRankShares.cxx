@@ -35,40 +35,44 @@ enum ShareState : char
 // about the whole field).
 constexpr vtkIdType ShareRoundBytes = vtkIdType(4) << 20;
 
-// Collective: every rank's answer gathered (Share's `failed` and `needs`);
-// the sharers in rank order where no rank failed and two or more need the
-// step, else none.
-std::vector<int> sharersOf(vtkMultiProcessController* controller, bool failed, const std::function<bool()>& needs)
+// Collective: every rank's answer gathered (Share's `failed`, `needs` and
+// `layout`); the sharers in rank order where no rank failed and two or more
+// need the step with one layout, else none.
+std::vector<int> sharersOf(vtkMultiProcessController* controller, bool failed, const std::function<bool()>& needs,
+  const std::function<std::string()>& layout)
 {
   namespace agreement = vtkOpalRankAgreement;
-  int code = failed ? Failed : Bystander;
+  agreement::RankView mine{ {}, failed ? Failed : Bystander, {} };
   std::exception_ptr failure;
   if (!failed && needs)
   {
     try
     {
-      code = needs() ? Sharer : Bystander;
+      mine.Code = needs() ? Sharer : Bystander;
+      mine.Settings = mine.Code == Sharer && layout ? layout() : std::string();
     }
     catch (...)
     {
       failure = std::current_exception();
-      code = Failed;
+      mine.Code = Failed;
     }
   }
-  const std::vector<agreement::RankView> views = agreement::Gather(controller, { {}, code, {} });
+  const std::vector<agreement::RankView> views = agreement::Gather(controller, mine);
   if (failure)
   {
     std::rethrow_exception(failure); // every rank saw this one fail: none exchanges shares
   }
   std::vector<int> sharers;
+  bool alike = true;
   for (std::size_t r = 0; r < views.size(); ++r)
   {
     if (views[r].Code == Sharer)
     {
+      alike = alike && (sharers.empty() || views[r].Settings == views[static_cast<std::size_t>(sharers.front())].Settings);
       sharers.push_back(static_cast<int>(r));
     }
   }
-  return agreement::FirstWith(views, Failed) >= 0 || sharers.size() < 2 ? std::vector<int>{} : sharers;
+  return agreement::FirstWith(views, Failed) >= 0 || sharers.size() < 2 || !alike ? std::vector<int>{} : sharers;
 }
 
 // This rank's share among `sharers`, or -1.
@@ -169,14 +173,14 @@ bool standBy(vtkMultiProcessController* controller, const std::vector<int>& shar
 } // namespace
 
 Result Share(vtkMultiProcessController* controller, bool failed, const std::function<bool()>& needs,
-  const std::function<bool()>& aborted, const std::string& what,
+  const std::function<std::string()>& layout, const std::function<bool()>& aborted, const std::string& what,
   const std::function<bool(int share, int shares, const Exchanger& exchange)>& run)
 {
   if (vtkOpalRankAgreement::Ranks(controller) < 2)
   {
     return {};
   }
-  const std::vector<int> sharers = sharersOf(controller, failed, needs);
+  const std::vector<int> sharers = sharersOf(controller, failed, needs, layout);
   if (sharers.empty())
   {
     return {};

@@ -5,6 +5,8 @@
 // exchange another has left.
 #pragma once
 
+#include "vtkOpalModule.h" // for the export macro
+
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -50,17 +52,19 @@ struct Exchanger
 
 // Collective: this rank's part in a shared step, whole. `failed`: this rank
 // has failed the request already; otherwise `needs` (none: the rank renders
-// nothing) says whether it needs the step, and an exception from it fails
-// the rank and is rethrown once every rank has answered. Where no rank
-// failed and two or more need the step, each of them runs `run` with its
-// share (in rank order) and the number of shares, which must end the
-// exchange whatever happens: its last exchange called exactly once (a failed
-// or aborted share passes nullopt) unless a round ended it, so that no rank
-// waits in an exchange another has left; the others take part in every
-// round with nothing. Throws, naming `what`,
-// where MPI failed (alike on every rank). Shares: the sharers' number where
-// `run` returned true.
-Result Share(vtkMultiProcessController* controller, bool failed, const std::function<bool()>& needs,
-  const std::function<bool()>& aborted, const std::string& what,
+// nothing) says whether it needs the step, and `layout` (none: always alike)
+// how its share's bytes are laid out; an exception from either fails the
+// rank and is rethrown once every rank has answered. Where no rank failed
+// and two or more need the step, all with one layout (ranks whose devices
+// lay a field out differently cannot place each other's bytes: each then
+// computes alone), each of them runs `run` with its share (in rank order)
+// and the number of shares, which must end the exchange whatever happens:
+// its last exchange called exactly once (a failed or aborted share passes
+// nullopt) unless a round ended it, so that no rank waits in an exchange
+// another has left; the others take part in every round with nothing.
+// Throws, naming `what`, where MPI failed (alike on every rank). Shares: the
+// sharers' number where `run` returned true.
+VTKOPAL_EXPORT Result Share(vtkMultiProcessController* controller, bool failed, const std::function<bool()>& needs,
+  const std::function<std::string()>& layout, const std::function<bool()>& aborted, const std::string& what,
   const std::function<bool(int share, int shares, const Exchanger& exchange)>& run);
 } // namespace vtkOpalRankShares

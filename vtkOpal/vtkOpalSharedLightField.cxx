@@ -6,7 +6,8 @@ vtkOpalRankShares::Result March(vtkMultiProcessController* controller, opal::Ren
   const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted)
 {
   return vtkOpalRankShares::Share(controller, failed,
-    session ? std::function<bool()>([&] { return session->needsLightPass(frame); }) : nullptr, aborted,
+    session ? std::function<bool()>([&] { return session->needsLightPass(frame); }) : nullptr,
+    session ? std::function<std::string()>([&] { return session->lightPassLayout(frame); }) : nullptr, aborted,
     "the light field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
       return session->shareLightPass(
         frame, share, shares,

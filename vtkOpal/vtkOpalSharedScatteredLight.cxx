@@ -35,7 +35,7 @@ Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session
   const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted)
 {
   return vtkOpalRankShares::Share(controller, failed,
-    session ? std::function<bool()>([&] { return session->needsScatteredLight(frame); }) : nullptr, aborted,
+    session ? std::function<bool()>([&] { return session->needsScatteredLight(frame); }) : nullptr, nullptr, aborted,
     "the every-order solve's scores", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
       return session->solveScatteredLightShared(frame, share, shares,
         [&](const std::optional<std::vector<double>>& mine) -> std::optional<std::vector<std::vector<double>>> {
@@ -47,6 +47,23 @@ Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session
           return scores;
         },
         progress);
+    });
+}
+
+Result WriteField(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
+  const opal::ResolvedFrame& frame, const std::function<bool()>& aborted)
+{
+  return vtkOpalRankShares::Share(controller, failed,
+    session ? std::function<bool()>([&] { return session->needsScatteredField(frame); }) : nullptr, nullptr,
+    aborted, "the every-order field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
+      return session->shareScatteredField(
+        frame, share, shares,
+        [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+          return exchange(mine, sink).Complete;
+        },
+        [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+          return exchange.round(mine, sink).Complete;
+        });
     });
 }
 } // namespace vtkOpalSharedScatteredLight

@@ -462,11 +462,15 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareBeforeFrame(
       this->LastLightFieldShares = shared.Shares;
       return shared;
     });
-  return share(lit, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
-    const vtkOpalRankShares::Result shared =
-      vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
-    this->LastScatteredLightShares = shared.Shares;
-    return shared;
+  const RenderOutcome solved =
+    share(lit, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+      const vtkOpalRankShares::Result shared =
+        vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
+      this->LastScatteredLightShares = shared.Shares;
+      return shared;
+    });
+  return share(solved, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+    return vtkOpalSharedScatteredLight::WriteField(this->Controller, session, failed, frame, aborted);
   });
 }
 

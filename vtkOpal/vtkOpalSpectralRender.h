@@ -225,8 +225,8 @@ private:
   opal::ResolvedFrame ResolvePiece(vtkInformation* inputInformation, vtkImageData* input, const int extent[6]) const;
   // Under MPI, collective, every rank between the gather and its frame:
   // the ranks that render a piece (nullptr: none; so far `sofar`) upload the
-  // volume, and they share the light field's march per voxel
-  // (vtkOpalSharedLightField), then every order's photon solve
+  // volume, and they share the light field (vtkOpalSharedLightField), then
+  // every order's photon solve and the writing of its field per voxel
   // (vtkOpalSharedScatteredLight).
   RenderOutcome ShareBeforeFrame(RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input);
   // Renders this rank's piece of the image into `output`.

@@ -12,7 +12,9 @@
 // (without them a share's edge reads nothing above). A share that fails, or
 // aborts midway through the layers, ends every share's exchange: no field
 // is held, and the frame computes it alone, to the same image. With fewer
-// rows than shares, a share of none takes part all the same.
+// rows than shares, a share of none takes part all the same. The every-order
+// field per voxel, written from the tally grid each session holds, is shared
+// likewise, its slabs crossing the exchange's chunks.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -102,18 +104,42 @@ enum class Ending
   ShareAborts,
 };
 
+// Which field the shares compute: the light field, or the every-order field
+// per voxel from the tally grid each session holds.
+enum class Field
+{
+  Light,
+  Scattered,
+};
+
+bool needs(const opal::RenderSession& session, Field field, const opal::ResolvedFrame& frame)
+{
+  return field == Field::Light ? session.needsLightPass(frame) : session.needsScatteredField(frame);
+}
+
+// The session solves the every-order field's grid alone (one share of one).
+bool holdsGrid(opal::RenderSession& session, const opal::ResolvedFrame& frame)
+{
+  return session.solveScatteredLightShared(frame, 0, 1, [](const std::optional<std::vector<double>>& mine) {
+    return mine ? std::optional<std::vector<std::vector<double>>>(std::vector<std::vector<double>>{ *mine })
+                : std::nullopt;
+  });
+}
+
 // Three sessions compute their shares on three threads; share 0's session
 // then renders the frame.
 opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::VulkanOptions& options,
-  const opal::ResolvedFrame& frame, Ending ending, const std::string& what)
+  const opal::ResolvedFrame& frame, Field field, Ending ending, const std::string& what)
 {
   constexpr int Shares = 3;
   std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
   for (int share = 0; share < Shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
-    sessions.back()->Session.setVolume(volume);
-    OPAL_CHECK(sessions.back()->Session.needsLightPass(frame), what + ": a fresh session would compute the light field");
+    opal::RenderSession& session = sessions.back()->Session;
+    session.setVolume(volume);
+    OPAL_CHECK(field == Field::Light || holdsGrid(session, frame), what + ": the session holds the tally grid");
+    OPAL_CHECK(needs(session, field, frame), what + ": a fresh session would compute the field");
   }
   Meeting meeting(Shares);
   std::vector<char> held(Shares, 0);
@@ -125,16 +151,18 @@ opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::Vulk
       const bool troubled = share == 1;
       try
       {
-        held[static_cast<std::size_t>(share)] = sessions[static_cast<std::size_t>(share)]->Session.shareLightPass(
-          frame, share, Shares,
-          [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
-            const bool fails = troubled && ending == Ending::ShareFails;
-            return meeting.meet(share, true, fails ? std::nullopt : mine, sink);
-          },
-          [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-            return meeting.meet(share, false, mine, sink);
-          },
-          [&](double done) { return !(troubled && ending == Ending::ShareAborts && done > 0.1); });
+        const auto last = [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+          const bool fails = troubled && ending == Ending::ShareFails;
+          return meeting.meet(share, true, fails ? std::nullopt : mine, sink);
+        };
+        const auto round = [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+          return meeting.meet(share, false, mine, sink);
+        };
+        opal::RenderSession& session = sessions[static_cast<std::size_t>(share)]->Session;
+        held[static_cast<std::size_t>(share)] = field == Field::Light
+          ? session.shareLightPass(frame, share, Shares, last, round,
+              [&](double done) { return !(troubled && ending == Ending::ShareAborts && done > 0.1); })
+          : session.shareScatteredField(frame, share, Shares, last, round);
       }
       catch (...)
       {
@@ -153,8 +181,7 @@ opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::Vulk
       what + ": share " + std::to_string(share) + (ending == Ending::Whole ? " holds" : " does not hold") + " the field");
   }
   opal::RenderSession& first = sessions.front()->Session;
-  OPAL_CHECK(first.needsLightPass(frame) == (ending != Ending::Whole),
-    what + ": the session then holds the light field, or not");
+  OPAL_CHECK(needs(first, field, frame) == (ending != Ending::Whole), what + ": the session then holds the field, or not");
   const opal::RenderFrame rendered = first.render(frame);
   const auto messages = first.context().validationMessages();
   OPAL_CHECK(messages.empty(),
@@ -178,12 +205,12 @@ void checkLight(const opal::RenderVolume& stone, opal::RenderParameters p, const
   const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" } };
   for (const auto& [options, how] : layouts)
   {
-    const opal::RenderFrame shared = sharedFrame(stone, options, frame, Ending::Whole, where + ", " + how);
+    const opal::RenderFrame shared = sharedFrame(stone, options, frame, Field::Light, Ending::Whole, where + ", " + how);
     OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
       where + ", " + how + ": the shares' field gives the image of a session that computed it alone, value for value");
     OPAL_CHECK(shared.Ran.PairedFields == (how == "paired"), where + ", " + how + ": the fields are held " + how);
   }
-  const opal::RenderFrame partial = sharedFrame(stone, {}, frame, broken, where + ", a share stopping");
+  const opal::RenderFrame partial = sharedFrame(stone, {}, frame, Field::Light, broken, where + ", a share stopping");
   OPAL_CHECK(partial.Ran.LightPass && identical(partial.Image, lone.Image),
     where + ", a share stopping: the frame computes the light alone, to the same image");
 }
@@ -226,8 +253,31 @@ int TestOpalSharedLightField(int, char*[])
   p.LightPosition = above;
   const opal::ResolvedFrame thinFrame = opal::resolveFrame(p);
   const opal::RenderFrame lone = alone.Session.render(thinFrame);
-  const opal::RenderFrame shared = sharedFrame(thin, {}, thinFrame, Ending::Whole, "two rows, three shares");
+  const opal::RenderFrame shared = sharedFrame(thin, {}, thinFrame, Field::Light, Ending::Whole, "two rows, three shares");
   OPAL_CHECK(lone.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
     "two rows, three shares: the shares' field gives the lone session's image, value for value");
+
+  // The every-order field per voxel, written from the tally grid each
+  // session holds: 120 x 60 x 120 voxels, so that a share's slab (288 000
+  // voxels, 4.6 MB) crosses two of the exchange's 4 MiB chunks.
+  model.Dimensions = { 120, 60, 120 };
+  const auto wideVolume = opal::buildVolume(model);
+  const opal::RenderVolume wide = wideVolume->renderVolume(); // a view of wideVolume's arrays
+  opal::RenderParameters everyOrder = p;
+  everyOrder.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  everyOrder.ScatteringPhotons = 2000;
+  const opal::ResolvedFrame everyFrame = opal::resolveFrame(everyOrder);
+  opaltest::SceneRenderer wideAlone({});
+  wideAlone.Session.setVolume(wide);
+  const opal::RenderFrame wideLone = wideAlone.Session.render(everyFrame);
+  OPAL_CHECK(wideLone.Status == opal::FrameStatus::Completed && !wideLone.Ran.ScatteredLightFromGrid,
+    "every order: a session alone renders the frame, reading the field per voxel");
+  for (const Ending ending : { Ending::Whole, Ending::ShareFails })
+  {
+    const std::string what = ending == Ending::Whole ? "every order" : "every order, a share failing";
+    const opal::RenderFrame shared = sharedFrame(wide, {}, everyFrame, Field::Scattered, ending, what);
+    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && identical(shared.Image, wideLone.Image),
+      what + ": the shares' field (or, a share failing, the frame's own) gives the lone session's image");
+  }
   return opaltest::finish("TestOpalSharedLightField");
 }

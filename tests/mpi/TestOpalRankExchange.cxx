@@ -5,13 +5,20 @@
 // volumes never fill. Here the rounds are a few bytes, so the pieces cross
 // many rounds: uneven lengths (the first rank sends nothing, then the last)
 // arrive whole, in rank order, for rounds shorter than, equal to and longer
-// than the pieces; the agreements' views arrive likewise.
+// than the pieces; the agreements' views arrive likewise. A shared step
+// (vtkOpalRankShares::Share) takes its rounds and its last exchange alike on
+// every rank; a sharer that stops ends every rank's rounds in that round;
+// ranks whose shares would be laid out differently share nothing.
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalRankShares.h"
 
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 
+#include <algorithm>
+#include <cstring>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +42,77 @@ bool check(bool condition, const std::string& what, int rank)
     std::cerr << "rank " << rank << ": FAILED: " << what << std::endl;
   }
   return condition;
+}
+
+// How a shared step of the test ends.
+enum class Step
+{
+  Whole,     // every share takes three rounds, then its last exchange
+  Stops,     // share 1 sends its last (nothing) after its first round
+  Unalike,   // rank 1's share would be laid out otherwise
+};
+
+// Share `share`'s rounds and last exchange: every round's bytes of every share
+// checked as they arrive; true where the last exchange was complete.
+bool runShare(int share, int shares, const vtkOpalRankShares::Exchanger& exchange, Step step, bool& passed, int rank)
+{
+  std::vector<std::vector<char>> got;
+  const auto keep = [&got](int from, std::uint64_t first, std::uint64_t count, const char* bytes) {
+    std::vector<char>& into = got[static_cast<std::size_t>(from)];
+    into.resize(std::max<std::size_t>(into.size(), first + count));
+    std::memcpy(into.data() + first, bytes, count);
+  };
+  for (int round = 0; round < 3; ++round)
+  {
+    if (step == Step::Stops && share == 1 && round == 1)
+    {
+      exchange(std::nullopt, keep);
+      return false;
+    }
+    got.assign(static_cast<std::size_t>(shares), {});
+    const bool goesOn = exchange.round(bytesOf(share + round, share + 1), keep).Complete;
+    if (!goesOn)
+    {
+      passed = check(step == Step::Stops && round == 1, "a round ends only where a sharer stopped", rank) && passed;
+      return false;
+    }
+    for (int from = 0; from < shares; ++from)
+    {
+      passed = check(got[static_cast<std::size_t>(from)] == bytesOf(from + round, from + 1),
+                 "round " + std::to_string(round) + ": share " + std::to_string(from) + "'s bytes", rank) &&
+        passed;
+    }
+  }
+  got.assign(static_cast<std::size_t>(shares), {});
+  const bool complete = exchange(bytesOf(share, 2), keep).Complete;
+  for (int from = 0; from < shares; ++from)
+  {
+    passed = check(got[static_cast<std::size_t>(from)] == bytesOf(from, 2),
+               "the last exchange: share " + std::to_string(from) + "'s bytes", rank) && passed;
+  }
+  return complete;
+}
+
+bool checkShare(vtkMultiProcessController* controller, int rank, int ranks)
+{
+  bool passed = true;
+  for (const Step step : { Step::Whole, Step::Stops, Step::Unalike })
+  {
+    const std::string layout = step == Step::Unalike && rank == 1 ? "16 bytes per voxel; " : "8 bytes per voxel; ";
+    bool ran = false;
+    const vtkOpalRankShares::Result result = vtkOpalRankShares::Share(
+      controller, false, [] { return true; }, [&layout] { return layout; }, [] { return false; }, "the test's shares",
+      [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
+        ran = true;
+        return runShare(share, shares, exchange, step, passed, rank);
+      });
+    const char* name = step == Step::Whole ? "whole" : step == Step::Stops ? "a sharer stopping" : "unalike layouts";
+    passed = check(ran == (step != Step::Unalike), std::string(name) + ": who runs a share", rank) && passed;
+    passed = check(result.Shares == (step == Step::Whole ? ranks : 0) && !result.Aborted,
+               std::string(name) + ": the shares counted", rank) &&
+      passed;
+  }
+  return passed;
 }
 } // namespace
 
@@ -82,6 +160,7 @@ int main(int argc, char* argv[])
       views[r].Settings == "Setting " + std::to_string(r) + "\n";
     passed = check(same, "rank " + std::to_string(r) + "'s view", rank) && passed;
   }
+  passed = checkShare(controller, rank, ranks) && passed;
   // Every rank's verdict: the test fails where any rank's check failed.
   int failures = passed ? 0 : 1, allFailures = 0;
   controller->AllReduce(&failures, &allFailures, 1, vtkCommunicator::SUM_OP);

@@ -457,6 +457,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.
   const double sharedSolveSeconds = std::exchange(this->PendingScatteredSeconds, -1.0);
   const double sharedLightSeconds = std::exchange(this->PendingLightSeconds, -1.0); // shareLightPass's
+  const double sharedFieldSeconds = std::exchange(this->PendingFieldSeconds, -1.0);  // shareScatteredField's
   const auto setupStart = Clock::now();
   const FrameSetup setup = this->setUpFrame(resolved);
   frame.Ran.Preview = setup.Preview;
@@ -490,6 +491,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   {
     return frame;
   }
+  timings.ScatteredLight += std::max(0.0, sharedFieldSeconds); // the field's writing, where the processes shared it
 
   const auto marchStart = Clock::now();
   double exposure = setup.Parameters.Exposure;

@@ -134,21 +134,36 @@ public:
   // rows z = ⌊share nz / shares⌋ to ⌊(share + 1) nz / shares⌋ of every layer.
   // A light low or to the side is marched from each of their voxels. A light
   // above the grid is swept layer after layer; after each layer but the last
-  // the share's rows of it that the shares beside read go to `layer`, which
-  // sends them, gives every other share's to the sink as they arrive, and
-  // says whether every share goes on (false, or a throw, ends the exchange:
-  // neither is called again). Then the share's fields' bytes go to
-  // `exchange`, which sends them, gives every share's to the sink (share,
-  // first byte, count, bytes) and says whether all arrived, and the whole
-  // field is held for the frames that follow. `exchange` is called exactly
-  // once unless `layer` ended the exchange, as above; false if the pass was
-  // aborted or a share failed: a frame then computes the field alone.
+  // the share's rows of it that the shares beside read go to `round`, which
+  // sends them, gives every other share's to the sink (share, first byte,
+  // count, bytes) as they arrive, and says whether every share goes on
+  // (false, or a throw, ends the exchange: neither is called again). The
+  // shares' fields then go to every share through `round`, a chunk of each
+  // share a round, and `exchange` (the last, with no bytes: nullopt where
+  // the share stopped) says whether all arrived; the whole field is held for
+  // the frames that follow. `exchange` is called exactly once unless a round
+  // ended the exchange; false if the pass was aborted or a share failed: a
+  // frame then computes the field alone.
   using ShareSink = std::function<void(int share, std::uint64_t first, std::uint64_t count, const char* bytes)>;
   using FieldExchange = std::function<bool(const std::optional<std::vector<char>>& mine, const ShareSink& sink)>;
   using LayerExchange = std::function<bool(const std::vector<char>& mine, const ShareSink& sink)>;
   bool needsLightPass(const ResolvedFrame& frame) const;
+  // How a share's bytes are laid out (each field's bytes per voxel, which
+  // follow the device: paired or not, §3.7): processes exchange shares only
+  // where it is alike. Empty without a volume.
+  std::string lightPassLayout(const ResolvedFrame& frame) const;
   bool shareLightPass(const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange,
-    const LayerExchange& layer, const RenderProgress& progress = nullptr);
+    const LayerExchange& round, const RenderProgress& progress = nullptr);
+
+  // The every-order field per voxel written from the tally grid the session
+  // holds (§3.10) by several processes together, after the solve: whether
+  // `frame` would write it (its grid held, the field read per voxel and not
+  // yet written), and the writing of share `share` of `shares` of it (the
+  // light field's rows), exchanged as the light field's shares are. False
+  // where a share failed: the frame then writes it alone.
+  bool needsScatteredField(const ResolvedFrame& frame) const;
+  bool shareScatteredField(
+    const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const LayerExchange& round);
 
   // Whether the frame's eye is inside the opal (which render refuses); false
   // without a volume. It reads only the host copy of the volume's surface,
@@ -316,6 +331,7 @@ private:
   double PendingUploadSeconds = -1;                            // >= 0: setVolume ran since the last frame
   double PendingScatteredSeconds = -1; // >= 0: solveScatteredLightShared solved the field the next frame reads
   double PendingLightSeconds = -1;     // >= 0: shareLightPass computed the light field the next frame reads
+  double PendingFieldSeconds = -1;     // >= 0: shareScatteredField wrote the every-order field the next frame reads
   std::unique_ptr<FrameWorker<RenderFrame>> Background;        // the frame ticket's worker
   // Each pass's work per submit, from its last submit's cost (docs/design.md
   // §3.7); until measured, what took a fraction of a second on lavapipe.

@@ -1,5 +1,6 @@
-// The light field computed by several processes together, each a share of
-// the voxels, before their frames (docs/design.md §8.1).
+// Per-voxel fields computed by several processes together, each a share of
+// the voxels, before their frames (docs/design.md §8.1): the light field and
+// the every-order field written from its tally grid.
 #include "OpalRenderSession.h"
 
 #include "OpalRenderSessionState.h"
@@ -12,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -151,6 +153,94 @@ struct SharePlacer
     }
   }
 };
+
+// A round of the slabs' exchange carries this much of each share's slab:
+// the slab whole in one exchange was a copy of it held beside the fields
+// (8 to 44 bytes per voxel of the share: 41 MB a rank on 4 ranks at 320 x
+// 160 x 400 with the light field alone).
+constexpr std::uint64_t ChunkBytes = std::uint64_t(4) << 20;
+
+// The voxels of chunk `k` of `slab` (one run), `voxels` a chunk: none past its end.
+Runs chunkOf(const Runs& slab, std::size_t voxels, std::size_t k)
+{
+  const std::size_t first = slab.front().first + k * voxels;
+  return first < slab.front().second ? Runs{ { first, std::min(first + voxels, slab.front().second) } } : Runs{};
+}
+
+// What a shared step computed: the fields it wrote, in the order a share
+// carries them, and the grid's shape (none where it failed first).
+struct SlabShare
+{
+  Fields Written;
+  std::array<int, 3> Dimensions{};
+};
+
+// Every share's slab of the fields to every other share, a chunk of each a
+// round, each written into the fields as it arrives. False where a share
+// stopped (the round then ended the exchange: `exchanging` false).
+bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSession::LayerExchange& round,
+  bool& exchanging)
+{
+  std::uint64_t voxelBytes = 0;
+  for (const auto& field : step.Written)
+  {
+    voxelBytes += field.second;
+  }
+  const std::size_t voxels = std::max<std::size_t>(1, ChunkBytes / std::max<std::uint64_t>(voxelBytes, 1));
+  const auto slabOfShare = [&](int s) { return slabOf(step.Dimensions, shareRows(step.Dimensions, s, shares)); };
+  std::size_t rounds = 0; // alike on every share: the largest slab's
+  for (int s = 0; s < shares; ++s)
+  {
+    const Runs slab = slabOfShare(s);
+    rounds = std::max(rounds, (slab.front().second - slab.front().first + voxels - 1) / voxels);
+  }
+  for (std::size_t k = 0; k < rounds; ++k)
+  {
+    const std::vector<char> chunk = readShare(step.Written, chunkOf(slabOfShare(share), voxels, k));
+    SharePlacer place{ step.Written, share, [&](int from) { return chunkOf(slabOfShare(from), voxels, k); }, {}, {} };
+    exchanging = false; // a throw ends it too
+    exchanging = round(chunk, std::ref(place));
+    place.rethrow();
+    if (!exchanging)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// A shared step's part in the exchange, whole (shareLightPass,
+// shareScatteredField): `compute` computes the share's slab, taking any
+// rounds it needs through `round` (`exchanging` false once one ended the
+// exchange), and says what it wrote (false: it stopped, an abort); the slabs
+// then go to every share, and the last exchange ends it however the share
+// ended. A failure is rethrown once the exchange is over. True where every
+// share's slab arrived.
+bool shareSlabs(const std::function<bool(SlabShare& step, bool& exchanging)>& compute, int share, int shares,
+  const RenderSession::LayerExchange& round, const RenderSession::FieldExchange& last)
+{
+  SlabShare step;
+  std::exception_ptr failure;
+  bool exchanging = true;
+  bool sent = false;
+  try
+  {
+    sent = compute(step, exchanging) && exchanging && exchangeSlabs(step, share, shares, round, exchanging);
+  }
+  catch (...)
+  {
+    failure = std::current_exception();
+    sent = false;
+  }
+  const auto ignore = [](int, std::uint64_t, std::uint64_t, const char*) {};
+  const bool whole =
+    exchanging && last(sent ? std::optional<std::vector<char>>(std::vector<char>{}) : std::nullopt, ignore);
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  return sent && whole;
+}
 } // namespace
 
 bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
@@ -162,6 +252,16 @@ bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
   const FrameSetup setup = this->setUpFrame(frame);
   this->checkMemoryBudget(setup);
   return !(this->LightField && *this->LightField == lightFieldKey(setup));
+}
+
+std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
+{
+  std::string layout;
+  for (const auto& field : this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{})
+  {
+    layout += std::to_string(field.second) + " bytes per voxel; ";
+  }
+  return layout;
 }
 
 // The light pass's per-voxel fields, in the order a share carries them, with
@@ -188,72 +288,88 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
 {
   const auto start = Clock::now();
   std::optional<FrameSetup> setup;
-  std::optional<std::vector<char>> mine;
-  std::exception_ptr failure;
-  Fields fields; // none until known: other shares' bytes then go nowhere
-  bool exchanging = true; // false once a layer's exchange ended the exchange
-  try
-  {
-    this->cancelFrame();
-    this->LightField.reset();
-    this->requireVolume();
-    setup = this->setUpFrame(frame);
-    this->checkMemoryBudget(*setup);
-    this->prepareFrameBuffers(*setup); // the parameter block the pass reads
-    const bool braggShadow = conservesEnergy(setup->Parameters);
-    if (braggShadow)
-    {
-      this->prepareShadowField();
-    }
-    Progress progress(callback);
-    progress.stage(0.0, FrameLightShare * (scattersEveryOrder(setup->Parameters) ? 0.5 : 1.0));
-    const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-    const std::pair<int, int> rows = shareRows(dims, share, shares);
-    fields = this->lightPassFields(braggShadow);
-    const auto exchangeLayer = [&](int swept) {
-      std::vector<char> halo = readShare(fields, haloOf(dims, rows, swept));
-      SharePlacer place{ fields, share, [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); },
-        [&](std::size_t voxel) { return readsRow(dims, rows, voxel); }, {} };
-      exchanging = false; // a throw ends it too
-      exchanging = layer(halo, std::ref(place));
-      place.rethrow();
-      return exchanging;
-    };
-    const Runs slab = slabOf(dims, rows);
-    const bool computed = this->Volume->Medium.Geometry.lightAboveGrid(setup->Camera.Light)
-      ? this->sweepLightLayers(braggShadow, progress, rows, exchangeLayer)
-      : this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-          progress.stageCallback(), slab.front().first, slab.front().second);
-    if (computed)
-    {
-      mine = readShare(fields, slab);
-    }
-  }
-  catch (...)
-  {
-    failure = std::current_exception();
-    mine.reset();
-    fields.clear();
-  }
-  SharePlacer place{ fields, share,
-    [&](int from) { return slabOf(this->Volume->Shape.Dimensions, shareRows(this->Volume->Shape.Dimensions, from, shares)); },
-    {}, {} };
-  const bool whole = exchanging && exchange(mine, std::ref(place));
-  if (!failure)
-  {
-    failure = place.Failure;
-  }
-  if (failure)
-  {
-    std::rethrow_exception(failure);
-  }
-  if (!mine || !whole)
+  const bool shared = shareSlabs(
+    [&](SlabShare& step, bool& exchanging) {
+      this->cancelFrame();
+      this->LightField.reset();
+      this->requireVolume();
+      setup = this->setUpFrame(frame);
+      this->checkMemoryBudget(*setup);
+      this->prepareFrameBuffers(*setup); // the parameter block the pass reads
+      const bool braggShadow = conservesEnergy(setup->Parameters);
+      if (braggShadow)
+      {
+        this->prepareShadowField();
+      }
+      Progress progress(callback);
+      progress.stage(0.0, FrameLightShare * (scattersEveryOrder(setup->Parameters) ? 0.5 : 1.0));
+      const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
+      const std::pair<int, int> rows = shareRows(dims, share, shares);
+      step = { this->lightPassFields(braggShadow), dims };
+      const auto exchangeLayer = [&](int swept) {
+        const std::vector<char> halo = readShare(step.Written, haloOf(dims, rows, swept));
+        SharePlacer place{ step.Written, share,
+          [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); },
+          [&](std::size_t voxel) { return readsRow(dims, rows, voxel); }, {} };
+        exchanging = false; // a throw ends it too
+        exchanging = layer(halo, std::ref(place));
+        place.rethrow();
+        return exchanging;
+      };
+      const Runs slab = slabOf(dims, rows);
+      return this->Volume->Medium.Geometry.lightAboveGrid(setup->Camera.Light)
+        ? this->sweepLightLayers(braggShadow, progress, rows, exchangeLayer)
+        : this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
+            progress.stageCallback(), slab.front().first, slab.front().second);
+    },
+    share, shares, layer, exchange);
+  if (!shared)
   {
     return false;
   }
   this->LightField = lightFieldKey(*setup);
   this->PendingLightSeconds = secondsSince(start);
   return true;
+}
+
+bool RenderSession::needsScatteredField(const ResolvedFrame& frame) const
+{
+  if (!this->Volume || !scattersEveryOrder(frame.Parameters))
+  {
+    return false;
+  }
+  const FrameSetup setup = this->setUpFrame(frame);
+  this->checkMemoryBudget(setup);
+  const DeviceVolume& v = *this->Volume;
+  return this->scatteredLightServes(setup) && !setup.ScatteredLightFromGrid &&
+    (v.ScatteredFieldPending || !v.HasScatteredField);
+}
+
+bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, int shares,
+  const FieldExchange& exchange, const LayerExchange& round)
+{
+  const auto start = Clock::now();
+  const bool shared = shareSlabs(
+    [&](SlabShare& step, bool&) {
+      this->cancelFrame();
+      this->requireVolume();
+      const FrameSetup setup = this->setUpFrame(frame);
+      this->checkMemoryBudget(setup);
+      this->placeScatteredField(setup);
+      this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
+      const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
+      step = { { { this->Volume->ScatteredLight.get(), sizeof(gpu::vec4) } }, dims };
+      const Runs slab = slabOf(dims, shareRows(dims, share, shares));
+      return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
+        slab.front().first, slab.front().second);
+    },
+    share, shares, round, exchange);
+  if (shared)
+  {
+    this->Volume->ScatteredFieldPending = false;
+    this->PendingFieldSeconds = secondsSince(start);
+  }
+  return shared;
 }
 
 } // namespace opal
