@@ -20,6 +20,16 @@ namespace vtkOpalSharedLightField
 // (and before it): where two or more ranks would compute the light field for
 // their frames, they compute their shares and each holds the field, which
 // its frame then reuses; otherwise nothing happens.
+// A shared step's exchanger as the session's per-voxel field steps take it
+// (shareLightPass, shareScatteredField): its last exchange, complete or not,
+// and its rounds, every share going on or not.
+struct SessionExchanges
+{
+  opal::RenderSession::FieldExchange Last;
+  opal::RenderSession::LayerExchange Round;
+};
+SessionExchanges ForSession(const vtkOpalRankShares::Exchanger& exchange);
+
 vtkOpalRankShares::Result March(vtkMultiProcessController* controller, opal::RenderSession* session, bool failed,
   const opal::ResolvedFrame& frame, const opal::RenderProgress& progress, const std::function<bool()>& aborted);
 } // namespace vtkOpalSharedLightField

@@ -1,6 +1,7 @@
 #include "vtkOpalSharedScatteredLight.h"
 
 #include "vtkOpalRankShares.h"
+#include "vtkOpalSharedLightField.h"
 
 #include <algorithm>
 #include <cstring>
@@ -56,14 +57,8 @@ Result WriteField(vtkMultiProcessController* controller, opal::RenderSession* se
   return vtkOpalRankShares::Share(controller, failed,
     session ? std::function<bool()>([&] { return session->needsScatteredField(frame); }) : nullptr, nullptr,
     aborted, "the every-order field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
-      return session->shareScatteredField(
-        frame, share, shares,
-        [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
-          return exchange(mine, sink).Complete;
-        },
-        [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-          return exchange.round(mine, sink).Complete;
-        });
+      const vtkOpalSharedLightField::SessionExchanges exchanges = vtkOpalSharedLightField::ForSession(exchange);
+      return session->shareScatteredField(frame, share, shares, exchanges.Last, exchanges.Round);
     });
 }
 } // namespace vtkOpalSharedScatteredLight
