@@ -89,32 +89,20 @@ struct Round
   bool GoesOn = false;
 };
 
-// The sharers' states of a round (a byte each; a bystander, `state`
-// nullptr, sends none), in sharer order.
-std::vector<char> statesOf(vtkMultiProcessController* controller, const std::vector<int>& sharers, const char* state)
+// A rank's word in a round: a sharer's state and the length of its bytes in
+// one number (a bystander's: -1), so that a round is two collectives, the
+// words and then the bytes (a state's own exchange had made it four).
+constexpr vtkIdType StateKinds = 4;
+vtkIdType wordOf(const char* state, const std::vector<char>* bytes)
 {
-  namespace agreement = vtkOpalRankAgreement;
-  const std::vector<vtkIdType> lengths = agreement::GatherLengths(controller, state ? 1 : 0);
-  std::vector<char> sent;
-  if (!agreement::GatherBytes(controller, state, lengths, sent))
-  {
-    return {};
-  }
-  // A sharer's state is its one byte, at its place among the ranks that sent one.
-  const std::vector<vtkIdType> places = agreement::RankOffsets(lengths);
-  std::vector<char> states;
-  for (const int rank : sharers)
-  {
-    const std::size_t r = static_cast<std::size_t>(rank);
-    states.push_back(lengths[r] > 0 ? sent[static_cast<std::size_t>(places[r])] : static_cast<char>(ShareFailed));
-  }
-  return states;
+  const vtkIdType length = bytes ? static_cast<vtkIdType>(bytes->size()) : 0;
+  return state ? length * StateKinds + *state : -1;
 }
 
-// Collective over every rank: a round of the exchange. First each sharer's
-// state (`state`; a bystander nullptr), then the bytes straight from `bytes`
-// (a bystander's none), in rounds of ShareRoundBytes: a round's window (a
-// round of every rank) is all the exchange holds besides them. Where every
+// Collective over every rank: a round of the exchange. First every rank's
+// word (wordOf: `state`, a bystander's nullptr), then the bytes straight from
+// `bytes` (a bystander's none), in rounds of ShareRoundBytes: a round's window
+// (a round of every rank) is all the exchange holds besides them. Where every
 // sharer goes on, each one's bytes go to `sink`; else the shares of those
 // done (the last exchange), but not to a sharer that said it goes on (a
 // share's bytes are not its edge's).
@@ -122,30 +110,38 @@ Round exchangeRound(vtkMultiProcessController* controller, const std::vector<int
   const std::vector<char>* bytes, const Sink& sink, const std::string& what)
 {
   namespace agreement = vtkOpalRankAgreement;
-  const std::vector<char> states = statesOf(controller, sharers, state);
-  const std::vector<vtkIdType> lengths =
-    agreement::GatherLengths(controller, bytes ? static_cast<vtkIdType>(bytes->size()) : 0);
-  const bool goesOn = !states.empty() && std::all_of(states.begin(), states.end(), [](char s) { return s == ShareGoesOn; });
+  const std::vector<vtkIdType> words = agreement::GatherLengths(controller, wordOf(state, bytes));
+  std::vector<vtkIdType> lengths(words.size(), 0);
+  std::vector<char> states;
+  for (std::size_t r = 0; r < words.size(); ++r)
+  {
+    lengths[r] = std::max<vtkIdType>(words[r], 0) / StateKinds;
+  }
+  for (const int rank : sharers)
+  {
+    const vtkIdType word = words[static_cast<std::size_t>(rank)];
+    states.push_back(word >= 0 ? static_cast<char>(word % StateKinds) : static_cast<char>(ShareFailed));
+  }
+  const bool goesOn = std::all_of(states.begin(), states.end(), [](char s) { return s == ShareGoesOn; });
   std::vector<int> shareOfRank(lengths.size(), -1);
   const bool mineGoesOn = state && *state == ShareGoesOn;
-  for (std::size_t s = 0; s < sharers.size() && !states.empty(); ++s)
+  for (std::size_t s = 0; s < sharers.size(); ++s)
   {
     if (goesOn || (!mineGoesOn && states[s] == ShareDone))
     {
       shareOfRank[static_cast<std::size_t>(sharers[s])] = static_cast<int>(s);
     }
   }
-  const bool exchanged = !states.empty() &&
-    agreement::GatherBytesTo(
-      controller, bytes ? bytes->data() : nullptr, lengths,
-      [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
-        const int share = shareOfRank[static_cast<std::size_t>(rank)];
-        if (share >= 0)
-        {
-          sink(share, static_cast<std::uint64_t>(first), static_cast<std::uint64_t>(count), data);
-        }
-      },
-      ShareRoundBytes);
+  const bool exchanged = agreement::GatherBytesTo(
+    controller, bytes ? bytes->data() : nullptr, lengths,
+    [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
+      const int share = shareOfRank[static_cast<std::size_t>(rank)];
+      if (share >= 0)
+      {
+        sink(share, static_cast<std::uint64_t>(first), static_cast<std::uint64_t>(count), data);
+      }
+    },
+    ShareRoundBytes);
   if (!exchanged)
   {
     throw std::runtime_error("The ranks could not exchange " + what + ".");
