@@ -4,6 +4,7 @@
 #include "vtkMultiProcessController.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <numeric>
 #include <sstream>
@@ -141,6 +142,17 @@ std::vector<RankView> Gather(vtkMultiProcessController* given, const RankView& m
     views.push_back(decode(received.data() + offset));
   }
   return views;
+}
+
+std::string SettingsLine(const char* name, const std::vector<double>& values)
+{
+  std::string line = name;
+  for (const double value : values)
+  {
+    char number[32];
+    line += " " + std::string(number, std::to_chars(number, number + sizeof(number), value).ptr);
+  }
+  return line + "\n";
 }
 
 std::string SettingsDisagreement(const std::vector<RankView>& views)

@@ -57,6 +57,10 @@ std::vector<RankView> Gather(vtkMultiProcessController* controller, const RankVi
 // the first parameter in which a rank differs, with both values.
 std::string SettingsDisagreement(const std::vector<RankView>& views);
 
+// A parameter's line in a RankView's settings: "Name value...", each value
+// in the shortest text that reads back as it.
+std::string SettingsLine(const char* name, const std::vector<double>& values);
+
 // True on every rank where any rank's `mine` is true.
 bool AnyRank(vtkMultiProcessController* controller, bool mine);
 

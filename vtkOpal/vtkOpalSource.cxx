@@ -12,6 +12,8 @@
 #include "OpalRenderParameters.h"
 #include "OpalVolumeFiller.h"
 #include "vtkOpalFieldData.h"
+#include "vtkOpalRankAgreement.h"
+#include "vtkOpalSharedVoronoiCells.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellData.h"
@@ -21,6 +23,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationDoubleVectorKey.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
 #include "vtkIntArray.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -81,7 +84,15 @@ vtkOpalSource::vtkOpalSource()
   defaults.applyPreset(opal::DefaultPreset); // the model's defaults are fig12's already
   this->SetModelParameters(defaults);
   this->Preset = opal::DefaultPreset;
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
+
+vtkOpalSource::~vtkOpalSource()
+{
+  this->SetController(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkOpalSource, Controller, vtkMultiProcessController);
 
 bool vtkOpalSource::SetPresetByName(const char* name)
 {
@@ -289,18 +300,42 @@ vtkNew<vtkPolyData> makeCellBoundaries(const opal::Grid& grid, const opal::Domai
 }
 } // namespace
 
-std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(const opal::ModelParameters& parameters)
+std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(
+  const opal::ModelParameters& parameters, bool refused)
 {
   if (this->Layout && this->LayoutTime == this->GetMTime())
   {
-    return this->Layout;
+    return refused ? nullptr : this->Layout;
   }
+  this->LastVoronoiCellShares = 0;
   this->Layout = nullptr;
   this->Polygons = nullptr;
-  auto layout = std::make_shared<opal::DomainLayout>(opal::DomainLayout::build(parameters, [this](double fraction) {
+  const auto progress = [this](double fraction) {
     this->UpdateProgress(LayoutProgressShare * fraction);
     return !this->GetAbortExecute();
-  }));
+  };
+  std::optional<opal::DomainLayout> built;
+  const bool voronoi = parameters.DomainLayout == opal::DomainLayoutKind::Voronoi;
+  if (voronoi && vtkOpalRankAgreement::Ranks(this->Controller) > 1)
+  {
+    const vtkOpalRankShares::Result shared = vtkOpalSharedVoronoiCells::Build(
+      this->Controller, refused, parameters, progress, [this] { return this->GetAbortExecute() != 0; }, built);
+    this->LastVoronoiCellShares = shared.Shares;
+    if (shared.Aborted)
+    {
+      return nullptr; // a rank aborted its share: every rank's request aborts
+    }
+  }
+  if (refused)
+  {
+    return nullptr;
+  }
+  if (!built)
+  {
+    built = opal::DomainLayout::build(parameters, progress);
+    this->LastVoronoiCellShares = voronoi && !built->aborted() ? 1 : 0;
+  }
+  auto layout = std::make_shared<opal::DomainLayout>(std::move(*built));
   if (layout->aborted())
   {
     return nullptr;
@@ -423,17 +458,23 @@ int vtkOpalSource::RequestData(
     extent[2 * a] = std::max(extent[2 * a], 0);
     extent[2 * a + 1] = std::min(extent[2 * a + 1], parameters.Dimensions[a] - 1);
   }
-  if (this->Refuses(extent))
-  {
-    return 0;
-  }
-  const opal::Grid grid = opal::Grid::fromParameters(parameters);
+  // A refused rank still takes part in the ranks' shared layout.
+  const bool refused = this->Refuses(extent);
   this->UpdateProgress(0.0);
-  const std::shared_ptr<const opal::DomainLayout> layout = this->BuildLayout(parameters);
+  std::shared_ptr<const opal::DomainLayout> layout;
+  try
+  {
+    layout = this->BuildLayout(parameters, refused);
+  }
+  catch (const std::exception& e) // out of memory, or the ranks' exchange failed
+  {
+    vtkErrorMacro("The domain layout could not be built: " << e.what());
+  }
   if (!layout)
   {
     return 0;
   }
+  const opal::Grid grid = opal::Grid::fromParameters(parameters);
 
   vtkImageData* image = vtkImageData::GetData(imageInfo);
   image->SetExtent(extent);

@@ -44,6 +44,7 @@
 class vtkInformationDoubleVectorKey;
 
 class vtkImageData;
+class vtkMultiProcessController;
 class vtkPolyData;
 
 namespace opal
@@ -94,6 +95,18 @@ public:
   vtkSetMacro(OutputArrays, int);
   vtkGetMacro(OutputArrays, int);
 
+  /// The ranks whose Voronoi layouts are built together (docs/design.md
+  /// §8.1): each assigns the cells of a share of the grid's layers. The
+  /// global controller by default; none, or one process, builds alone. Every
+  /// rank's source must update together after a change of its settings, as
+  /// ParaView's pvbatch and pvserver update them.
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  /// How many ranks assigned the Voronoi cells of the layout the last update
+  /// used: the controller's ranks where they shared it, 1 where it was built
+  /// alone, 0 for polygons (or none built).
+  vtkGetMacro(LastVoronoiCellShares, int);
+
   /// The parameters as the next update will use them.
   opal::ModelParameters GetModelParameters() const;
   /// Sets every model parameter at once; the preset is left as it is.
@@ -106,7 +119,7 @@ public:
 
 protected:
   vtkOpalSource();
-  ~vtkOpalSource() override = default;
+  ~vtkOpalSource() override;
 
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
@@ -130,9 +143,10 @@ private:
   // there is one.
   bool Refuses(const int* extent);
   // The domain layout (warning when not all domains fit); nullptr if
-  // aborted. Built once per change of the settings and kept: the pieces of
-  // one volume (a .pvti written piece by piece) share it.
-  std::shared_ptr<const opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters);
+  // aborted or `refused` (this rank's request, which still takes part in the
+  // ranks' shared build). Built once per change of the settings and kept:
+  // the pieces of one volume (a .pvti written piece by piece) share it.
+  std::shared_ptr<const opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters, bool refused);
   // The layout's polygons (or Voronoi cell boundaries) for port 1, made once per layout.
   vtkPolyData* LayoutPolygons(const opal::ModelParameters& parameters);
   // Fills the image's extent with the voxel arrays; false if aborted.
@@ -147,4 +161,6 @@ private:
   std::shared_ptr<const opal::DomainLayout> Layout;
   vtkMTimeType LayoutTime = 0;
   vtkSmartPointer<vtkPolyData> Polygons;
+  vtkMultiProcessController* Controller = nullptr;
+  int LastVoronoiCellShares = 0;
 };

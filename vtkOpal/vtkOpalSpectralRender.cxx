@@ -20,7 +20,6 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <optional>
 #include <stdexcept>
@@ -298,13 +297,7 @@ std::string vtkOpalSpectralRender::SettingsText() const
   const opal::RenderParameters p = this->GetRenderParameters();
   for (const auto& row : opal::renderParameterRows())
   {
-    text += row.Name;
-    for (const double value : row.Get(p))
-    {
-      char number[32]; // the shortest text that reads back as the value
-      text += " " + std::string(number, std::to_chars(number, number + sizeof(number), value).ptr);
-    }
-    text += "\n";
+    text += vtkOpalRankAgreement::SettingsLine(row.Name, row.Get(p));
   }
   return text;
 }

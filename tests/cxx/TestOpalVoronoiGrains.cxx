@@ -4,6 +4,7 @@
 // the voxels' faces'; the cells fill the opal without gaps; each ordered cell is one
 // domain; the ordered share is OrderedFraction and ordered cells cluster; the
 // boundary mesh of each ordered cell is closed; pieces equal the whole run;
+// layers assigned in shares and stacked equal the whole grid's runs;
 // the diameter field's autocorrelation follows its closed form, and length 0
 // is the paper's independent draw.
 #include "OpalTestHarness.h"
@@ -24,8 +25,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -119,6 +122,51 @@ void checkRunsEqualVoxels(const opal::ModelParameters& p, const opal::BuiltVolum
   }
   OPAL_CHECK(opal::voronoiAdjacency(runs, static_cast<int>(sites.size())) == scanned,
     "the adjacency of the runs is that of the voxels' faces");
+}
+
+// Layers assigned in shares (as MPI ranks share the work, docs/design.md
+// §8.1), handed over as bytes and stacked in order, give the whole grid's
+// runs, and a layout built from them is the one built alone; a share of no
+// layers is allowed, bytes cut short or unlike layers are refused.
+void checkSharedLayers(const opal::ModelParameters& p, const opal::BuiltVolume& v)
+{
+  const int nz = p.Dimensions[2];
+  const std::vector<int> cuts{ 0, 7, 7, nz / 2 + 3, nz };
+  int calls = 0;
+  const opal::DomainLayout shared = opal::DomainLayout::build(p, nullptr, [&](const opal::DomainLayout::LayerCells& layers) {
+    ++calls;
+    std::vector<opal::VoronoiCellRuns> parts;
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+    {
+      parts.push_back(opal::VoronoiCellRuns::fromBytes(layers(cuts[c], cuts[c + 1]).bytes()));
+    }
+    return opal::VoronoiCellRuns::stacked(parts);
+  });
+  OPAL_CHECK(calls == 1, "the layout asks the assignment once");
+  OPAL_CHECK(shared.cellRuns().bytes() == v.Layout.cellRuns().bytes(),
+    "layers assigned in 4 shares (one of none) and stacked equal the whole grid's runs");
+  OPAL_CHECK(shared.cellDomains() == v.Layout.cellDomains() && shared.placedCount() == v.Layout.placedCount(),
+    "the layout of the shared runs orders the same cells as the layout built alone");
+  const auto refused = [](const std::function<void()>& step) {
+    try
+    {
+      step();
+    }
+    catch (const std::runtime_error&)
+    {
+      return true;
+    }
+    return false;
+  };
+  std::vector<char> bytes = v.Layout.cellRuns().bytes();
+  bytes.pop_back();
+  OPAL_CHECK(refused([&] { opal::VoronoiCellRuns::fromBytes(bytes); }), "runs' bytes cut short are refused");
+  const opal::VoronoiCellRuns other({ 3, 2, 1 }, { 0, 1, 2 }, { { 0, -1 }, { 0, -1 } });
+  OPAL_CHECK(refused([&] { opal::VoronoiCellRuns::stacked({ v.Layout.cellRuns(), other }); }),
+    "layers of unlike rows are refused");
+  OPAL_CHECK(refused([&] {
+    opal::DomainLayout::build(p, nullptr, [](const opal::DomainLayout::LayerCells& layers) { return layers(0, 5); });
+  }), "an assignment short of the grid's layers is refused");
 }
 
 // Cells fill the opal; a cell is wholly ordered (one domain) or wholly body.
@@ -241,6 +289,7 @@ int TestOpalVoronoiGrains(int, char*[])
   {
     checkCellsFillTheOpal(*v);
     checkRunsEqualVoxels(p, *v);
+    checkSharedLayers(p, *v);
     checkBoundariesClose(*v);
   }
   checkPercolation(voronoiModel(600, 0.1, 0.3));

@@ -67,6 +67,12 @@ else:
     writer = os.path.join(here, "opal_write_pipeline.py")
     alone = run([config.PVBATCH, writer, serial] + arguments).stdout
     together = run(mpiexec + [writer, parallel] + arguments + (["--again"] if kind == "render" else [])).stdout
+    if kind in ("voronoi", "grains"):
+        # The ranks share the Voronoi cells' assignment (each a share of the
+        # grid's layers, docs/design.md §8.1); the volume stays exact (below).
+        check("Voronoi cells assigned by 1 rank(s)" in alone, "one process assigns the cells alone:\n" + alone)
+        check(f"Voronoi cells assigned by {ranks} rank(s)" in together,
+              f"the {ranks} ranks share the Voronoi cells:\n" + together)
     if kind == "fire":
         # Every order: the ranks share the photon solve (each traces a share,
         # all build the field from every share's scores, docs/design.md §8.1).

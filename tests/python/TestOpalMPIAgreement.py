@@ -7,7 +7,8 @@ photon solve; a rank without a device, or one aborting inside the shared
 solve (which aborts every rank's request), leaves every rank without an image
 piece, and none hangs. The ranks share the light field: its sweep with the
 light above, its march from every voxel with the light low to the side; an
-abort inside either ends every rank's request alike.
+abort inside either ends every rank's request alike, as one inside the
+ranks' shared assignment of a Voronoi volume's cells does.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -50,53 +51,47 @@ def expect_refused(case, sentence, rank1_environment=None):
     check(said == ranks, f"{case}: every rank says '{sentence}' once, said {said} times:\n{output[-3000:]}")
 
 
-
-def light_shares(output):
-    return {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares \d+ light (\d+)", output)}
-
-
-output = run_ranks("same")
-images = images_of(output)
-check(len(images) == ranks and all(points > 0 for points in images.values()),
-      f"ranks that agree render their pieces: {images}\n{output[-3000:]}")
-check(light_shares(output) == {r: ranks for r in range(ranks)},
-      f"the light above: all {ranks} ranks swept the light field together: {light_shares(output)}")
-expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
-expect_refused("information", "ViewAngle")
-expect_refused("same", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
-
-output = run_ranks("every-order")
-shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares (\d+)", output)}
-check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
-      f"every order: ranks that agree render their pieces:\n{output[-3000:]}")
-check(shares == {r: ranks for r in range(ranks)}, f"every order: all {ranks} ranks traced the field together: {shares}")
-expect_refused("every-order", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
-output = run_ranks("abort")
-images = images_of(output)
-shares = {int(rank): int(count) for rank, count in re.findall(r"rank (\d+) image \d+ shares (\d+)", output)}
-check(len(images) == ranks and all(points == 0 for points in images.values()),
-      f"an abort in the shared solve on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
-check(shares == {r: 0 for r in range(ranks)}, f"and every rank aborts with it, none solving alone: {shares}")
-check(light_shares(output) == {r: ranks for r in range(ranks)},
-      f"the abort came after the ranks' shared light field: {light_shares(output)}")
+def counts(output, which):
+    """Each rank's count of the ranks that shared `which` (shares: the
+    every-order solve; light: the light field; cells: the Voronoi cells), as
+    the ranks printed them (their lines may interleave)."""
+    column = {"shares": 1, "light": 2, "cells": 3}[which]
+    lines = re.findall(r"rank (\d+) image \d+ shares (\d+) light (\d+) cells (\d+)", output)
+    return {int(line[0]): int(line[column]) for line in lines}
 
 
-def expect_light_abort(case, step):
-    """Rank 1 aborts inside the ranks' shared light `step`: every rank ends,
-    none with an image piece, none computing the light field alone."""
+def expect_shared(case, what, which):
+    """The ranks agree and render their pieces, all sharing `which`."""
+    output = run_ranks(case)
+    check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
+          f"{what}: ranks that agree render their pieces:\n{output[-3000:]}")
+    check(counts(output, which) == {r: ranks for r in range(ranks)},
+          f"{what}: all {ranks} ranks shared the {which}: {counts(output, which)}")
+
+
+def expect_abort(case, step, which, doing):
+    """Rank 1 aborts inside the ranks' shared `step`: every rank ends, none
+    with an image piece, none `doing` alone. Returns the output."""
     output = run_ranks(case)
     images = images_of(output)
     check(len(images) == ranks and all(points == 0 for points in images.values()),
           f"an abort in the shared {step} on rank 1: every rank ends, none with an image piece: {images}\n{output[-3000:]}")
-    check(light_shares(output) == {r: 0 for r in range(ranks)},
-          f"{case}: every rank aborts with it, none computing the light field alone: {light_shares(output)}")
+    check(counts(output, which) == {r: 0 for r in range(ranks)},
+          f"{case}: every rank aborts with it, none {doing} alone: {counts(output, which)}")
+    return output
 
 
-expect_light_abort("above-abort", "sweep from above")
-output = run_ranks("side")
-check(len(images_of(output)) == ranks and all(points > 0 for points in images_of(output).values()),
-      f"the light to the side: ranks that agree render their pieces:\n{output[-3000:]}")
-check(light_shares(output) == {r: ranks for r in range(ranks)},
-      f"the light to the side: all {ranks} ranks marched the light field together: {light_shares(output)}")
-expect_light_abort("side-abort", "light march")
+expect_shared("same", "the light above", "light")
+expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
+expect_refused("information", "ViewAngle")
+expect_refused("same", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
+expect_shared("every-order", "every order", "shares")
+expect_refused("every-order", "No Vulkan device", ["OPAL_VULKAN_DEVICE=no-such-device"])
+output = expect_abort("abort", "solve", "shares", "solving")
+check(counts(output, "light") == {r: ranks for r in range(ranks)},
+      f"the abort came after the ranks' shared light field: {counts(output, 'light')}")
+expect_abort("above-abort", "sweep from above", "light", "computing the light field")
+expect_shared("side", "the light to the side", "light")
+expect_abort("side-abort", "light march", "light", "computing the light field")
+expect_abort("voronoi-abort", "Voronoi cells", "cells", "assigning the cells")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

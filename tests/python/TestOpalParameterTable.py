@@ -40,6 +40,7 @@ PROXIES = {
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",
         "OutputArrays": "which arrays the volume carries, not the opal it describes",
+        "LastVoronoiCellShares": "what the last update did (information only), not a setting",
     }),
 }
 # Rows whose XML gives a narrower range on purpose (a slider, an animation's

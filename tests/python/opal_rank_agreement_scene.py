@@ -7,11 +7,14 @@ the above-abort case with rank 1 asking to abort at its first progress above
 0 (inside the ranks' sweep of the light from above); in the side case the
 light low to the side (the ranks share its march from every voxel), and in
 the side-abort case with rank 1 asking to abort at its first progress above
-0 (inside that march). Each rank then prints whether it holds an image piece
-and how many ranks traced its every-order field and computed its light field
-("rank R image POINTS shares S light L"), so the driver sees that none holds
+0 (inside that march); in the voronoi-abort case the volume's layout is of
+Voronoi grains and rank 1's volume asks to abort at its first progress above
+0 (inside the ranks' shared assignment of the cells). Each rank then prints
+whether it holds an image piece and how many ranks traced its every-order
+field, computed its light field and assigned its volume's cells ("rank R
+image POINTS shares S light L cells C"), so the driver sees that none holds
 part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort"""
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort|voronoi-abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -23,6 +26,11 @@ case = sys.argv[1]
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())
 rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
 volume = OpalVolume(Dimensions=[40, 20, 50], DomainCount=30)  # noqa: F821 (from the plugin)
+if case == "voronoi-abort":
+    volume.DomainLayout = "voronoi"
+    if rank == 1:
+        volume.GetClientSideObject().AddObserver(
+            "ProgressEvent", lambda source, _: source.GetProgress() > 0 and source.SetAbortExecute(1))
 render = OpalSpectralRender(Input=volume, ImageSize=[48, 36])  # noqa: F821
 if case in ("every-order", "abort"):
     render.ScatteringOrders = "all"
@@ -43,4 +51,6 @@ image = render.GetClientSideObject().GetOutputDataObject(0)
 render.UpdatePropertyInformation()
 shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
 light = render.GetProperty("LastLightFieldShares").GetElement(0)
-print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares} light {light}", flush=True)
+volume.UpdatePropertyInformation()
+cells = volume.GetProperty("LastVoronoiCellShares").GetElement(0)
+print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares} light {light} cells {cells}", flush=True)

@@ -28,12 +28,14 @@ output, dimensions = arguments[1], [int(v) for v in arguments[2:5]]
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationLength=0.8) if voronoi else {}
 # A preset first, then the grid (and domains) given: an edit wins over the preset's value.
-result = OpalVolume(**preset, Dimensions=dimensions, **({} if preset else dict(DomainCount=60)), **grains)  # noqa: F821
+volume = result = OpalVolume(**preset, Dimensions=dimensions, **({} if preset else dict(DomainCount=60)), **grains)  # noqa: F821
 if len(arguments) > 6:
     light = dict(LightPosition=[60, 10, 0]) if side_light else {}
     result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]], **light)  # noqa: F821
 # Inline binary: Debian's VTK 9.2 with its patched expat cannot read appended XML data.
 SaveData(output, proxy=result, DataMode="Binary")
+volume.UpdatePropertyInformation()
+print("Voronoi cells assigned by", volume.GetProperty("LastVoronoiCellShares").GetElement(0), "rank(s)")
 if len(arguments) > 6:
     result.UpdatePropertyInformation()
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")

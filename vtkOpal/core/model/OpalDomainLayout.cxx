@@ -154,10 +154,11 @@ bool rasterisePolygon(const Grid& grid, const std::vector<std::array<double, 3>>
   return true;
 }
 
-DomainLayout DomainLayout::build(const ModelParameters& p, const std::function<bool(double)>& progress)
+DomainLayout DomainLayout::build(
+  const ModelParameters& p, const std::function<bool(double)>& progress, const CellAssignment& assignment)
 {
   DomainLayout layout =
-    p.DomainLayout == DomainLayoutKind::Voronoi ? buildVoronoi(p, progress) : buildPolygons(p, progress);
+    p.DomainLayout == DomainLayoutKind::Voronoi ? buildVoronoi(p, progress, assignment) : buildPolygons(p, progress);
   // Step 6 (docs/design.md §2.4): the spin from a stream of its own, counter =
   // the domain's id, so the layout's own draws (and today's volumes) stay as they were.
   for (Domain& domain : layout.Domains)

@@ -48,8 +48,13 @@ public:
   // how many made it). Voronoi: the cells, their percolation and one domain
   // per ordered cell.
   // progress(fraction) is called now and then; returning false aborts the build.
+  // Voronoi: `assignment`, where given, assigns the grid's cells, sharing
+  // the work (the ranks of an MPI build, docs/design.md §8.1): it calls
+  // `layers` for its own layers and returns the whole grid's runs (empty: aborted).
+  using LayerCells = std::function<VoronoiCellRuns(int firstLayer, int endLayer)>;
+  using CellAssignment = std::function<VoronoiCellRuns(const LayerCells& layers)>;
   static DomainLayout build(const ModelParameters& parameters,
-    const std::function<bool(double)>& progress = nullptr);
+    const std::function<bool(double)>& progress = nullptr, const CellAssignment& assignment = nullptr);
 
   const std::vector<Domain>& domains() const { return this->Domains; }
   int placedCount() const { return static_cast<int>(this->Domains.size()); }
@@ -77,7 +82,8 @@ public:
 private:
   static DomainLayout buildPolygons(const ModelParameters& parameters, const std::function<bool(double)>& progress);
   // Defined in OpalVoronoiLayout.cxx.
-  static DomainLayout buildVoronoi(const ModelParameters& parameters, const std::function<bool(double)>& progress);
+  static DomainLayout buildVoronoi(const ModelParameters& parameters, const std::function<bool(double)>& progress,
+    const CellAssignment& assignment);
 
   std::vector<Domain> Domains;
   std::vector<DomainVoxel> Voxels;

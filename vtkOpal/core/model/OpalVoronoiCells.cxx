@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 namespace opal
@@ -247,16 +249,16 @@ void appendRuns(const std::vector<std::int32_t>& line, std::vector<VoronoiCellRu
 } // namespace
 
 VoronoiCellRuns assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape, const VoronoiSiteSearch& search,
-  const std::function<bool(double)>& progress)
+  const std::array<int, 2>& zRange, const std::function<bool(double)>& progress)
 {
-  const int nx = grid.Dimensions[0], ny = grid.Dimensions[1], nz = grid.Dimensions[2];
+  const int nx = grid.Dimensions[0], ny = grid.Dimensions[1], nz = zRange[1] - zRange[0];
   std::vector<std::int64_t> rowStart(1, 0);
   rowStart.reserve(static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz) + 1);
   std::vector<VoronoiCellRuns::Run> runs;
   const int chunk = std::max(1, nz / 20);
-  for (int k0 = 0; k0 < nz; k0 += chunk)
+  for (int k0 = zRange[0]; k0 < zRange[1]; k0 += chunk)
   {
-    const int k1 = std::min(nz, k0 + chunk);
+    const int k1 = std::min(zRange[1], k0 + chunk);
     // Each layer's rows encoded apart, then appended in order.
     std::vector<std::vector<VoronoiCellRuns::Run>> layers(static_cast<std::size_t>(k1 - k0));
     std::vector<std::vector<std::int64_t>> layerRowEnds(layers.size());
@@ -286,13 +288,94 @@ VoronoiCellRuns assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape,
         rowStart.push_back(offset + rowEnd);
       }
     }
-    if (progress && !progress(static_cast<double>(k1) / nz))
+    if (progress && !progress(static_cast<double>(k1 - zRange[0]) / nz))
     {
       return {};
     }
   }
   runs.shrink_to_fit();
-  return VoronoiCellRuns(grid.Dimensions, std::move(rowStart), std::move(runs));
+  return VoronoiCellRuns({ nx, ny, nz }, std::move(rowStart), std::move(runs));
+}
+
+namespace
+{
+// `count` values of T read from `bytes` at `at`, which moves past them.
+template <typename T>
+std::vector<T> readBytes(const std::vector<char>& bytes, std::size_t& at, std::size_t count)
+{
+  if (count > (bytes.size() - at) / sizeof(T))
+  {
+    throw std::runtime_error("Voronoi cell runs: the bytes end early.");
+  }
+  std::vector<T> values(count);
+  if (count > 0)
+  {
+    std::memcpy(values.data(), bytes.data() + at, count * sizeof(T));
+  }
+  at += count * sizeof(T);
+  return values;
+}
+} // namespace
+
+std::vector<char> VoronoiCellRuns::bytes() const
+{
+  const std::int64_t dims[3] = { this->Dimensions[0], this->Dimensions[1], this->Dimensions[2] };
+  const std::size_t starts = this->RowStart.size() * sizeof(std::int64_t);
+  const std::size_t runs = this->Runs.size() * sizeof(Run);
+  std::vector<char> bytes(sizeof(dims) + starts + runs);
+  std::memcpy(bytes.data(), dims, sizeof(dims));
+  if (starts > 0) // an empty vector's data() may be null, which memcpy may not take
+  {
+    std::memcpy(bytes.data() + sizeof(dims), this->RowStart.data(), starts);
+  }
+  if (runs > 0)
+  {
+    std::memcpy(bytes.data() + sizeof(dims) + starts, this->Runs.data(), runs);
+  }
+  return bytes;
+}
+
+VoronoiCellRuns VoronoiCellRuns::fromBytes(const std::vector<char>& bytes)
+{
+  std::size_t at = 0;
+  const std::vector<std::int64_t> dims = readBytes<std::int64_t>(bytes, at, 3);
+  if (std::any_of(dims.begin(), dims.end(), [](std::int64_t d) { return d < 0 || d > (std::int64_t(1) << 30); }))
+  {
+    throw std::runtime_error("Voronoi cell runs: the bytes name no grid.");
+  }
+  std::vector<std::int64_t> rowStart = readBytes<std::int64_t>(bytes, at, static_cast<std::size_t>(dims[1] * dims[2] + 1));
+  const std::size_t runCount = (bytes.size() - at) / sizeof(Run);
+  std::vector<Run> runs = readBytes<Run>(bytes, at, runCount);
+  const bool ordered = rowStart.front() == 0 && std::is_sorted(rowStart.begin(), rowStart.end());
+  if (at != bytes.size() || !ordered || rowStart.back() != static_cast<std::int64_t>(runs.size()))
+  {
+    throw std::runtime_error("Voronoi cell runs: the bytes' rows do not hold their runs.");
+  }
+  return VoronoiCellRuns({ static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]) },
+    std::move(rowStart), std::move(runs));
+}
+
+VoronoiCellRuns VoronoiCellRuns::stacked(const std::vector<VoronoiCellRuns>& layers)
+{
+  std::array<int, 3> dims{ layers.empty() ? 0 : layers.front().Dimensions[0],
+    layers.empty() ? 0 : layers.front().Dimensions[1], 0 };
+  std::vector<std::int64_t> rowStart(1, 0);
+  std::vector<Run> runs;
+  for (const VoronoiCellRuns& part : layers)
+  {
+    if (part.Dimensions[0] != dims[0] || part.Dimensions[1] != dims[1])
+    {
+      throw std::runtime_error("Voronoi cell runs: stacked layers of unlike rows.");
+    }
+    const std::int64_t offset = static_cast<std::int64_t>(runs.size());
+    for (std::size_t r = 1; r < part.RowStart.size(); ++r)
+    {
+      rowStart.push_back(offset + part.RowStart[r]);
+    }
+    runs.insert(runs.end(), part.Runs.begin(), part.Runs.end());
+    dims[2] += part.Dimensions[2];
+  }
+  return VoronoiCellRuns(dims, std::move(rowStart), std::move(runs));
 }
 
 std::uint64_t voronoiCellRunBytes(const std::array<int, 3>& dimensions, int cellCount)

@@ -96,6 +96,15 @@ public:
   int runEnd(const Run* run, const Run* rowEnd) const { return run + 1 != rowEnd ? run[1].FirstX : this->Dimensions[0]; }
   std::size_t runCount() const { return this->Runs.size(); }
 
+  // The runs as bytes (the dimensions, each row's start, the runs) and back:
+  // how ranks that share the assignment hand their layers over (docs/design.md
+  // §8.1). fromBytes throws where the bytes are not runs of that layout.
+  std::vector<char> bytes() const;
+  static VoronoiCellRuns fromBytes(const std::vector<char>& bytes);
+  // Runs of consecutive layers along z stacked in order into one grid's
+  // (each of the same rows); throws where they differ.
+  static VoronoiCellRuns stacked(const std::vector<VoronoiCellRuns>& layers);
+
 private:
   std::size_t rowOf(int j, int k) const
   {
@@ -107,10 +116,12 @@ private:
   std::vector<Run> Runs;
 };
 
-// The cell of every voxel of the grid, -1 outside the opal.
-// progress(fraction) may return false to abort: then the result is empty.
+// The cell of every voxel of the grid's layers z = zRange[0] to zRange[1]
+// (exclusive), -1 outside the opal: runs of nx x ny x (zRange[1] - zRange[0]).
+// progress(fraction of those layers) may return false to abort: then the
+// result is empty.
 VoronoiCellRuns assignVoronoiCells(const Grid& grid, const HalfEllipsoid& shape, const VoronoiSiteSearch& search,
-  const std::function<bool(double)>& progress = nullptr);
+  const std::array<int, 2>& zRange, const std::function<bool(double)>& progress = nullptr);
 
 // About the bytes of a grid's runs for `cellCount` cells: a row crosses about
 // its length over a cell's diameter of them (at least one voxel), plus the

@@ -9,6 +9,8 @@
 #include "OpalRandom.h"
 #include "OpalVoronoiCells.h"
 
+#include <stdexcept>
+
 namespace opal
 {
 
@@ -52,7 +54,8 @@ Domain crystalDomain(int id, const ModelParameters& p, RandomSequence& random)
 }
 } // namespace
 
-DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::function<bool(double)>& progress)
+DomainLayout DomainLayout::buildVoronoi(
+  const ModelParameters& p, const std::function<bool(double)>& progress, const CellAssignment& assignment)
 {
   DomainLayout layout;
   const Grid grid = Grid::fromParameters(p);
@@ -60,12 +63,19 @@ DomainLayout DomainLayout::buildVoronoi(const ModelParameters& p, const std::fun
   RandomSequence random(p.Seed, RandomStream::VoronoiCells);
   const std::vector<VoronoiSite> sites = drawVoronoiSites(p, random);
   const VoronoiSiteSearch search(sites, { -p.SemiAxes[0], 0.0, -p.SemiAxes[2] }, p.SemiAxes);
-  layout.CellRuns = assignVoronoiCells(grid, shape, search,
-    [&progress](double f) { return !progress || progress(AssignShare * f); });
+  const LayerCells layers = [&](int first, int end) {
+    return assignVoronoiCells(
+      grid, shape, search, { first, end }, [&progress](double f) { return !progress || progress(AssignShare * f); });
+  };
+  layout.CellRuns = assignment ? assignment(layers) : layers(0, grid.Dimensions[2]);
   if (layout.CellRuns.empty())
   {
     layout.Aborted = true;
     return layout;
+  }
+  if (layout.CellRuns.dimensions() != grid.Dimensions)
+  {
+    throw std::runtime_error("Voronoi cells: the assignment's runs are not the grid's.");
   }
   const int cellCount = static_cast<int>(sites.size());
   const std::vector<std::uint8_t> ordered = orderedCells(voronoiAdjacency(layout.CellRuns, cellCount),

@@ -1,0 +1,96 @@
+#include "vtkOpalSharedVoronoiCells.h"
+
+#include "OpalModelParameters.h"
+#include "vtkOpalRankAgreement.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vtkOpalSharedVoronoiCells
+{
+namespace
+{
+// Share `share` of `shares` assigns its layers z = floor(s nz / N) to
+// floor((s + 1) nz / N) and sends their runs; the grid's runs are every
+// share's stacked in order (empty where a share stopped). `exchanged` is set
+// before the exchange, so that a throw after it does not exchange again.
+opal::VoronoiCellRuns assignShare(const opal::DomainLayout::LayerCells& layers, int nz, int share, int shares,
+  const vtkOpalRankShares::Exchanger& exchange, bool& exchanged)
+{
+  const auto layer = [&](int s) {
+    return static_cast<int>(static_cast<std::int64_t>(s) * nz / shares);
+  };
+  const opal::VoronoiCellRuns mine = layers(layer(share), layer(share + 1));
+  std::optional<std::vector<char>> bytes;
+  if (!mine.empty())
+  {
+    bytes = mine.bytes();
+  }
+  std::vector<std::vector<char>> received(static_cast<std::size_t>(shares));
+  exchanged = true;
+  const vtkOpalRankShares::Outcome outcome =
+    exchange(bytes, [&](int from, std::uint64_t first, std::uint64_t count, const char* data) {
+      std::vector<char>& part = received[static_cast<std::size_t>(from)];
+      part.resize(std::max<std::size_t>(part.size(), first + count));
+      std::copy_n(data, count, part.data() + first);
+    });
+  if (!outcome.Complete)
+  {
+    return {};
+  }
+  std::vector<opal::VoronoiCellRuns> parts;
+  for (const std::vector<char>& part : received)
+  {
+    parts.push_back(opal::VoronoiCellRuns::fromBytes(part));
+  }
+  return opal::VoronoiCellRuns::stacked(parts);
+}
+} // namespace
+
+vtkOpalRankShares::Result Build(vtkMultiProcessController* controller, bool failed,
+  const opal::ModelParameters& parameters, const std::function<bool(double)>& progress,
+  const std::function<bool()>& aborted, std::optional<opal::DomainLayout>& layout)
+{
+  return vtkOpalRankShares::Share(
+    controller, failed, [] { return true; },
+    [&] {
+      std::string text;
+      for (const auto& row : opal::modelParameterRows())
+      {
+        text += vtkOpalRankAgreement::SettingsLine(row.Name, row.Get(parameters));
+      }
+      return text;
+    },
+    aborted,
+    "the Voronoi cells' shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
+      bool exchanged = false;
+      const auto stop = [&] { // the others wait for this share's last exchange
+        if (!exchanged)
+        {
+          exchange(std::nullopt, [](int, std::uint64_t, std::uint64_t, const char*) {});
+        }
+      };
+      try
+      {
+        opal::DomainLayout built =
+          opal::DomainLayout::build(parameters, progress, [&](const opal::DomainLayout::LayerCells& layers) {
+            return assignShare(layers, parameters.Dimensions[2], share, shares, exchange, exchanged);
+          });
+        stop();
+        if (built.aborted())
+        {
+          return false;
+        }
+        layout = std::move(built);
+        return true;
+      }
+      catch (...)
+      {
+        stop();
+        throw;
+      }
+    });
+}
+} // namespace vtkOpalSharedVoronoiCells
