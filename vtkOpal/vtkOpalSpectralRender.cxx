@@ -437,34 +437,40 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareBeforeFrame(
   // Each step is called by every rank whatever the one before left it with:
   // with this rank's session and frame where it is ready, and whether it
   // has failed the request already. A rank that aborted its share aborts
-  // the request on every rank (said by none).
+  // the request on every rank (said by none). `shares`, where given, keeps
+  // how many ranks shared the step.
   using Step = std::function<vtkOpalRankShares::Result(opal::RenderSession*, bool, const opal::ResolvedFrame&)>;
-  const auto share = [&](RenderOutcome before, const Step& step) {
+  const auto share = [&](RenderOutcome before, const Step& step, int* shares) {
     const bool ready = before == RenderOutcome::Rendered && piece;
     return this->Guarded([&] {
       const vtkOpalRankShares::Result shared = step(ready ? this->RenderSession.get() : nullptr,
         before != RenderOutcome::Rendered, ready ? *piece : opal::ResolvedFrame{});
+      if (shares)
+      {
+        *shares = shared.Shares;
+      }
       return shared.Aborted ? RenderOutcome::Aborted : before;
     });
   };
   const auto aborted = [this] { return this->GetAbortExecute() != 0; };
-  const RenderOutcome lit =
-    share(uploaded, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
-      const vtkOpalRankShares::Result shared =
-        vtkOpalSharedLightField::March(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
-      this->LastLightFieldShares = shared.Shares;
-      return shared;
-    });
-  const RenderOutcome solved =
-    share(lit, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
-      const vtkOpalRankShares::Result shared =
-        vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
-      this->LastScatteredLightShares = shared.Shares;
-      return shared;
-    });
-  return share(solved, [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
-    return vtkOpalSharedScatteredLight::WriteField(this->Controller, session, failed, frame, aborted);
-  });
+  const RenderOutcome lit = share(
+    uploaded,
+    [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+      return vtkOpalSharedLightField::March(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
+    },
+    &this->LastLightFieldShares);
+  const RenderOutcome solved = share(
+    lit,
+    [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+      return vtkOpalSharedScatteredLight::Solve(this->Controller, session, failed, frame, this->RequestProgress(), aborted);
+    },
+    &this->LastScatteredLightShares);
+  return share(
+    solved,
+    [&](opal::RenderSession* session, bool failed, const opal::ResolvedFrame& frame) {
+      return vtkOpalSharedScatteredLight::WriteField(this->Controller, session, failed, frame, aborted);
+    },
+    nullptr);
 }
 
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(

@@ -312,10 +312,8 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
   const MediumRelease release(*this);
   try
   {
-    this->cancelFrame();
+    setup = this->setUpSharedStep(frame);
     this->ScatteredLight.reset();
-    this->requireVolume();
-    setup = this->setUpFrame(frame);
     Progress progress(callback);
     // After a light field the processes marched (its first half), and the
     // frame's light pass then reports none (renderFrame).

@@ -449,6 +449,15 @@ void RenderSession::requireVolume() const
   }
 }
 
+RenderSession::FrameSetup RenderSession::setUpSharedStep(const ResolvedFrame& frame)
+{
+  this->cancelFrame();
+  this->requireVolume();
+  FrameSetup setup = this->setUpFrame(frame);
+  this->checkMemoryBudget(setup);
+  return setup;
+}
+
 RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
 {
   this->requireVolume();

@@ -228,6 +228,10 @@ private:
   // Throws, saying so, where no volume was set.
   void requireVolume() const;
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
+  // A shared step's start (shareLightPass, solveScatteredLightShared,
+  // shareScatteredField): no frame running, the volume there, the frame set
+  // up and within the device's memory, as the frame would refuse it.
+  FrameSetup setUpSharedStep(const ResolvedFrame& frame);
   std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
   bool scatteredLightFromGrid(const FrameSetup& setup) const;
   bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;

@@ -290,11 +290,8 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
   std::optional<FrameSetup> setup;
   const bool shared = shareSlabs(
     [&](SlabShare& step, bool& exchanging) {
-      this->cancelFrame();
+      setup = this->setUpSharedStep(frame);
       this->LightField.reset();
-      this->requireVolume();
-      setup = this->setUpFrame(frame);
-      this->checkMemoryBudget(*setup);
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
       const bool braggShadow = conservesEnergy(setup->Parameters);
       if (braggShadow)
@@ -351,10 +348,7 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
   const auto start = Clock::now();
   const bool shared = shareSlabs(
     [&](SlabShare& step, bool&) {
-      this->cancelFrame();
-      this->requireVolume();
-      const FrameSetup setup = this->setUpFrame(frame);
-      this->checkMemoryBudget(setup);
+      const FrameSetup setup = this->setUpSharedStep(frame);
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
