@@ -202,13 +202,17 @@ void checkLight(const opal::RenderVolume& stone, opal::RenderParameters p, const
   // Below the paired fields (VoxelCell 8, SurfaceDistance 8, light field 16,
   // absorption cells 8 and their light field 16, the Bragg shadows 12): one value per voxel, by address.
   unpaired.MemoryLimitBytes = stone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
-  const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" } };
+  // A discrete GPU's path: the shares read and written through staging buffers.
+  opal::VulkanOptions staged;
+  staged.StagingTransfers = true;
+  const std::pair<opal::VulkanOptions, std::string> layouts[] = { { {}, "paired" }, { unpaired, "unpaired" },
+    { staged, "paired, staged" } };
   for (const auto& [options, how] : layouts)
   {
     const opal::RenderFrame shared = sharedFrame(stone, options, frame, Field::Light, Ending::Whole, where + ", " + how);
     OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
       where + ", " + how + ": the shares' field gives the image of a session that computed it alone, value for value");
-    OPAL_CHECK(shared.Ran.PairedFields == (how == "paired"), where + ", " + how + ": the fields are held " + how);
+    OPAL_CHECK(shared.Ran.PairedFields == (how != "unpaired"), where + ", " + how + ": the fields are held " + how);
   }
   const opal::RenderFrame partial = sharedFrame(stone, {}, frame, Field::Light, broken, where + ", a share stopping");
   OPAL_CHECK(partial.Ran.LightPass && identical(partial.Image, lone.Image),

@@ -76,47 +76,58 @@ bool readsRow(const std::array<int, 3>& dims, std::pair<int, int> rows, std::siz
 
 using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;
 
-// Bytes of `runs`: each field's records of each run, field after field.
+// Bytes of `runs`: each field's records of each run, field after field,
+// read together (readRuns: one submit on a device with dedicated memory).
 std::vector<char> readShare(const Fields& fields, const Runs& runs)
 {
-  std::vector<char> bytes;
+  std::vector<BufferRun> read;
+  std::uint64_t bytes = 0;
   for (const auto& [buffer, record] : fields)
   {
     for (const auto& [first, end] : runs)
     {
-      const std::size_t at = bytes.size();
-      bytes.resize(at + (end - first) * record);
-      buffer->readRange(first * record, (end - first) * record,
-        [&bytes, at](std::uint64_t from, std::uint64_t count, const void* data) {
-          std::memcpy(bytes.data() + at + from, data, count);
-        });
+      read.push_back({ buffer, first * record, (end - first) * record });
+      bytes += read.back().Bytes;
     }
   }
-  return bytes;
+  std::vector<char> share(bytes);
+  std::vector<char*> into;
+  std::uint64_t at = 0;
+  for (const BufferRun& run : read)
+  {
+    into.push_back(share.data() + at);
+    at += run.Bytes;
+  }
+  readRuns(read, into);
+  return share;
 }
 
 // Whether a run (by its first voxel) is written where it arrives; none: all.
 using Wanted = std::function<bool(std::size_t firstVoxel)>;
 
 // Bytes [first, first + count) of `runs` (as readShare lays them out)
-// written into the fields, a run's part at a time, the runs `wanted` only.
+// written into the fields together (writeRuns), the runs `wanted` only.
 void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, std::uint64_t first, std::uint64_t count,
   const char* bytes)
 {
+  std::vector<BufferRun> written;
+  std::vector<const char*> from;
   std::uint64_t runStart = 0;
   for (const auto& [buffer, record] : fields)
   {
     for (const auto& [voxel, end] : runs)
     {
       const std::uint64_t runBytes = (end - voxel) * record;
-      const std::uint64_t from = std::max(first, runStart), to = std::min(first + count, runStart + runBytes);
-      if (from < to && (!wanted || wanted(voxel)))
+      const std::uint64_t start = std::max(first, runStart), stop = std::min(first + count, runStart + runBytes);
+      if (start < stop && (!wanted || wanted(voxel)))
       {
-        buffer->write(voxel * record + (from - runStart), to - from, bytes + (from - first));
+        written.push_back({ buffer, voxel * record + (start - runStart), stop - start });
+        from.push_back(bytes + (start - first));
       }
       runStart += runBytes;
     }
   }
+  writeRuns(written, from);
 }
 
 // A sink that writes the other shares' runs into the fields, keeping the

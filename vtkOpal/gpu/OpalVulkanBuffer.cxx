@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
+#include <memory>
 
 namespace opal
 {
@@ -234,6 +236,96 @@ void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const Con
       });
       reader(first, count, staging.Mapped);
     });
+}
+
+namespace
+{
+// The bytes of the runs whose buffers are not mapped: the staging buffer's.
+std::uint64_t stagedBytes(const std::vector<BufferRun>& runs)
+{
+  std::uint64_t bytes = 0;
+  for (const BufferRun& run : runs)
+  {
+    bytes += run.Buffer->as<void>() ? 0 : run.Bytes;
+  }
+  return bytes;
+}
+
+// Calls each(i, mapped, staged): run i's bytes in its mapped buffer (else
+// nullptr) and its place in the staging buffer (for the runs not mapped).
+void forEachRun(const std::vector<BufferRun>& runs,
+  const std::function<void(std::size_t i, char* mapped, std::uint64_t staged)>& each)
+{
+  std::uint64_t staged = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    char* mapped = runs[i].Buffer->as<char>();
+    each(i, mapped ? mapped + runs[i].Begin : nullptr, staged);
+    staged += mapped ? 0 : runs[i].Bytes;
+  }
+}
+} // namespace
+
+void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into)
+{
+  const std::uint64_t bytes = stagedBytes(runs);
+  std::unique_ptr<VulkanBuffer> staging;
+  if (bytes > 0)
+  {
+    VulkanContext& context = runs.front().Buffer->context();
+    staging = std::make_unique<VulkanBuffer>(context, bytes, "read-back staging (runs)", BufferPlacement::HostReadback);
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+        VK_ACCESS_TRANSFER_READ_BIT);
+      forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
+        const VkBufferCopy region{ runs[i].Begin, staged, runs[i].Bytes };
+        if (!mapped && runs[i].Bytes > 0)
+        {
+          vkCmdCopyBuffer(commands, runs[i].Buffer->buffer(), staging->buffer(), 1, &region);
+        }
+      });
+      barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+        VK_ACCESS_HOST_READ_BIT);
+    });
+  }
+  forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
+    if (runs[i].Bytes > 0)
+    {
+      std::memcpy(into[i], mapped ? mapped : staging->as<char>() + staged, runs[i].Bytes);
+    }
+  });
+}
+
+void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*>& from)
+{
+  const std::uint64_t bytes = stagedBytes(runs);
+  std::unique_ptr<VulkanBuffer> staging;
+  if (bytes > 0)
+  {
+    staging = std::make_unique<VulkanBuffer>(runs.front().Buffer->context(), bytes, "staging (runs)");
+  }
+  forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
+    if (runs[i].Bytes > 0)
+    {
+      std::memcpy(mapped ? mapped : staging->as<char>() + staged, from[i], runs[i].Bytes);
+    }
+  });
+  if (bytes == 0)
+  {
+    return;
+  }
+  runs.front().Buffer->context().submitAndWait([&](VkCommandBuffer commands) {
+    forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
+      const VkBufferCopy region{ staged, runs[i].Begin, runs[i].Bytes };
+      if (!mapped && runs[i].Bytes > 0)
+      {
+        vkCmdCopyBuffer(commands, staging->buffer(), runs[i].Buffer->buffer(), 1, &region);
+      }
+    });
+    barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  });
 }
 
 } // namespace opal

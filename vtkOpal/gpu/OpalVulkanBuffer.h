@@ -83,6 +83,7 @@ public:
   // Records: the whole buffer set to zero on the device, then a barrier so
   // that the next dispatch (or indirect dispatch) sees it.
   void recordClear(VkCommandBuffer commands) const;
+  VulkanContext& context() const { return this->Context; }
 
 private:
   // fill for bytes [begin, begin + bytes) (`first` counts from begin).
@@ -122,5 +123,22 @@ private:
   std::unique_ptr<VulkanBuffer> Staging;
   std::vector<const void*> Views;
 };
+
+// Runs of bytes of several buffers (of one context) read to or written from
+// the host together: mapped buffers directly, the others through one staging
+// buffer and one submit. A shared step's layer reads and writes a few short
+// rows of each field, for which a staging buffer and a wait each cost more
+// than the rows (docs/design.md §8.1). The staging buffer holds all the runs'
+// bytes at once: for runs of a few MB.
+struct BufferRun
+{
+  VulkanBuffer* Buffer;
+  std::uint64_t Begin;
+  std::uint64_t Bytes;
+};
+// Each run's bytes into into[i].
+void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into);
+// Each run's bytes from from[i].
+void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*>& from);
 
 } // namespace opal
