@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -29,25 +30,48 @@ opal::VoronoiCellRuns assignShare(const opal::DomainLayout::LayerCells& layers, 
     bytes = mine.bytes();
   }
   std::vector<std::vector<char>> received(static_cast<std::size_t>(shares));
+  std::exception_ptr failure; // a throw inside the sink would leave the ranks' exchange midway
   exchanged = true;
   const vtkOpalRankShares::Outcome outcome =
     exchange(bytes, [&](int from, std::uint64_t first, std::uint64_t count, const char* data) {
-      std::vector<char>& part = received[static_cast<std::size_t>(from)];
-      part.resize(std::max<std::size_t>(part.size(), first + count));
-      std::copy_n(data, count, part.data() + first);
+      try
+      {
+        std::vector<char>& part = received[static_cast<std::size_t>(from)];
+        part.resize(std::max<std::size_t>(part.size(), first + count));
+        std::copy_n(data, count, part.data() + first);
+      }
+      catch (...)
+      {
+        failure = failure ? failure : std::current_exception();
+      }
     });
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
   if (!outcome.Complete)
   {
     return {};
   }
   std::vector<opal::VoronoiCellRuns> parts;
-  for (const std::vector<char>& part : received)
+  for (std::vector<char>& part : received)
   {
     parts.push_back(opal::VoronoiCellRuns::fromBytes(part));
+    std::vector<char>().swap(part); // each share's bytes gone once read: the runs are held twice at most
   }
   return opal::VoronoiCellRuns::stacked(parts);
 }
 } // namespace
+
+std::string SettingsOf(const opal::ModelParameters& parameters)
+{
+  std::string text;
+  for (const auto& row : opal::modelParameterRows())
+  {
+    text += vtkOpalRankAgreement::SettingsLine(row.Name, row.Get(parameters));
+  }
+  return text;
+}
 
 vtkOpalRankShares::Result Build(vtkMultiProcessController* controller, bool failed,
   const opal::ModelParameters& parameters, const std::function<bool(double)>& progress,
@@ -55,15 +79,7 @@ vtkOpalRankShares::Result Build(vtkMultiProcessController* controller, bool fail
 {
   return vtkOpalRankShares::Share(
     controller, failed, [] { return true; },
-    [&] {
-      std::string text;
-      for (const auto& row : opal::modelParameterRows())
-      {
-        text += vtkOpalRankAgreement::SettingsLine(row.Name, row.Get(parameters));
-      }
-      return text;
-    },
-    aborted,
+    [&] { return SettingsOf(parameters); }, aborted,
     "the Voronoi cells' shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
       bool exchanged = false;
       const auto stop = [&] { // the others wait for this share's last exchange

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 
 class vtkMultiProcessController;
 
@@ -23,6 +24,10 @@ namespace vtkOpalSharedVoronoiCells
 // share of the layers and `layout` holds the layout; otherwise `layout` is
 // left empty and the caller builds alone. Aborted: a rank aborted its share,
 // and every rank's request aborts.
+// The model settings as the ranks compare them (a line per model
+// parameter): ranks share only where theirs are equal.
+std::string SettingsOf(const opal::ModelParameters& parameters);
+
 vtkOpalRankShares::Result Build(vtkMultiProcessController* controller, bool failed,
   const opal::ModelParameters& parameters, const std::function<bool(double)>& progress,
   const std::function<bool()>& aborted, std::optional<opal::DomainLayout>& layout);

@@ -303,7 +303,10 @@ vtkNew<vtkPolyData> makeCellBoundaries(const opal::Grid& grid, const opal::Domai
 std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(
   const opal::ModelParameters& parameters, bool refused)
 {
-  if (this->Layout && this->LayoutTime == this->GetMTime())
+  // Keyed on the settings, not the modification time: an abort's reset of
+  // AbortExecute modifies one rank's source alone.
+  const std::string settings = vtkOpalSharedVoronoiCells::SettingsOf(parameters);
+  if (this->Layout && this->LayoutSettings == settings)
   {
     return refused ? nullptr : this->Layout;
   }
@@ -316,8 +319,13 @@ std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(
   };
   std::optional<opal::DomainLayout> built;
   const bool voronoi = parameters.DomainLayout == opal::DomainLayoutKind::Voronoi;
-  if (voronoi && vtkOpalRankAgreement::Ranks(this->Controller) > 1)
+  // Every rank takes part once per change of the settings, whether it was
+  // refused, aborted or holds nothing: so the ranks' entries depend on the
+  // settings alone, alike on every rank (a rank that needs the layout again
+  // later builds it alone).
+  if (voronoi && vtkOpalRankAgreement::Ranks(this->Controller) > 1 && this->SharedSettings != settings)
   {
+    this->SharedSettings = settings;
     const vtkOpalRankShares::Result shared = vtkOpalSharedVoronoiCells::Build(
       this->Controller, refused, parameters, progress, [this] { return this->GetAbortExecute() != 0; }, built);
     this->LastVoronoiCellShares = shared.Shares;
@@ -352,7 +360,7 @@ std::shared_ptr<const opal::DomainLayout> vtkOpalSource::BuildLayout(
                                          << "); DomainsPlaced in the field data says how many.");
   }
   this->Layout = layout;
-  this->LayoutTime = this->GetMTime();
+  this->LayoutSettings = settings;
   return layout;
 }
 

@@ -144,8 +144,8 @@ private:
   bool Refuses(const int* extent);
   // The domain layout (warning when not all domains fit); nullptr if
   // aborted or `refused` (this rank's request, which still takes part in the
-  // ranks' shared build). Built once per change of the settings and kept:
-  // the pieces of one volume (a .pvti written piece by piece) share it.
+  // ranks' shared build). Built once per change of the model settings and
+  // kept: the pieces of one volume (a .pvti written piece by piece) share it.
   std::shared_ptr<const opal::DomainLayout> BuildLayout(const opal::ModelParameters& parameters, bool refused);
   // The layout's polygons (or Voronoi cell boundaries) for port 1, made once per layout.
   vtkPolyData* LayoutPolygons(const opal::ModelParameters& parameters);
@@ -157,9 +157,11 @@ private:
   // The error last said and the source's modification time then.
   std::string ReportedError;
   vtkMTimeType ReportedErrorTime = 0;
-  // The layout kept, the source's modification time it was built at, its polygons.
+  // The layout kept, the model settings it was built for, its polygons; the
+  // settings of the ranks' last shared build.
   std::shared_ptr<const opal::DomainLayout> Layout;
-  vtkMTimeType LayoutTime = 0;
+  std::string LayoutSettings;
+  std::string SharedSettings;
   vtkSmartPointer<vtkPolyData> Polygons;
   vtkMultiProcessController* Controller = nullptr;
   int LastVoronoiCellShares = 0;

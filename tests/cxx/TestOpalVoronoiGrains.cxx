@@ -25,6 +25,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -167,6 +169,15 @@ void checkSharedLayers(const opal::ModelParameters& p, const opal::BuiltVolume& 
   OPAL_CHECK(refused([&] {
     opal::DomainLayout::build(p, nullptr, [](const opal::DomainLayout::LayerCells& layers) { return layers(0, 5); });
   }), "an assignment short of the grid's layers is refused");
+  // Bytes of the right shape naming a cell beyond the sites: the layout would index past its cells.
+  std::vector<char> beyond = v.Layout.cellRuns().bytes();
+  const std::int32_t noSuchCell = p.VoronoiCellCount;
+  std::memcpy(beyond.data() + beyond.size() - sizeof(std::int32_t), &noSuchCell, sizeof(noSuchCell));
+  OPAL_CHECK(refused([&] {
+    opal::DomainLayout::build(p, nullptr, [&](const opal::DomainLayout::LayerCells&) {
+      return opal::VoronoiCellRuns::fromBytes(beyond);
+    });
+  }), "runs naming a cell beyond the sites are refused");
 }
 
 // Cells fill the opal; a cell is wholly ordered (one domain) or wholly body.

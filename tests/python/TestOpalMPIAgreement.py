@@ -93,5 +93,6 @@ check(counts(output, "light") == {r: ranks for r in range(ranks)},
 expect_abort("above-abort", "sweep from above", "light", "computing the light field")
 expect_shared("side", "the light to the side", "light")
 expect_abort("side-abort", "light march", "light", "computing the light field")
+expect_shared("voronoi", "Voronoi grains", "cells")
 expect_abort("voronoi-abort", "Voronoi cells", "cells", "assigning the cells")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

@@ -7,14 +7,15 @@ the above-abort case with rank 1 asking to abort at its first progress above
 0 (inside the ranks' sweep of the light from above); in the side case the
 light low to the side (the ranks share its march from every voxel), and in
 the side-abort case with rank 1 asking to abort at its first progress above
-0 (inside that march); in the voronoi-abort case the volume's layout is of
-Voronoi grains and rank 1's volume asks to abort at its first progress above
-0 (inside the ranks' shared assignment of the cells). Each rank then prints
+0 (inside that march); in the voronoi case the volume's layout is of
+Voronoi grains, and in the voronoi-abort case rank 1's volume then asks to
+abort at its first progress above 0 (inside the ranks' shared assignment of
+the cells). Each rank then prints
 whether it holds an image piece and how many ranks traced its every-order
 field, computed its light field and assigned its volume's cells ("rank R
 image POINTS shares S light L cells C"), so the driver sees that none holds
 part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort|voronoi-abort"""
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort|voronoi|voronoi-abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -26,11 +27,11 @@ case = sys.argv[1]
 LoadPlugin(config.PLUGIN, remote=False, ns=globals())
 rank = vtkMultiProcessController.GetGlobalController().GetLocalProcessId()
 volume = OpalVolume(Dimensions=[40, 20, 50], DomainCount=30)  # noqa: F821 (from the plugin)
-if case == "voronoi-abort":
+if case in ("voronoi", "voronoi-abort"):
     volume.DomainLayout = "voronoi"
-    if rank == 1:
-        volume.GetClientSideObject().AddObserver(
-            "ProgressEvent", lambda source, _: source.GetProgress() > 0 and source.SetAbortExecute(1))
+if case == "voronoi-abort" and rank == 1:
+    volume.GetClientSideObject().AddObserver(
+        "ProgressEvent", lambda source, _: source.GetProgress() > 0 and source.SetAbortExecute(1))
 render = OpalSpectralRender(Input=volume, ImageSize=[48, 36])  # noqa: F821
 if case in ("every-order", "abort"):
     render.ScatteringOrders = "all"

@@ -355,6 +355,28 @@ VoronoiCellRuns VoronoiCellRuns::fromBytes(const std::vector<char>& bytes)
     std::move(rowStart), std::move(runs));
 }
 
+bool VoronoiCellRuns::wellFormed(int cellCount) const
+{
+  for (std::size_t row = 0; row + 1 < this->RowStart.size(); ++row)
+  {
+    const Run* begin = this->Runs.data() + this->RowStart[row];
+    const Run* end = this->Runs.data() + this->RowStart[row + 1];
+    if (begin == end || begin->FirstX != 0)
+    {
+      return false;
+    }
+    for (const Run* run = begin; run != end; ++run)
+    {
+      const bool ordered = run == begin || (run[-1].FirstX < run->FirstX && run->FirstX < this->Dimensions[0]);
+      if (!ordered || run->Cell < -1 || run->Cell >= cellCount)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 VoronoiCellRuns VoronoiCellRuns::stacked(const std::vector<VoronoiCellRuns>& layers)
 {
   std::array<int, 3> dims{ layers.empty() ? 0 : layers.front().Dimensions[0],

@@ -101,6 +101,10 @@ public:
   // §8.1). fromBytes throws where the bytes are not runs of that layout.
   std::vector<char> bytes() const;
   static VoronoiCellRuns fromBytes(const std::vector<char>& bytes);
+  // Whether every row holds runs from x = 0, increasing within the row, of
+  // cells in [-1, cellCount): what the layout may index with them (runs
+  // from bytes are checked for their shape only).
+  bool wellFormed(int cellCount) const;
   // Runs of consecutive layers along z stacked in order into one grid's
   // (each of the same rows); throws where they differ.
   static VoronoiCellRuns stacked(const std::vector<VoronoiCellRuns>& layers);

@@ -73,11 +73,11 @@ DomainLayout DomainLayout::buildVoronoi(
     layout.Aborted = true;
     return layout;
   }
-  if (layout.CellRuns.dimensions() != grid.Dimensions)
-  {
-    throw std::runtime_error("Voronoi cells: the assignment's runs are not the grid's.");
-  }
   const int cellCount = static_cast<int>(sites.size());
+  if (layout.CellRuns.dimensions() != grid.Dimensions || !layout.CellRuns.wellFormed(cellCount))
+  {
+    throw std::runtime_error("Voronoi cells: the assignment's runs are not the grid's cells.");
+  }
   const std::vector<std::uint8_t> ordered = orderedCells(voronoiAdjacency(layout.CellRuns, cellCount),
     cellsWithVoxels(layout.CellRuns, cellCount), p.OrderedFraction, random);
   layout.CellDomains.assign(static_cast<std::size_t>(cellCount), -1);
