@@ -61,7 +61,10 @@ int Ranks(vtkMultiProcessController* controller)
 std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine)
 {
   std::vector<vtkIdType> lengths(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
-  controller->AllGather(&mine, lengths.data(), 1);
+  if (!controller->AllGather(&mine, lengths.data(), 1))
+  {
+    throw std::runtime_error("The ranks could not exchange their lengths.");
+  }
   return lengths;
 }
 

@@ -32,7 +32,7 @@ int Rank(vtkMultiProcessController* controller);
 int Ranks(vtkMultiProcessController* controller);
 
 // Collective, over the controller's processes (more than one): every rank's
-// `mine`, in rank order.
+// `mine`, in rank order. Throws where the exchange failed (alike on every rank).
 VTKOPAL_EXPORT std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine);
 // Collective, likewise: every rank's `lengths[r]` bytes from `mine` into
 // `bytes` (the ranks' bytes one after another), in rounds of at most

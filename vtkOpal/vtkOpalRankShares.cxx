@@ -93,6 +93,7 @@ struct Round
 // one number (a bystander's: -1), so that a round is two collectives, the
 // words and then the bytes (a state's own exchange had made it four).
 constexpr vtkIdType StateKinds = 4;
+static_assert(sizeof(vtkIdType) == 8, "a word holds a share's length times StateKinds: VTK needs 64-bit ids");
 vtkIdType wordOf(const char* state, const std::vector<char>* bytes)
 {
   const vtkIdType length = bytes ? static_cast<vtkIdType>(bytes->size()) : 0;

@@ -1,6 +1,7 @@
 #include "vtkOpalSharedVoronoiCells.h"
 
 #include "OpalModelParameters.h"
+#include "OpalParallel.h"
 #include "vtkOpalRankAgreement.h"
 
 #include <algorithm>
@@ -20,10 +21,8 @@ namespace
 opal::VoronoiCellRuns assignShare(const opal::DomainLayout::LayerCells& layers, int nz, int share, int shares,
   const vtkOpalRankShares::Exchanger& exchange, bool& exchanged)
 {
-  const auto layer = [&](int s) {
-    return static_cast<int>(static_cast<std::int64_t>(s) * nz / shares);
-  };
-  const opal::VoronoiCellRuns mine = layers(layer(share), layer(share + 1));
+  const std::pair<int, int> shareLayers = opal::evenShare(nz, share, shares);
+  const opal::VoronoiCellRuns mine = layers(shareLayers.first, shareLayers.second);
   std::optional<std::vector<char>> bytes;
   if (!mine.empty())
   {

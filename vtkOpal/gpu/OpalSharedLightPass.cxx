@@ -3,6 +3,7 @@
 // the every-order field written from its tally grid.
 #include "OpalRenderSession.h"
 
+#include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
 
 #include <algorithm>
@@ -29,8 +30,7 @@ namespace
 // neighbour's, §3.7) are one share's writes and its voxels one range.
 std::pair<int, int> shareRows(const std::array<int, 3>& dims, int share, int shares)
 {
-  const auto rowAt = [&](int s) { return static_cast<int>(static_cast<std::int64_t>(dims[2]) * s / shares); };
-  return { rowAt(share), rowAt(share + 1) };
+  return evenShare(dims[2], share, shares);
 }
 
 // Voxel ranges [first, end), in the order a share's bytes carry them.

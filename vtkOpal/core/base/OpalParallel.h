@@ -5,11 +5,23 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdint>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace opal
 {
+
+// Share `share` of `shares` of [0, count): [floor(count s / N), floor(count
+// (s + 1) / N)). The shares are contiguous, in order, and differ by one at
+// most: parallelFor's chunks, and the ranks' shares of the light field's rows
+// and of the Voronoi layers (docs/design.md §8.1).
+inline std::pair<int, int> evenShare(int count, int share, int shares)
+{
+  const auto at = [&](int s) { return static_cast<int>(static_cast<std::int64_t>(count) * s / shares); };
+  return { at(share), at(share + 1) };
+}
 
 // Calls functor(begin, end) on disjoint chunks covering [begin, end), one per
 // hardware thread, and returns when all are done.
@@ -29,9 +41,8 @@ void parallelFor(int begin, int end, Functor&& functor)
   std::vector<std::thread> workers;
   for (int t = 0; t < threads; ++t)
   {
-    const int from = begin + static_cast<int>(static_cast<long long>(count) * t / threads);
-    const int to = begin + static_cast<int>(static_cast<long long>(count) * (t + 1) / threads);
-    workers.emplace_back([&functor, from, to] { functor(from, to); });
+    const std::pair<int, int> chunk = evenShare(count, t, threads);
+    workers.emplace_back([&functor, from = begin + chunk.first, to = begin + chunk.second] { functor(from, to); });
   }
   for (std::thread& worker : workers)
   {
