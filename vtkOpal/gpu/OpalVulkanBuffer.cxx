@@ -99,8 +99,6 @@ void VulkanBuffer::recordClear(VkCommandBuffer commands) const
 
 namespace
 {
-// Before the copies: the passes' writes visible to transfers (a fence wait
-// orders execution, not memory, between submits); after: the copies' to the host.
 void barrier(VkCommandBuffer commands, VkPipelineStageFlags from, VkAccessFlags written, VkPipelineStageFlags to,
   VkAccessFlags read)
 {
@@ -109,44 +107,97 @@ void barrier(VkCommandBuffer commands, VkPipelineStageFlags from, VkAccessFlags 
   memory.dstAccessMask = read;
   vkCmdPipelineBarrier(commands, from, to, 0, 1, &memory, 0, nullptr, 0, nullptr);
 }
+
+// Copies out of a buffer: before them the passes' and copies' writes made
+// visible to transfers (a fence wait orders execution, not memory, between
+// submits); after them the copies' writes to the host.
+void beforeCopiesOut(VkCommandBuffer commands)
+{
+  barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void afterCopiesOut(VkCommandBuffer commands)
+{
+  barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+    VK_ACCESS_HOST_READ_BIT);
+}
+
+// Copies into a buffer: before them the passes' reads and writes of it done
+// (they may not overwrite what a pass still reads, nor land before what it
+// wrote); after them the copies' writes visible to the passes.
+void beforeCopiesIn(VkCommandBuffer commands)
+{
+  barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_ACCESS_TRANSFER_WRITE_BIT);
+}
+
+void afterCopiesIn(VkCommandBuffer commands)
+{
+  barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+// A staging buffer's place for `bytes`: 16-byte aligned, as any field's values.
+std::uint64_t stagedSize(std::uint64_t bytes)
+{
+  return (bytes + 15) / 16 * 16;
+}
+
+// Each run's bytes where the host reads them: in its buffer where mapped,
+// else copied, all in one submit, into one staging buffer (returned; null
+// where every run is mapped).
+std::unique_ptr<VulkanBuffer> stageOut(
+  VulkanContext& context, const std::vector<BufferRun>& runs, std::vector<const char*>& views)
+{
+  std::uint64_t total = 0;
+  for (const BufferRun& run : runs)
+  {
+    const char* mapped = run.Buffer->as<const char>();
+    views.push_back(mapped ? mapped + run.Begin : nullptr);
+    total += mapped ? 0 : stagedSize(run.Bytes);
+  }
+  if (total == 0)
+  {
+    return nullptr;
+  }
+  auto staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostReadback);
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    beforeCopiesOut(commands);
+    std::uint64_t offset = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i)
+    {
+      if (views[i])
+      {
+        continue; // mapped
+      }
+      if (runs[i].Bytes > 0)
+      {
+        const VkBufferCopy region{ runs[i].Begin, offset, runs[i].Bytes };
+        vkCmdCopyBuffer(commands, runs[i].Buffer->buffer(), staging->buffer(), 1, &region);
+      }
+      views[i] = staging->as<const char>() + offset;
+      offset += stagedSize(runs[i].Bytes);
+    }
+    afterCopiesOut(commands);
+  });
+  return staging;
+}
 } // namespace
 
 HostReadback::HostReadback(
   VulkanContext& context, const std::vector<std::pair<const VulkanBuffer*, std::uint64_t>>& parts)
 {
-  std::uint64_t total = 0;
+  std::vector<BufferRun> runs;
   for (const auto& [buffer, bytes] : parts)
   {
-    this->Views.push_back(buffer->as<const void>());
-    total += this->Views.back() ? 0 : (bytes + 15) / 16 * 16;
+    runs.push_back({ buffer, 0, bytes });
   }
-  if (total == 0)
-  {
-    return; // every buffer mapped
-  }
-  this->Staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostReadback);
-  std::vector<std::uint64_t> offsets;
-  context.submitAndWait([&](VkCommandBuffer commands) {
-    barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-      VK_ACCESS_TRANSFER_READ_BIT);
-    std::uint64_t offset = 0;
-    for (std::size_t i = 0; i < parts.size(); ++i)
-    {
-      offsets.push_back(offset);
-      if (!this->Views[i] && parts[i].second > 0)
-      {
-        const VkBufferCopy region{ 0, offset, parts[i].second };
-        vkCmdCopyBuffer(commands, parts[i].first->buffer(), this->Staging->buffer(), 1, &region);
-        offset += (parts[i].second + 15) / 16 * 16;
-      }
-    }
-    barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-      VK_ACCESS_HOST_READ_BIT);
-  });
-  for (std::size_t i = 0; i < parts.size(); ++i)
-  {
-    this->Views[i] = this->Views[i] ? this->Views[i] : this->Staging->as<const char>() + offsets[i];
-  }
+  std::vector<const char*> views;
+  this->Staging = stageOut(context, runs, views);
+  this->Views.assign(views.begin(), views.end());
 }
 
 std::uint64_t VulkanBuffer::address() const
@@ -205,10 +256,10 @@ void VulkanBuffer::fillRange(std::uint64_t begin, std::uint64_t bytes, const Con
     [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
       write(first, count, staging.Mapped);
       this->Context.submitAndWait([&](VkCommandBuffer commands) {
+        beforeCopiesIn(commands);
         const VkBufferCopy region{ 0, begin + first, count };
         vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
-        barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        afterCopiesIn(commands);
       });
     });
 }
@@ -226,105 +277,64 @@ void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const Con
   this->inStagingRounds(bytes, BufferPlacement::HostReadback, " (read-back staging)",
     [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
       this->Context.submitAndWait([&](VkCommandBuffer commands) {
-        barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-          VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-          VK_ACCESS_TRANSFER_READ_BIT);
+        beforeCopiesOut(commands);
         const VkBufferCopy region{ begin + first, 0, count };
         vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
-        barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-          VK_ACCESS_HOST_READ_BIT);
+        afterCopiesOut(commands);
       });
       reader(first, count, staging.Mapped);
     });
 }
 
-namespace
-{
-// The bytes of the runs whose buffers are not mapped: the staging buffer's.
-std::uint64_t stagedBytes(const std::vector<BufferRun>& runs)
-{
-  std::uint64_t bytes = 0;
-  for (const BufferRun& run : runs)
-  {
-    bytes += run.Buffer->as<void>() ? 0 : run.Bytes;
-  }
-  return bytes;
-}
-
-// Calls each(i, mapped, staged): run i's bytes in its mapped buffer (else
-// nullptr) and its place in the staging buffer (for the runs not mapped).
-void forEachRun(const std::vector<BufferRun>& runs,
-  const std::function<void(std::size_t i, char* mapped, std::uint64_t staged)>& each)
-{
-  std::uint64_t staged = 0;
-  for (std::size_t i = 0; i < runs.size(); ++i)
-  {
-    char* mapped = runs[i].Buffer->as<char>();
-    each(i, mapped ? mapped + runs[i].Begin : nullptr, staged);
-    staged += mapped ? 0 : runs[i].Bytes;
-  }
-}
-} // namespace
-
 void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into)
 {
-  const std::uint64_t bytes = stagedBytes(runs);
-  std::unique_ptr<VulkanBuffer> staging;
-  if (bytes > 0)
+  if (runs.empty())
   {
-    VulkanContext& context = runs.front().Buffer->context();
-    staging = std::make_unique<VulkanBuffer>(context, bytes, "read-back staging (runs)", BufferPlacement::HostReadback);
-    context.submitAndWait([&](VkCommandBuffer commands) {
-      barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-        VK_ACCESS_TRANSFER_READ_BIT);
-      forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
-        const VkBufferCopy region{ runs[i].Begin, staged, runs[i].Bytes };
-        if (!mapped && runs[i].Bytes > 0)
-        {
-          vkCmdCopyBuffer(commands, runs[i].Buffer->buffer(), staging->buffer(), 1, &region);
-        }
-      });
-      barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-        VK_ACCESS_HOST_READ_BIT);
-    });
+    return;
   }
-  forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
-    if (runs[i].Bytes > 0)
-    {
-      std::memcpy(into[i], mapped ? mapped : staging->as<char>() + staged, runs[i].Bytes);
-    }
-  });
+  std::vector<const char*> views;
+  const std::unique_ptr<VulkanBuffer> staging = stageOut(runs.front().Buffer->context(), runs, views);
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    std::copy_n(views[i], runs[i].Bytes, into[i]);
+  }
 }
 
 void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*>& from)
 {
-  const std::uint64_t bytes = stagedBytes(runs);
-  std::unique_ptr<VulkanBuffer> staging;
-  if (bytes > 0)
+  std::uint64_t total = 0;
+  for (const BufferRun& run : runs)
   {
-    staging = std::make_unique<VulkanBuffer>(runs.front().Buffer->context(), bytes, "staging (runs)");
+    total += run.Buffer->as<char>() ? 0 : stagedSize(run.Bytes);
   }
-  forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
-    if (runs[i].Bytes > 0)
-    {
-      std::memcpy(mapped ? mapped : staging->as<char>() + staged, from[i], runs[i].Bytes);
-    }
-  });
-  if (bytes == 0)
+  std::unique_ptr<VulkanBuffer> staging;
+  if (total > 0)
+  {
+    staging = std::make_unique<VulkanBuffer>(runs.front().Buffer->context(), total, "staging (runs)");
+  }
+  std::vector<VkBufferCopy> copies(runs.size(), VkBufferCopy{ 0, 0, 0 });
+  std::uint64_t offset = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+  {
+    char* mapped = runs[i].Buffer->as<char>();
+    std::copy_n(from[i], runs[i].Bytes, mapped ? mapped + runs[i].Begin : staging->as<char>() + offset);
+    copies[i] = VkBufferCopy{ offset, runs[i].Begin, mapped ? 0 : runs[i].Bytes };
+    offset += mapped ? 0 : stagedSize(runs[i].Bytes);
+  }
+  if (total == 0)
   {
     return;
   }
   runs.front().Buffer->context().submitAndWait([&](VkCommandBuffer commands) {
-    forEachRun(runs, [&](std::size_t i, char* mapped, std::uint64_t staged) {
-      const VkBufferCopy region{ staged, runs[i].Begin, runs[i].Bytes };
-      if (!mapped && runs[i].Bytes > 0)
+    beforeCopiesIn(commands);
+    for (std::size_t i = 0; i < runs.size(); ++i)
+    {
+      if (copies[i].size > 0)
       {
-        vkCmdCopyBuffer(commands, staging->buffer(), runs[i].Buffer->buffer(), 1, &region);
+        vkCmdCopyBuffer(commands, staging->buffer(), runs[i].Buffer->buffer(), 1, &copies[i]);
       }
-    });
-    barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    afterCopiesIn(commands);
   });
 }
 

@@ -132,7 +132,8 @@ private:
 // bytes at once: for runs of a few MB.
 struct BufferRun
 {
-  VulkanBuffer* Buffer;
+  const VulkanBuffer* Buffer;
+
   std::uint64_t Begin;
   std::uint64_t Bytes;
 };
