@@ -55,8 +55,8 @@ Result WriteField(vtkMultiProcessController* controller, opal::RenderSession* se
   const opal::ResolvedFrame& frame, const std::function<bool()>& aborted)
 {
   return vtkOpalRankShares::Share(controller, failed,
-    session ? std::function<bool()>([&] { return session->needsScatteredField(frame); }) : nullptr, nullptr,
-    aborted, "the every-order field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
+    session ? std::function<bool()>([&] { return session->needsScatteredField(frame); }) : nullptr,
+    session ? std::function<std::string()>([&] { return session->scatteredFieldLayout(); }) : nullptr, aborted, "the every-order field's shares", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
       const vtkOpalSharedLightField::SessionExchanges exchanges = vtkOpalSharedLightField::ForSession(exchange);
       return session->shareScatteredField(frame, share, shares, exchanges.Last, exchanges.Round);
     });

@@ -296,9 +296,7 @@ bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const
   {
     return false;
   }
-  const FrameSetup setup = this->setUpFrame(frame);
-  this->checkMemoryBudget(setup);
-  return !this->scatteredLightServes(setup);
+  return !this->scatteredLightServes(this->setUpFrame(frame));
 }
 
 bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares,

@@ -453,9 +453,7 @@ RenderSession::FrameSetup RenderSession::setUpSharedStep(const ResolvedFrame& fr
 {
   this->cancelFrame();
   this->requireVolume();
-  FrameSetup setup = this->setUpFrame(frame);
-  this->checkMemoryBudget(setup);
-  return setup;
+  return this->setUpFrame(frame);
 }
 
 RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
@@ -472,7 +470,6 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   frame.Ran.Preview = setup.Preview;
   frame.Ran.ScatteredLightFromGrid = setup.ScatteredLightFromGrid;
   frame.Ran.PairedFields = this->Volume->PairedFields;
-  this->checkMemoryBudget(setup);
   this->placeScatteredField(setup);
   this->prepareFrameBuffers(setup);
   timings.Setup = secondsSince(setupStart);
@@ -613,6 +610,7 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
   setup.Bins = sampleWavelengths(p.WavelengthRange[0], p.WavelengthRange[1], p.WavelengthStep);
   this->writeParameterBlock(setup);
   setup.ScatteredLightFromGrid = this->scatteredLightFromGrid(setup);
+  this->checkMemoryBudget(setup);
   return setup;
 }
 

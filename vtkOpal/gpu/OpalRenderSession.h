@@ -162,6 +162,8 @@ public:
   // light field's rows), exchanged as the light field's shares are. False
   // where a share failed: the frame then writes it alone.
   bool needsScatteredField(const ResolvedFrame& frame) const;
+  // As lightPassLayout, for the every-order field's shares.
+  std::string scatteredFieldLayout() const;
   bool shareScatteredField(
     const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const LayerExchange& round);
 
@@ -227,10 +229,12 @@ private:
   static ScatteredLightKey scatteredLightKey(const FrameSetup& setup);
   // Throws, saying so, where no volume was set.
   void requireVolume() const;
+  // The frame's setup; throws, as checkMemoryBudget, where it exceeds the
+  // device's or the machine's memory: every step that sets a frame up
+  // (the frame, the shared steps and their needs) refuses alike.
   FrameSetup setUpFrame(const ResolvedFrame& frame) const;
   // A shared step's start (shareLightPass, solveScatteredLightShared,
-  // shareScatteredField): no frame running, the volume there, the frame set
-  // up and within the device's memory, as the frame would refuse it.
+  // shareScatteredField): no frame running, the volume there, the frame set up.
   FrameSetup setUpSharedStep(const ResolvedFrame& frame);
   std::uint64_t frameImageBytes(const FrameSetup& setup, bool kept) const;
   bool scatteredLightFromGrid(const FrameSetup& setup) const;
@@ -257,6 +261,7 @@ private:
   bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing,
     std::size_t first, std::size_t end);
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> lightPassFields(bool braggShadow) const;
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> scatteredFieldFields() const;
   bool prepareScatteredLight(const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame);
   void readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const;
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);

@@ -260,19 +260,37 @@ bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
   {
     return false;
   }
-  const FrameSetup setup = this->setUpFrame(frame);
-  this->checkMemoryBudget(setup);
-  return !(this->LightField && *this->LightField == lightFieldKey(setup));
+  return !(this->LightField && *this->LightField == lightFieldKey(this->setUpFrame(frame)));
 }
 
-std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
+namespace
+{
+// A share's layout as the processes compare it: each field's bytes per voxel.
+std::string layoutOf(const Fields& fields)
 {
   std::string layout;
-  for (const auto& field : this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{})
+  for (const auto& field : fields)
   {
     layout += std::to_string(field.second) + " bytes per voxel; ";
   }
   return layout;
+}
+} // namespace
+
+std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
+{
+  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{});
+}
+
+std::string RenderSession::scatteredFieldLayout() const
+{
+  return layoutOf(this->Volume ? this->scatteredFieldFields() : Fields{});
+}
+
+// The every-order field, the one field its shares carry.
+std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::scatteredFieldFields() const
+{
+  return { { this->Volume->ScatteredLight.get(), sizeof(gpu::vec4) } };
 }
 
 // The light pass's per-voxel fields, in the order a share carries them, with
@@ -347,7 +365,6 @@ bool RenderSession::needsScatteredField(const ResolvedFrame& frame) const
     return false;
   }
   const FrameSetup setup = this->setUpFrame(frame);
-  this->checkMemoryBudget(setup);
   const DeviceVolume& v = *this->Volume;
   return this->scatteredLightServes(setup) && !setup.ScatteredLightFromGrid &&
     (v.ScatteredFieldPending || !v.HasScatteredField);
@@ -363,7 +380,7 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-      step = { { { this->Volume->ScatteredLight.get(), sizeof(gpu::vec4) } }, dims };
+      step = { this->scatteredFieldFields(), dims };
       const Runs slab = slabOf(dims, shareRows(dims, share, shares));
       return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
         slab.front().first, slab.front().second);
