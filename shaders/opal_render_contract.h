@@ -83,7 +83,10 @@ OPAL_CONSTANT int PixelSumsBinding = 24;        // PixelSum per queued pixel: it
 // The every-order solve's coarse tally grid (up to 65^3 nodes), read by
 // LightPassScatteredField; a placeholder without ScatteringOrders all.
 OPAL_CONSTANT int ScatteredLightGridBinding = 25; // ScatteredLightNode per node
-OPAL_CONSTANT int BindingCount = 26;
+// The view march's rays between the dispatches of a forwarded march (§8.1):
+// RAY_STATE_WORDS uints per invocation of a dispatch; a placeholder otherwise.
+OPAL_CONSTANT int RayStatesBinding = 26;
+OPAL_CONSTANT int BindingCount = 27;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -327,7 +330,10 @@ OPAL_CONSTANT int MarchRefineEdges = 3; // the queued pixels: the mean of PixelS
 // pixel, in the rendered rectangle, of the band of rows this dispatch covers
 // (MarchSelectEdges: of the columns); with MarchRefineEdges the queued
 // pixels [first, first + count) this dispatch refines by their sub-ray
-// `subRay` (of PixelSamples^2, row by row).
+// `subRay` (of PixelSamples^2, row by row). A forwarded march (§8.1)
+// marches only within layers z in [piece.x, piece.y) of the volume, each ray
+// saved where it leaves them and taken up again by a later dispatch of the
+// same work (`resumed` 1) for the piece it enters.
 struct MarchWork
 {
   ivec2 origin;
@@ -335,7 +341,14 @@ struct MarchWork
   int first;
   int count;
   int subRay;
+  ivec2 piece;
+  int resumed;
 };
+// The words a forwarded march keeps per ray: its place, walk and round, its
+// recorded crossings, its sums and the last Bragg shadow it met (41 bins
+// and 16 nodes: ~1.2 KB), and its pixel's sums so far (view_march.comp's keepRay).
+#define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
+  (144 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 
 // Push constants of the highlight's shade pass: the queued pixels
 // [first, first + count) this dispatch shades.
@@ -384,7 +397,8 @@ OPAL_CONSTANT int MarchScatteredLightNone = 0;         //   not added (single sc
 OPAL_CONSTANT int MarchScatteredLightPerVoxel = 1;     //   read from the field per voxel
 OPAL_CONSTANT int MarchScatteredLightFromGrid = 2;     //   evaluated from the tally grid (the field does not fit)
 OPAL_CONSTANT int MarchPairedFieldsConstant = 10;      // bool: the fields hold pairs (PairedFields)
-OPAL_CONSTANT int MarchConstantCount = 11;
+OPAL_CONSTANT int MarchForwardedConstant = 11;         // bool: rays forwarded between pieces (MarchWork.piece)
+OPAL_CONSTANT int MarchConstantCount = 12;
 
 // The march reads a LightFieldPair (and the absorption's) as one vec4,
 // (voxel.x, voxel.y, nextVoxel.x, nextVoxel.y): one load where lavapipe

@@ -40,6 +40,10 @@ layout(constant_id = MarchNearestLightConstant) const bool NEAREST_LIGHT = false
 // does not fit the device's memory (MarchScatteredLight*).
 layout(constant_id = MarchScatteredLightConstant) const int SCATTERED_LIGHT_MODE = 0;
 const bool SCATTERED_LIGHT = SCATTERED_LIGHT_MODE != MarchScatteredLightNone;
+// Rays forwarded between pieces of the volume (docs/design.md §8.1): the
+// march walks only the layers z in marchWork.piece and keeps a ray that
+// leaves them for the dispatch of the piece it enters.
+layout(constant_id = MarchForwardedConstant) const bool FORWARDED = false;
 
 #define PAIRED_FIELDS_CONSTANT MarchPairedFieldsConstant
 #include "opal_volume_fields.glsl"
@@ -110,6 +114,8 @@ layout(std430, set = 0, binding = EdgeQueueBinding) buffer EdgeQueue { DispatchQ
 layout(std430, set = 0, binding = EdgePixelsBinding) buffer EdgePixels { uint edgePixels[]; };
 // A queued pixel's sub-rays summed so far, between the refine's dispatches.
 layout(std430, set = 0, binding = PixelSumsBinding) buffer PixelSums { PixelSum pixelSums[]; };
+// A forwarded march's rays between its dispatches (keepRay), per invocation.
+layout(std430, set = 0, binding = RayStatesBinding) buffer RayStates { uint rayStates[]; };
 
 layout(push_constant) uniform MarchPush { MarchWork marchWork; };
 
@@ -630,20 +636,29 @@ vec4 scatteredLightOf(int v, ivec3 cell)
   return SCATTERED_LIGHT_MODE == MarchScatteredLightFromGrid ? scatteredLightAt(cell) : SCATTERED_LIGHT_AT(v);
 }
 
+// Whether a cell lies in the forwarded march's piece: layers z in
+// marchWork.piece (those beyond the grid in its first or last piece).
+bool inMarchPiece(ivec3 cell)
+{
+  int z = clamp(cell.z, 0, P.gridDimensions.z - 1);
+  return z >= marchWork.piece.x && z < marchWork.piece.y;
+}
+
 // Walks the refracted ray on from `state`, gathering scattering and
-// recording domain crossings, until it leaves the opal at tExit or the record
-// is full; returns the number of crossings recorded.
+// recording domain crossings (`count` so far in this round, `guard` its
+// steps), until it leaves the opal at tExit or the record is full. False
+// where it leaves the forwarded march's piece first: the walk goes on from
+// there in the piece it enters, as if never interrupted.
 // With ENERGY_CONSERVATION a round records one crossing and ends where the
 // ray leaves its domain, so the crossing dims all that lies behind it; it
 // gathers scattering in one Bragg shadow besides the unshadowed light, and
 // ends before a voxel in another (outside a crossing: inside one, the
 // domain's own scattering keeps the round's shadow).
-int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
+bool walkRecording(inout WalkState state, inout int count, inout int guard, vec3 origin, vec3 inward, float tExit)
 {
-  int count = 0;
-  int guard = 0;
   for (; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
+    if (FORWARDED && !inMarchPiece(state.walk.cell)) return false;
     float tNext = min(cellExit(state.walk), tExit);
     float segment = tNext - state.t;
     if (segment > 0.0 && insideGrid(state.walk.cell))
@@ -688,7 +703,7 @@ int walkRecording(inout WalkState state, vec3 origin, vec3 inward, float tExit)
   }
   // Not done where a crossing, a shadow or a full record interrupted the walk.
   state.done = state.t >= tExit || guard == 65536;
-  return count;
+  return true;
 }
 
 // The body's scattering gathered in a round, into the bins through the view
@@ -716,14 +731,36 @@ void flushScattering(inout WalkState state)
   state.shadow = NO_SHADOW;
 }
 
-// The refracted ray from `origin` voxel by voxel to where it leaves the opal
-// at tExit, gathering scattering and each domain once per crossing.
-void marchInside(vec3 origin, vec3 inward, float tExit)
+// The refracted ray being marched: from rayOrigin along rayInward to where it
+// leaves the opal at rayExit; where its walk stands, in which round, and that
+// round's crossings and steps so far (all a forwarded march keeps, keepRay).
+vec3 rayOrigin;
+vec3 rayInward;
+float rayExit;
+WalkState walkState;
+int walkRound;
+int walkCount;
+int walkGuard;
+
+// The refracted ray voxel by voxel on from where it stands to where it leaves
+// the opal, gathering scattering and each domain once per crossing; false
+// where it leaves the forwarded march's piece first.
+bool marchOn()
 {
-  WalkState state = WalkState(startWalk(origin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
-  for (int round = 0; round < 4096 && !state.done; ++round)
+  // Locals while it walks (the walk's loop on private globals was ~5% slower on lavapipe).
+  WalkState state = walkState;
+  int round = walkRound, count = walkCount, guard = walkGuard;
+  vec3 origin = rayOrigin, inward = rayInward;
+  for (; round < 4096 && !state.done; ++round)
   {
-    int count = walkRecording(state, origin, inward, tExit);
+    if (!walkRecording(state, count, guard, origin, inward, rayExit))
+    {
+      walkState = state;
+      walkRound = round;
+      walkCount = count;
+      walkGuard = guard;
+      return false;
+    }
     if (ENERGY_CONSERVATION) flushScattering(state);
     for (int c = 0; c < count; ++c)
     {
@@ -738,6 +775,25 @@ void marchInside(vec3 origin, vec3 inward, float tExit)
         diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingShadow[c]);
       }
     }
+    count = 0;
+    guard = 0;
+  }
+  return true;
+}
+
+// The absorption's spectral factors at the nodes, which follow the frame.
+void setRayScales()
+{
+  if (ABSORPTION && !EXACT_SCATTERING)
+  {
+    for (int k = 0; k < SPECTRAL_NODES; ++k)
+    {
+      absorptionNodes[k] = pow(nodeFirst() + float(k) * nodeStep(), 0.25 * P.absorptionExponent);
+    }
+  }
+  if (SCATTERED_LIGHT && ABSORPTION)
+  {
+    scatteredAbsorptionScales = pow(scatteredScales(), vec4(0.25 * P.absorptionExponent));
   }
 }
 
@@ -757,22 +813,145 @@ void resetRay()
     shadowPassedDomain = -1;
     lightShadowed = false;
   }
-  if (ABSORPTION && !EXACT_SCATTERING)
-  {
-    for (int k = 0; k < SPECTRAL_NODES; ++k)
-    {
-      absorptionNodes[k] = pow(nodeFirst() + float(k) * nodeStep(), 0.25 * P.absorptionExponent);
-    }
-  }
+  setRayScales();
   scatteredNodes = vec4(0.0);
-  if (SCATTERED_LIGHT && ABSORPTION)
-  {
-    scatteredAbsorptionScales = pow(scatteredScales(), vec4(0.25 * P.absorptionExponent));
-  }
   dominantLambda = 0.0;
   dominantY = 0.0;
   dominantDomain = -1;
   firstCrossedDomain = -1;
+}
+
+// A forwarded ray's words in rayStates: its state (RAY_MARCHING, or
+// RAY_FINISHED once its pixel has it), then what keepRay keeps.
+const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
+const uint RAY_MARCHING = 1u, RAY_FINISHED = 2u;
+bool raySaving; // keepRay's way: into rayStates, or out of them
+int rayWord;    // keepRay's next word
+
+void keepFloat(inout float v)
+{
+  if (raySaving) rayStates[rayWord] = floatBitsToUint(v);
+  else v = uintBitsToFloat(rayStates[rayWord]);
+  ++rayWord;
+}
+
+void keepInt(inout int v)
+{
+  if (raySaving) rayStates[rayWord] = uint(v);
+  else v = int(rayStates[rayWord]);
+  ++rayWord;
+}
+
+void keepVec3(inout vec3 v)
+{
+  keepFloat(v.x);
+  keepFloat(v.y);
+  keepFloat(v.z);
+}
+
+void keepIvec3(inout ivec3 v)
+{
+  keepInt(v.x);
+  keepInt(v.y);
+  keepInt(v.z);
+}
+
+void keepShadow(inout LightShadow shadow)
+{
+  keepInt(shadow.domain);
+  keepFloat(shadow.lengthMm);
+  keepFloat(shadow.ownLengthMm);
+}
+
+void keepWalk()
+{
+  keepIvec3(walkState.walk.cell);
+  keepIvec3(walkState.walk.stepDir);
+  keepVec3(walkState.walk.tMax);
+  keepVec3(walkState.walk.tDelta);
+  keepFloat(walkState.t);
+  keepVec3(walkState.tauView);
+  keepInt(walkState.lastDomain);
+  int done = walkState.done ? 1 : 0;
+  keepInt(done);
+  walkState.done = done != 0;
+  keepShadow(walkState.shadow);
+  keepInt(walkRound);
+  keepInt(walkCount);
+  keepInt(walkGuard);
+  for (int c = 0; c < MAX_CROSSINGS; ++c)
+  {
+    keepVec3(crossingPoint[c]);
+    keepInt(crossingDomain[c]);
+    keepVec3(crossingDepth[c]);
+    keepFloat(crossingLength[c]);
+    keepShadow(crossingShadow[c]);
+  }
+}
+
+void keepSum(inout PixelSum sum)
+{
+  keepVec3(sum.xyz);
+  keepFloat(sum.depth);
+  keepFloat(sum.dominantLambda);
+  keepFloat(sum.dominantY);
+  keepInt(sum.dominantDomain);
+  keepInt(sum.hits);
+  keepInt(sum.firstDomainSeen);
+  keepInt(sum.brightestDomainSeen);
+  keepInt(sum.alike);
+}
+
+// Saves (`saving`) or restores the ray of invocation `slot` of a forwarded
+// march: everything its march reads again, bit for bit, so that a ray
+// forwarded between pieces is marched step for step as one never forwarded
+// (one layout both ways), the last Bragg shadow evaluated included (its
+// value follows the path length it was first met with, not its domain
+// alone). The absorption's node factors are evaluated again.
+void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout float transmitted)
+{
+  raySaving = saving;
+  rayWord = slot * RAY_WORDS + 1;
+  keepFloat(tHit);
+  keepFloat(transmitted);
+  keepVec3(rayOrigin);
+  keepVec3(rayInward);
+  keepFloat(rayExit);
+  keepWalk();
+  keepFloat(dominantLambda);
+  keepFloat(dominantY);
+  keepInt(dominantDomain);
+  keepInt(firstCrossedDomain);
+  keepFloat(scatteredNodes.x);
+  keepFloat(scatteredNodes.y);
+  keepFloat(scatteredNodes.z);
+  keepFloat(scatteredNodes.w);
+  keepSum(sum);
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    keepFloat(radiance[l]);
+    keepFloat(viewTransmittance[l]);
+    keepFloat(shadowRadiance[l]);
+  }
+  for (int k = 0; k < SPECTRAL_NODES; ++k)
+  {
+    keepFloat(scatterNodes[k]);
+    keepFloat(shadowNodes[k]);
+  }
+  keepInt(shadowPassedDomain);
+  for (int l = 0; l < 4 * SHADOW_ROW_VEC4S; ++l) keepFloat(shadowPassed[l]);
+  if (!saving) setRayScales();
+}
+
+// A forwarded march's ray taken up again by a later dispatch: false where its
+// pixel has it already or it walks on in another piece.
+bool resumeRay(int slot, inout PixelSum sum, out float tHit, out float transmitted)
+{
+  tHit = 0.0;
+  transmitted = 0.0;
+  if (rayStates[slot * RAY_WORDS] == RAY_FINISHED) return false;
+  keepRay(slot, false, sum, tHit, transmitted);
+  return inMarchPiece(walkState.walk.cell);
 }
 
 // The pixels the march writes: the rectangle's, then (for the edge select)
@@ -804,11 +983,12 @@ bool ringPixel(int item, out ivec2 local)
   return item < 2 * size.y;
 }
 
-// Marches the primary ray through `pixel` (image coordinates): false where it
+// Starts the primary ray through `pixel` (image coordinates): false where it
 // misses the opal; else its distance to the surface and the share 1 - F of
-// the light it carries out. With `mirror` >= 0 it records at that pixel where
-// its mirror image passes the light (for the highlight pass).
-bool marchRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
+// the light it carries out, and its refracted ray ready to march (marchOn).
+// With `mirror` >= 0 it records at that pixel where its mirror image passes
+// the light (for the highlight pass).
+bool startRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
 {
   vec3 eye = P.eye;
   vec3 direction = primaryDirection(pixel);
@@ -830,8 +1010,13 @@ bool marchRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
     pixelMirror[mirror] = PixelMirror(near.xyz, int(near.w));
   }
   vec3 inward = refract(direction, normal, 1.0 / mu);
-  vec3 origin = entry - 1e-4 * P.smallestSpacing * normal;
-  marchInside(origin, inward, traceSurfaceExit(origin, inward, gridBoxHits(origin, inward).y));
+  rayOrigin = entry - 1e-4 * P.smallestSpacing * normal;
+  rayInward = inward;
+  rayExit = traceSurfaceExit(rayOrigin, inward, gridBoxHits(rayOrigin, inward).y);
+  walkState = WalkState(startWalk(rayOrigin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
+  walkRound = 0;
+  walkCount = 0;
+  walkGuard = 0;
   return true;
 }
 
@@ -995,7 +1180,7 @@ int marchItem()
   return int(group * uint(MarchGroupSide * MarchGroupSide) + gl_LocalInvocationIndex);
 }
 
-// One call of marchRay for every mode: the march's code is then built once.
+// One march of a ray (startRay, marchOn) for every mode: the march's code is then built once.
 // MarchPixels and MarchRing march a pixel's centre ray; MarchRefineEdges one
 // sub-ray of a queued pixel per dispatch (lavapipe ends all of an
 // invocation's loops once they have run 65535 iterations together: n x n
@@ -1040,11 +1225,27 @@ void main()
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
-  if (outline) sum.alike = 0;
-  if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
-  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
   float tHit, transmitted;
-  bool hit = marchRay(at, centre ? pixelIndex : -1, tHit, transmitted);
+  bool hit = true;
+  int slot = marchItem();
+  if (FORWARDED && marchWork.resumed != 0)
+  {
+    if (!resumeRay(slot, sum, tHit, transmitted)) return;
+  }
+  else
+  {
+    if (outline) sum.alike = 0;
+    if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
+    vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
+    hit = startRay(at, centre ? pixelIndex : -1, tHit, transmitted);
+  }
+  if (hit && !marchOn())
+  {
+    rayStates[slot * RAY_WORDS] = RAY_MARCHING;
+    keepRay(slot, true, sum, tHit, transmitted);
+    return;
+  }
+  if (FORWARDED) rayStates[slot * RAY_WORDS] = RAY_FINISHED;
   if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(subRay < n ? n : n * n), tHit, sum);
   if (!centre && subRay < n) noteFirstStage(sum, hit, subRay);
   bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);

@@ -92,6 +92,14 @@ public:
 
 // The renderer with the validation layer on, or nullptr (and a message) if
 // this machine has no Vulkan device.
+// Two renders of the same frame equal value for value: every image array,
+// the spectrum where kept, and the exposure.
+inline bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
+{
+  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance && a.Spectrum == b.Spectrum &&
+    a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
+}
+
 inline std::unique_ptr<SceneRenderer> makeRenderer()
 {
   try

@@ -20,12 +20,6 @@
 
 namespace
 {
-bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
-{
-  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance &&
-    a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth;
-}
-
 struct Scene
 {
   std::string Name;
@@ -60,7 +54,7 @@ void checkSplitDispatches(const opal::RenderVolume& volume)
   for (const Scene& scene : scenes())
   {
     const opal::RenderImage a = own.render(volume, scene.Parameters), b = simulated.render(volume, scene.Parameters);
-    OPAL_CHECK(identical(a, b), scene.Name + ": eight workgroups per dispatch give the device's image");
+    OPAL_CHECK(opaltest::identical(a, b), scene.Name + ": eight workgroups per dispatch give the device's image");
   }
   for (opaltest::SceneRenderer* renderer : { &own, &simulated })
   {
@@ -84,10 +78,10 @@ void checkAddressedFields(const opal::RenderVolume& volume, const opal::RenderVo
   for (Scene& scene : cases)
   {
     scene.Parameters.ImageSize = { 48, 36 };
-    OPAL_CHECK(identical(own.render(volume, scene.Parameters), addressed.render(volume, scene.Parameters)),
+    OPAL_CHECK(opaltest::identical(own.render(volume, scene.Parameters), addressed.render(volume, scene.Parameters)),
       scene.Name + ": fields read through their addresses give the bound fields' image");
   }
-  OPAL_CHECK(identical(own.render(absorbing, cases.front().Parameters), addressed.render(absorbing, cases.front().Parameters)),
+  OPAL_CHECK(opaltest::identical(own.render(absorbing, cases.front().Parameters), addressed.render(absorbing, cases.front().Parameters)),
     "an absorbing volume: fields read through their addresses give the bound fields' image");
   const auto messages = addressed.context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));

@@ -29,12 +29,6 @@ opal::RenderParameters smallView()
 }
 
 // The same image, value for value.
-bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
-{
-  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance && a.Spectrum == b.Spectrum &&
-    a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
-}
-
 std::string stages(const opal::FrameStages& ran)
 {
   std::string s;
@@ -54,7 +48,7 @@ void checkStagingTransfers(const opal::RenderVolume& volume, const opal::RenderP
   staging.StagingTransfers = true;
   opaltest::SceneRenderer throughStaging(staging);
   const opal::RenderImage image = throughStaging.render(volume, p);
-  OPAL_CHECK(identical(expected, image),
+  OPAL_CHECK(opaltest::identical(expected, image),
     "a volume uploaded and an image read back through staging buffers (" + rounds + ") give the same image");
   const auto messages = throughStaging.context().validationMessages();
   OPAL_CHECK(messages.empty(),
@@ -131,7 +125,7 @@ void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& v
     OPAL_CHECK(solved == (share == 0), "share " + std::to_string(share) + " of a solve ahead of its frame");
   }
   const opal::RenderFrame ahead = session.render(frame, record);
-  OPAL_CHECK(identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
+  OPAL_CHECK(opaltest::identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
   OPAL_CHECK(risesToOne(seen), "the progress of a solve ahead of its frame, then the frame's, only rises, to 1");
 }
 
@@ -164,15 +158,15 @@ void checkScatteredLightFromGrid(const opal::RenderVolume& volume, opal::RenderP
   opal::RenderSession& session = tight.Session;
   session.setVolume(volume);
   const opal::RenderFrame a = session.render(p);
-  OPAL_CHECK(!a.Ran.ScatteredLightFromGrid && identical(a.Image, small), "a frame whose field fits reads it");
+  OPAL_CHECK(!a.Ran.ScatteredLightFromGrid && opaltest::identical(a.Image, small), "a frame whose field fits reads it");
   const opal::RenderFrame b = session.render(large);
-  OPAL_CHECK(b.Ran.ScatteredLightFromGrid && identical(b.Image, wide.Image),
+  OPAL_CHECK(b.Ran.ScatteredLightFromGrid && opaltest::identical(b.Image, wide.Image),
     "a frame whose field does not fit evaluates the grid, and gives the field's image");
   OPAL_CHECK(session.context().memoryPeak() <= widePeak - fieldBytes + 4 * sizeof(float), // its placeholder's vec4
     "the field was freed before the larger images: peak " + std::to_string(session.context().memoryPeak()) +
       " bytes against " + std::to_string(widePeak) + " with the field");
   const opal::RenderFrame c = session.render(p);
-  OPAL_CHECK(c.Ran.ScatteredLightFromGrid && identical(c.Image, small),
+  OPAL_CHECK(c.Ran.ScatteredLightFromGrid && opaltest::identical(c.Image, small),
     "beside the kept larger images the small frame evaluates the grid too, with the same image");
   const auto messages = session.context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
@@ -198,7 +192,7 @@ void checkKeptShadowsCounted(const opal::RenderVolume& volume, opal::RenderParam
   tight.Session.setVolume(volume);
   const opal::RenderFrame a = tight.Session.render(conserving);
   const opal::RenderFrame b = tight.Session.render(p);
-  OPAL_CHECK(a.Ran.ScatteredLightFromGrid && b.Ran.ScatteredLightFromGrid && identical(b.Image, plain),
+  OPAL_CHECK(a.Ran.ScatteredLightFromGrid && b.Ran.ScatteredLightFromGrid && opaltest::identical(b.Image, plain),
     "beside the kept Bragg shadows, every order after energy conservation evaluates the grid, the same image");
 }
 
@@ -240,7 +234,7 @@ void checkUnpairedFields(const opal::RenderVolume& volume, const opal::RenderPar
     for (std::size_t f = 0; f < frames.size(); ++f)
     {
       const opal::RenderFrame b = single.Session.render(frames[f]);
-      same = same && b.Status == opal::FrameStatus::Completed && identical(images[f], b.Image);
+      same = same && b.Status == opal::FrameStatus::Completed && opaltest::identical(images[f], b.Image);
       layout = layout && b.Ran.PairedFields == !addressed;
     }
     const std::string how = addressed ? " (by address)" : " (a device that cannot address)";
@@ -271,7 +265,7 @@ void checkOneVoxelWidePaired(const opal::RenderVolume& volume, const opal::Rende
     opaltest::SceneRenderer renderer(options);
     renderer.Session.setVolume(volume);
     const opal::RenderFrame frame = renderer.Session.render(p);
-    OPAL_CHECK(frame.Ran.PairedFields && identical(frame.Image, reference),
+    OPAL_CHECK(frame.Ran.PairedFields && opaltest::identical(frame.Image, reference),
       "a volume one voxel wide is paired and renders the unlimited image (" +
         std::string(options.MemoryLimitBytes ? "under a limit" : "addressed") + ")");
   }
@@ -295,7 +289,7 @@ void checkFrameTicket(opal::RenderSession& session, const opal::RenderParameters
   OPAL_CHECK(session.backgroundProgress() == 1.0, "a finished frame's progress is 1");
   const std::optional<opal::RenderFrame> background = session.takeFrame();
   OPAL_CHECK(background && background->Status == opal::FrameStatus::Completed &&
-      identical(background->Image, foreground),
+      opaltest::identical(background->Image, foreground),
     "a background frame equals the foreground frame pixel for pixel");
   OPAL_CHECK(session.completedBackgroundFrames() == 1, "the taken frame is counted completed");
 
@@ -307,11 +301,11 @@ void checkFrameTicket(opal::RenderSession& session, const opal::RenderParameters
       session.completedBackgroundFrames() + session.abandonedBackgroundFrames() == 2,
     "a cancelled frame is gone and counted");
   // The cancelled light pass had overwritten part of the held light field.
-  OPAL_CHECK(identical(session.render(parameters).Image, foreground),
+  OPAL_CHECK(opaltest::identical(session.render(parameters).Image, foreground),
     "after a cancel in the light pass the session renders the same (the half-written field is not reused)");
   session.startFrame(opal::resolveFrame(lit));
   const opal::RenderFrame over = session.render(parameters); // cancels the running frame first
-  OPAL_CHECK(identical(over.Image, foreground) && session.backgroundState() == opal::BackgroundState::None,
+  OPAL_CHECK(opaltest::identical(over.Image, foreground) && session.backgroundState() == opal::BackgroundState::None,
     "render() takes the session back from a running background frame");
   opal::RenderParameters bad = parameters;
   bad.WavelengthStep = 0;
@@ -353,18 +347,18 @@ int TestOpalRenderSession(int, char*[])
   const opal::RenderFrame b = session.render(moved);
   OPAL_CHECK(b.Status == opal::FrameStatus::Completed && !b.Ran.Upload && !b.Ran.LightPass && b.Ran.March,
     "a camera-only frame reuses the volume and the light field (" + stages(b.Ran) + ")");
-  OPAL_CHECK(!identical(a.Image, b.Image), "the new camera gives a new image");
+  OPAL_CHECK(!opaltest::identical(a.Image, b.Image), "the new camera gives a new image");
   {
     opaltest::SceneRenderer fresh(opal::VulkanOptions{});
     const opal::RenderImage c = fresh.render(volume->renderVolume(), moved);
-    OPAL_CHECK(identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
+    OPAL_CHECK(opaltest::identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
     // opal-render's build keeps only what the render reads: the same image.
     const auto renderOnly = opal::buildVolume(model, nullptr, opal::VolumeArrays::Render);
     OPAL_CHECK(renderOnly->VoxelType.empty() && renderOnly->LatticeOrientation.empty() &&
         renderOnly->ScatteringCoefficient == volume->ScatteringCoefficient && renderOnly->DomainId == volume->DomainId &&
         renderOnly->SurfaceDistance == volume->SurfaceDistance,
       "a render-only build keeps the render's fields, equal to the whole build's, and no description");
-    OPAL_CHECK(identical(b.Image, fresh.render(renderOnly->renderVolume(), moved)),
+    OPAL_CHECK(opaltest::identical(b.Image, fresh.render(renderOnly->renderVolume(), moved)),
       "a render-only build renders exactly the whole build's image");
   }
 

@@ -108,6 +108,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("marchWork.", MarchWork, first),
     OPAL_FIELD("marchWork.", MarchWork, count),
     OPAL_FIELD("marchWork.", MarchWork, subRay),
+    OPAL_FIELD("marchWork.", MarchWork, piece),
+    OPAL_FIELD("marchWork.", MarchWork, resumed),
     OPAL_FIELD("pixelSums[0].", PixelSum, xyz),
     OPAL_FIELD("pixelSums[0].", PixelSum, depth),
     OPAL_FIELD("pixelSums[0].", PixelSum, dominantLambda),

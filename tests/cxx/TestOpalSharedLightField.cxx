@@ -34,12 +34,6 @@
 
 namespace
 {
-bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
-{
-  return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance &&
-    a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
-}
-
 // The processes' exchange: in each round every share posts its bytes (a
 // layer's edge rows, or its last: nullopt where it stopped) and, once all
 // have, is handed the others' in pieces of 1000 bytes, a size that is no
@@ -210,12 +204,12 @@ void checkLight(const opal::RenderVolume& stone, opal::RenderParameters p, const
   for (const auto& [options, how] : layouts)
   {
     const opal::RenderFrame shared = sharedFrame(stone, options, frame, Field::Light, Ending::Whole, where + ", " + how);
-    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
+    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && opaltest::identical(shared.Image, lone.Image),
       where + ", " + how + ": the shares' field gives the image of a session that computed it alone, value for value");
     OPAL_CHECK(shared.Ran.PairedFields == (how != "unpaired"), where + ", " + how + ": the fields are held " + how);
   }
   const opal::RenderFrame partial = sharedFrame(stone, {}, frame, Field::Light, broken, where + ", a share stopping");
-  OPAL_CHECK(partial.Ran.LightPass && identical(partial.Image, lone.Image),
+  OPAL_CHECK(partial.Ran.LightPass && opaltest::identical(partial.Image, lone.Image),
     where + ", a share stopping: the frame computes the light alone, to the same image");
 }
 } // namespace
@@ -258,7 +252,7 @@ int TestOpalSharedLightField(int, char*[])
   const opal::ResolvedFrame thinFrame = opal::resolveFrame(p);
   const opal::RenderFrame lone = alone.Session.render(thinFrame);
   const opal::RenderFrame shared = sharedFrame(thin, {}, thinFrame, Field::Light, Ending::Whole, "two rows, three shares");
-  OPAL_CHECK(lone.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && identical(shared.Image, lone.Image),
+  OPAL_CHECK(lone.Status == opal::FrameStatus::Completed && shared.Ran.LightPass && opaltest::identical(shared.Image, lone.Image),
     "two rows, three shares: the shares' field gives the lone session's image, value for value");
 
   // The every-order field per voxel, written from the tally grid each
@@ -280,7 +274,7 @@ int TestOpalSharedLightField(int, char*[])
   {
     const std::string what = ending == Ending::Whole ? "every order" : "every order, a share failing";
     const opal::RenderFrame shared = sharedFrame(wide, {}, everyFrame, Field::Scattered, ending, what);
-    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && identical(shared.Image, wideLone.Image),
+    OPAL_CHECK(shared.Status == opal::FrameStatus::Completed && opaltest::identical(shared.Image, wideLone.Image),
       what + ": the shares' field (or, a share failing, the frame's own) gives the lone session's image");
   }
   return opaltest::finish("TestOpalSharedLightField");

@@ -3,6 +3,7 @@
 #include "OpalRenderSession.h"
 
 #include "OpalEmbeddedShaders.h"
+#include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
 
 #include <algorithm>
@@ -421,8 +422,9 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
                                                                       : gpu::MarchScatteredLightPerVoxel;
   const bool addressed = this->Volume->addressed();
   const int paired = this->Volume->PairedFields ? 1 : 0;
+  const int forwarded = this->MarchPieces > 1 ? 1 : 0;
   std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled,
-    energy, first, step, nearestLight, scattered, addressed ? 1 : 0, paired }];
+    energy, first, step, nearestLight, scattered, addressed ? 1 : 0, paired, forwarded }];
   if (!march)
   {
     const embedded::Spirv code = addressed ? embedded::viewMarchAddressedShader() : embedded::viewMarchShader();
@@ -433,7 +435,7 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
           { gpu::MarchCoupledWaveConstant, coupled }, { gpu::MarchEnergyConservationConstant, energy },
           { gpu::MarchFirstWavelengthConstant, first }, { gpu::MarchWavelengthStepConstant, step },
           { gpu::MarchNearestLightConstant, nearestLight }, { gpu::MarchScatteredLightConstant, scattered },
-          { gpu::MarchPairedFieldsConstant, paired } }));
+          { gpu::MarchPairedFieldsConstant, paired }, { gpu::MarchForwardedConstant, forwarded } }));
   }
   return *march;
 }
@@ -453,6 +455,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.writeSpectrum = target.Spectrum ? 1 : 0;
   block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
+  this->prepareRayStates(setup, rect);
   const ComputePipeline& march = this->marchPipeline(setup);
   const bool refine = target.PixelSamples > 1;
   // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are
@@ -510,20 +513,75 @@ void RenderSession::recordMarchRows(
   const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
   for (int column = 0; column < groupsX; column += maxGroupsX)
   {
-    march.dispatch(commands, gpu::MarchWork{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0 },
-      static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column)),
+    const gpu::MarchWork work{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0, gpu::ivec2(0, 0), 0 };
+    const auto groups = static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column));
+    if (mode == gpu::MarchSelectEdges)
+    {
+      march.dispatch(commands, work, groups,
+        static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
+      continue; // marches no ray
+    }
+    this->recordMarch(commands, march, work, groups,
       static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
   }
 }
 
 // The march's centre rays of the ring of pixels around the rectangle (the
 // edge select's neighbours beyond it), in one dispatch.
-void RenderSession::recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect)
+void RenderSession::recordMarchRing(
+  VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const
 {
   constexpr int groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
-  march.dispatch(commands, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0 },
+  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0 },
     static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
+}
+
+// Records the march's `work` over groupsX x groupsY workgroups: one
+// dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
+// per piece of layers z, the pieces in order and that as many times as there
+// are pieces: a straight ray crosses each piece once at most, so even one
+// crossing them against that order reaches its last.
+void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
+  std::uint32_t groupsX, std::uint32_t groupsY) const
+{
+  gpu::MarchWork piece = work;
+  const int pieces = this->MarchPieces;
+  for (int pass = 0; pass < pieces * pieces; ++pass)
+  {
+    const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], pass % pieces, pieces);
+    piece.piece = gpu::ivec2(layers.first, layers.second);
+    piece.resumed = pass > 0 ? 1 : 0;
+    march.dispatch(commands, piece, groupsX, groupsY);
+  }
+}
+
+// A forwarded march's ray states for the largest dispatch over `rect`: its
+// bands' pixels, its ring's or its queued pixels' (grown as the pixel
+// buffers are, and bound again).
+void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
+{
+  if (this->MarchPieces <= 1)
+  {
+    return;
+  }
+  constexpr std::uint64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
+  const auto roundUp = [&](std::uint64_t n) { return (n + groupPixels - 1) / groupPixels * groupPixels; };
+  const std::uint64_t slots =
+    std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rect[3])) * groupPixels,
+      roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))),
+      roundUp(static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])) });
+  const RenderParameters& p = setup.Parameters;
+  const int wavelengths = static_cast<int>(setup.Bins.size());
+  const int nodes = p.SpectralNodes == 0 || wavelengths <= p.SpectralNodes ? 4 : p.SpectralNodes;
+  const std::uint64_t bytes = slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
+  if (this->Buffers->RayStates->size() < bytes)
+  {
+    this->Buffers->RayStates.reset();
+    this->Buffers->RayStates =
+      std::make_unique<VulkanBuffer>(*this->Context, bytes, "forwarded rays", BufferPlacement::DeviceLocal);
+    this->bindBuffers();
+  }
 }
 
 // The pixels the edge select queued, each the mean of PixelSamples^2
@@ -540,9 +598,9 @@ bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, 
         constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
         for (int subRay = fromRay; subRay < toRay; ++subRay)
         {
-          march.dispatch(commands,
+          this->recordMarch(commands, march,
             gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
-              static_cast<std::int32_t>(count), subRay },
+              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0 },
             static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
         }
       });

@@ -260,6 +260,7 @@ bool RenderSession::ScatteredLightKey::operator==(const ScatteredLightKey& other
 RenderSession::RenderSession(const VulkanOptions& options)
   : Context(std::make_unique<VulkanContext>(options))
   , Buffers(std::make_unique<FrameBuffers>())
+  , MarchPieces(std::max(options.MarchPieces, 1))
 {
   checkWorkgroupSizes(this->Context->limits());
   std::vector<VkDescriptorType> types(gpu::BindingCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -292,6 +293,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
     *this->Context, sizeof(gpu::DispatchQueue), "highlight queue header", BufferPlacement::DeviceLocal);
   this->Buffers->EdgeQueue = std::make_unique<VulkanBuffer>(
     *this->Context, 2 * sizeof(gpu::DispatchQueue), "edge queue headers", BufferPlacement::DeviceLocal);
+  this->Buffers->RayStates =
+    std::make_unique<VulkanBuffer>(*this->Context, 16, "forwarded rays", BufferPlacement::DeviceLocal);
   sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
@@ -863,6 +866,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::EdgeQueueBinding] = b.EdgeQueue.get();
   buffers[gpu::EdgePixelsBinding] = b.EdgePixels.get();
   buffers[gpu::PixelSumsBinding] = b.PixelSums.get();
+  buffers[gpu::RayStatesBinding] = b.RayStates.get();
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();

@@ -31,6 +31,10 @@ namespace opal
 
 class ComputePipeline;
 class StorageBufferBindings;
+namespace gpu
+{
+struct MarchWork;
+}
 class VulkanBuffer;
 struct ScatteredLight;
 struct ScatteredLightRequest;
@@ -300,7 +304,10 @@ private:
   static int marchGroups(int width);
   void recordMarchRows(
     VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const;
-  static void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect);
+  void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
+  void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
+    std::uint32_t groupsY = 1) const;
+  void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);
@@ -326,13 +333,14 @@ private:
   std::unique_ptr<ComputePipeline> ColourPass;
   // By wavelength count, spectral nodes (0: every wavelength), absorption,
   // coupled-wave and energy conservation (0 or 1), the bins' first centre
-  // and step (their float bits), the preview's light read and the scattered
-  // light and address reads (0 or 1).
-  std::map<std::array<std::int32_t, 11>, std::unique_ptr<ComputePipeline>> MarchPasses;
+  // and step (their float bits), the preview's light read, the scattered
+  // light and address reads and the forwarded march (0 or 1).
+  std::map<std::array<std::int32_t, 12>, std::unique_ptr<ComputePipeline>> MarchPasses;
   // The Bragg shadow table's pass (§7.2), by wavelength count and Bragg model (0 paper, 1 coupled-wave).
   std::map<std::array<int, 2>, std::unique_ptr<ComputePipeline>> ShadowTablePasses;
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
+  int MarchPieces = 1; // VulkanOptions::MarchPieces
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
   std::optional<ScatteredLightKey> ScatteredLight;             // what the scattered light buffer holds
   std::string ScatteredLightWarning;                           // the solve's shortfall, if any

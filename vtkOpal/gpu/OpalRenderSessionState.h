@@ -24,7 +24,7 @@ namespace opal
 
 namespace sessiondetail
 {
-constexpr std::uint32_t PushConstantBytes = 32;   // the largest push-constant struct of the contract
+constexpr std::uint32_t PushConstantBytes = 48;   // the largest push-constant struct of the contract (MarchWork)
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // On the device per voxel: its VoxelCell (8), SurfaceDistance and the light
 // field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with
@@ -147,6 +147,7 @@ struct RenderSession::FrameBuffers
   std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
   std::unique_ptr<VulkanBuffer> EdgeQueue, EdgePixels;           // the pixels an edge crosses
   std::unique_ptr<VulkanBuffer> PixelSums;                       // and their sub-rays' sums
+  std::unique_ptr<VulkanBuffer> RayStates; // a forwarded march's rays (a placeholder without MarchPieces)
   // What each domain passes of the light (the Bragg shadow table, docs/design.md
   // §7.2), device-local; one float where no frame conserved energy yet.
   std::unique_ptr<VulkanBuffer> ShadowTable;

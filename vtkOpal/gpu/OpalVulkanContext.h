@@ -37,6 +37,10 @@ struct VulkanOptions
   // discrete GPU's) even where it is host-visible (lavapipe): uploads and
   // read-backs go through staging buffers, the path a discrete GPU takes.
   bool StagingTransfers = false;
+  // The view march forwards each ray through this many pieces of the volume
+  // (slabs of layers z) as the data-parallel render would between ranks
+  // (docs/design.md §8.1), in one process: 1, none.
+  int MarchPieces = 1;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.
   struct SimulatedLimits

@@ -1,0 +1,98 @@
+// The view march with its rays forwarded between pieces of the volume
+// (docs/design.md §8.1), in one process: each dispatch walks only one slab of
+// layers z, a ray leaving it is saved and taken up by the dispatch of the
+// slab it enters. The data-parallel render forwards rays so between ranks;
+// here every piece holds the whole volume, so the forwarded march must give
+// the image of the march never forwarded, value for value: every state a
+// ray carries across a face (its walk and round, its recorded crossings, its
+// sums on the nodes and bins, its pixel's sums) comes back bit for bit, or a
+// value differs. fig12's optics, pinfire's grains and fire-opal (an
+// absorbing body, coupled-wave fcc planes, energy conservation's rounds and
+// Bragg shadows, every order) lit from the side, with the edge pixels'
+// sub-rays (their sums kept between dispatches) and the spectrum; in 2, 3
+// and 7 pieces, and in more pieces than layers (pieces of none).
+#include "OpalPresets.h"
+#include "OpalRenderFrame.h"
+#include "OpalRenderScenes.h"
+#include "OpalTestHarness.h"
+#include "OpalVolumeBuild.h"
+
+#include <string>
+
+namespace
+{
+// The image through `pieces` pieces, under the validation layer (its
+// synchronization checks included: a ray state read before its write is a message).
+opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces)
+{
+  opal::VulkanOptions options;
+  options.Validation = true;
+  options.MarchPieces = pieces;
+  opaltest::SceneRenderer renderer(options);
+  return renderer.render(stone, p);
+}
+
+void checkForwarded(const opal::ModelParameters& model, const opal::RenderParameters& p, const std::string& scene)
+{
+  const auto volume = opal::buildVolume(model);
+  const opal::RenderVolume stone = volume->renderVolume();
+  opaltest::SceneRenderer whole({});
+  const opal::RenderImage expected = whole.render(stone, p);
+  for (const int pieces : { 2, 3, 7 })
+  {
+    OPAL_CHECK(opaltest::identical(forwarded(stone, p, pieces), expected),
+      scene + ": the march forwarded through " + std::to_string(pieces) +
+        " pieces gives the unforwarded image, value for value");
+  }
+}
+
+opal::RenderParameters withHints(opal::RenderParameters p, const char* preset, double refractiveIndex)
+{
+  const opal::VolumeRenderHints hints = opal::renderHints(opal::presetIndexByName(preset), refractiveIndex);
+  p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
+  p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
+  return p;
+}
+} // namespace
+
+int TestOpalForwardedMarch(int, char*[])
+{
+  if (!opaltest::makeRenderer())
+  {
+    return opaltest::noDeviceReturnCode();
+  }
+  opal::RenderParameters p;
+  p.ImageSize = { 40, 30 };
+  p.PixelSamples = 3; // the edge pixels' sub-rays, their sums kept between dispatches
+  p.WriteSpectrum = true;
+
+  opal::ModelParameters paper; // fig12's optics
+  paper.Dimensions = { 40, 20, 50 };
+  checkForwarded(paper, p, "fig12");
+
+  opal::ModelParameters grains;
+  OPAL_CHECK(grains.applyPreset(opal::presetIndexByName("pinfire")), "pinfire is a preset");
+  grains.Dimensions = { 40, 20, 50 };
+  checkForwarded(grains, withHints(p, "pinfire", grains.RefractiveIndex), "pinfire");
+
+  opal::ModelParameters fire;
+  OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
+  fire.Dimensions = { 40, 20, 50 };
+  opal::RenderParameters side = withHints(p, "fire-opal", fire.RefractiveIndex);
+  side.LightPosition = { 30.0, 12.0, 4.0 };
+  side.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  side.ScatteringPhotons = 2000;
+  const opal::ResolvedFrame frame = opal::resolveFrame(side);
+  OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
+    "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
+  checkForwarded(fire, side, "fire-opal, lit from the side, every order");
+
+  // Three layers in seven pieces: four pieces of none, walked by no ray.
+  paper.Dimensions = { 40, 20, 3 };
+  const auto thinVolume = opal::buildVolume(paper);
+  const opal::RenderVolume thin = thinVolume->renderVolume();
+  opaltest::SceneRenderer whole({});
+  OPAL_CHECK(opaltest::identical(forwarded(thin, p, 7), whole.render(thin, p)),
+    "three layers in seven pieces: the forwarded march gives the unforwarded image");
+  return opaltest::finish("TestOpalForwardedMarch");
+}
