@@ -346,9 +346,9 @@ struct MarchWork
 };
 // The words a forwarded march keeps per ray: its place, walk and round, its
 // recorded crossings, its sums and the last Bragg shadow it met (41 bins
-// and 16 nodes: ~1.2 KB), and its pixel's sums so far (view_march.comp's keepRay).
+// and 16 nodes: 1.5 KB), and its pixel's sums so far (view_march.comp's keepRay).
 #define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
-  (144 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
+  (176 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 
 // Push constants of the highlight's shade pass: the queued pixels
 // [first, first + count) this dispatch shades.

@@ -335,13 +335,12 @@ void dimBehind(DomainRecord lattice, vec3 towardEye, float lengthMm)
 // glancing angle of the light on the lattice planes; the box band B averaged
 // per bin; gain G and 1/pi turn the reflected irradiance into radiance.
 // tauView: the view path's depths at 550 nm, as LightSample's tau; shadow:
-// the domain the light passed before (ENERGY_CONSERVATION).
-void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, LightShadow shadow)
+// the domain the light passed before (ENERGY_CONSERVATION); light: the light there.
+void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, LightShadow shadow, LightSample light)
 {
   vec3 towardLight = normalize(P.light - at);
   passLight(shadow);
   float sinGlancing = abs(dot(towardLight, lattice.latticeNormal));
-  LightSample light = lightAt(at);
   float tauLight = light.tau.x;
   vec2 tauAbsorption = light.tau.yz + tauView.yz;
   float weight = P.diffractionGain * light.geometry *
@@ -373,11 +372,11 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
 // N = min(thickness / d, CoherentLayers) layers into a normalised lobe about
 // the light's mirror direction, of the light `shadow`'s domain passed; then
 // the view ray keeps 1 - R.
-void reflectAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm, LightShadow shadow)
+void reflectAtCrossing(
+  vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauView, float lengthMm, LightShadow shadow, LightSample light)
 {
   vec3 towardLight = normalize(P.light - at);
   passLight(shadow);
-  LightSample light = lightAt(at);
   vec2 tauAbsorption = light.tau.yz + tauView.yz;
   float shortest = shortestWavelength();
   for (int f = 0; f < P.latticeFamilies; ++f)
@@ -605,6 +604,10 @@ int crossingDomain[MAX_CROSSINGS];
 vec3 crossingDepth[MAX_CROSSINGS]; // view depths at the crossing (as LightSample's tau)
 float crossingLength[MAX_CROSSINGS]; // mm of the ray inside the domain (only with COUPLED_WAVE)
 LightShadow crossingShadow[MAX_CROSSINGS]; // the light's Bragg shadow there (only with ENERGY_CONSERVATION)
+// The light there, read as the crossing is recorded (only FORWARDED): a
+// crossing is diffracted at its round's end, which a forwarded ray may reach
+// in the next piece, where this piece's light field is not held.
+LightSample crossingLight[MAX_CROSSINGS];
 
 // Where the walk stands between rounds.
 struct WalkState
@@ -683,6 +686,7 @@ bool walkRecording(inout WalkState state, inout int count, inout int guard, vec3
         crossingDepth[count] = state.tauView + 0.5 * segment * vec3(mus, absorption);
         if (COUPLED_WAVE) crossingLength[count] = 0.0;
         crossingShadow[count] = shadow;
+        if (FORWARDED) crossingLight[count] = lightAt(crossingPoint[count]);
         ++count;
       }
       if (COUPLED_WAVE && domain >= 0 && count > 0) crossingLength[count - 1] += segment;
@@ -765,14 +769,16 @@ bool marchOn()
     for (int c = 0; c < count; ++c)
     {
       crossedDomain = crossingDomain[c];
+      LightSample light = FORWARDED ? crossingLight[c] : lightAt(crossingPoint[c]);
       if (COUPLED_WAVE)
       {
         reflectAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingLength[c],
-          crossingShadow[c]);
+          crossingShadow[c], light);
       }
       else
       {
-        diffractAtCrossing(crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingShadow[c]);
+        diffractAtCrossing(
+          crossingPoint[c], domains[crossingDomain[c]], -inward, crossingDepth[c], crossingShadow[c], light);
       }
     }
     count = 0;
@@ -886,6 +892,8 @@ void keepWalk()
     keepVec3(crossingDepth[c]);
     keepFloat(crossingLength[c]);
     keepShadow(crossingShadow[c]);
+    keepVec3(crossingLight[c].tau);
+    keepFloat(crossingLight[c].geometry);
   }
 }
 
