@@ -1188,7 +1188,56 @@ int marchItem()
   return int(group * uint(MarchGroupSide * MarchGroupSide) + gl_LocalInvocationIndex);
 }
 
-// One march of a ray (startRay, marchOn) for every mode: the march's code is then built once.
+// The pixel queued for the refine's `stage` at this invocation's item: false
+// beyond the dispatch's items or the queue; else the pixel (in the rectangle),
+// its place among the select's queued pixels, and whether the outline crosses it.
+bool queuedPixel(int stage, out ivec2 local, out int item, out bool outline)
+{
+  local = ivec2(0);
+  outline = false;
+  int rectPixels = P.rectSize.x * P.rectSize.y;
+  item = marchWork.first + marchItem();
+  if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue[stage].count)) return false;
+  if (stage == 1) item = int(edgePixels[rectPixels + item]);
+  uint entry = edgePixels[item];
+  int queued = int(entry & ~OUTLINE_BIT);
+  local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
+  outline = (entry & OUTLINE_BIT) != 0u;
+  return true;
+}
+
+// Sub-ray `subRay` of the n x n of the pixel `local` (n = 1: its centre ray),
+// started and marched (its pixel's sums so far in `sum`), or in a forwarded
+// march's later dispatch taken up again: false where it finished before or
+// walks on in another piece (saved for it); else whether it met the opal,
+// where, and the share 1 - F it carries out.
+bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, bool spectrum, inout PixelSum sum,
+  out bool hit, out float tHit, out float transmitted)
+{
+  int slot = marchItem();
+  hit = true;
+  if (FORWARDED && marchWork.resumed != 0)
+  {
+    if (!resumeRay(slot, sum, tHit, transmitted)) return false;
+  }
+  else
+  {
+    if (outline) sum.alike = 0;
+    if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
+    vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
+    hit = startRay(at, n == 1 ? pixelIndex : -1, tHit, transmitted);
+  }
+  if (hit && !marchOn())
+  {
+    rayStates[slot * RAY_WORDS] = RAY_MARCHING;
+    keepRay(slot, true, sum, tHit, transmitted);
+    return false;
+  }
+  if (FORWARDED) rayStates[slot * RAY_WORDS] = RAY_FINISHED;
+  return true;
+}
+
+// One march of a ray (marchSubRay) for every mode: the march's code is then built once.
 // MarchPixels and MarchRing march a pixel's centre ray; MarchRefineEdges one
 // sub-ray of a queued pixel per dispatch (lavapipe ends all of an
 // invocation's loops once they have run 65535 iterations together: n x n
@@ -1206,14 +1255,7 @@ void main()
   {
     n = P.pixelSamples;
     subRay = marchWork.subRay;
-    int stage = subRay < n ? 0 : 1, rectPixels = P.rectSize.x * P.rectSize.y;
-    item = marchWork.first + marchItem();
-    if (item >= marchWork.first + marchWork.count || item >= int(edgeQueue[stage].count)) return;
-    if (stage == 1) item = int(edgePixels[rectPixels + item]);
-    uint entry = edgePixels[item];
-    int queued = int(entry & ~OUTLINE_BIT);
-    local = ivec2(queued % P.rectSize.x, queued / P.rectSize.x);
-    outline = (entry & OUTLINE_BIT) != 0u;
+    if (!queuedPixel(subRay < n ? 0 : 1, local, item, outline)) return;
   }
   else if (mode == MarchRing)
   {
@@ -1233,27 +1275,9 @@ void main()
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
+  bool hit;
   float tHit, transmitted;
-  bool hit = true;
-  int slot = marchItem();
-  if (FORWARDED && marchWork.resumed != 0)
-  {
-    if (!resumeRay(slot, sum, tHit, transmitted)) return;
-  }
-  else
-  {
-    if (outline) sum.alike = 0;
-    if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
-    vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
-    hit = startRay(at, centre ? pixelIndex : -1, tHit, transmitted);
-  }
-  if (hit && !marchOn())
-  {
-    rayStates[slot * RAY_WORDS] = RAY_MARCHING;
-    keepRay(slot, true, sum, tHit, transmitted);
-    return;
-  }
-  if (FORWARDED) rayStates[slot * RAY_WORDS] = RAY_FINISHED;
+  if (!marchSubRay(local, pixelIndex, n, subRay, outline, spectrum, sum, hit, tHit, transmitted)) return;
   if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(subRay < n ? n : n * n), tHit, sum);
   if (!centre && subRay < n) noteFirstStage(sum, hit, subRay);
   bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);
