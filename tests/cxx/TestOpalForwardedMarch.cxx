@@ -10,7 +10,8 @@
 // absorbing body, coupled-wave fcc planes, energy conservation's rounds and
 // Bragg shadows, every order) lit from the side, with the edge pixels'
 // sub-rays (their sums kept between dispatches) and the spectrum; in 2, 3
-// and 7 pieces, and in more pieces than layers (pieces of none).
+// and 7 pieces, and in more pieces than layers (pieces of none); fire-opal
+// also with its fields read by address and through staging buffers.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -23,9 +24,9 @@ namespace
 {
 // The image through `pieces` pieces, under the validation layer (its
 // synchronization checks included: a ray state read before its write is a message).
-opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces)
+opal::RenderImage forwarded(
+  const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces, opal::VulkanOptions options = {})
 {
-  opal::VulkanOptions options;
   options.Validation = true;
   options.MarchPieces = pieces;
   opaltest::SceneRenderer renderer(options);
@@ -86,6 +87,26 @@ int TestOpalForwardedMarch(int, char*[])
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
   checkForwarded(fire, side, "fire-opal, lit from the side, every order");
+
+  // The fields read by address, one value per voxel (below the paired
+  // fields' bytes: VoxelCell 8, SurfaceDistance 8, light field 16, absorption
+  // cells 8 and their light field 16, the Bragg shadows 12): the march's
+  // other build, its pixels read back through staging buffers.
+  side.ScatteringOrders = opal::ScatteringOrdersKind::Single;
+  fire.Dimensions = { 80, 40, 100 }; // the ray states (2 MB at 40 x 30 pixels) within the limit
+  const auto fireVolume = opal::buildVolume(fire);
+  const opal::RenderVolume fireStone = fireVolume->renderVolume();
+  opal::VulkanOptions addressed;
+  addressed.MemoryLimitBytes = fireStone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
+  addressed.StagingTransfers = true;
+  opaltest::SceneRenderer unforwarded(addressed);
+  unforwarded.Session.setVolume(fireStone);
+  const opal::RenderFrame byAddress = unforwarded.Session.render(side);
+  OPAL_CHECK(byAddress.Status == opal::FrameStatus::Completed && !byAddress.Ran.PairedFields,
+    "set-up: fire-opal's fields held one value per voxel, by address");
+  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, addressed), byAddress.Image),
+    "fire-opal, its fields by address and through staging: the march forwarded through 3 pieces gives the "
+    "unforwarded image");
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
   paper.Dimensions = { 40, 20, 3 };

@@ -557,13 +557,12 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
 }
 
 // A forwarded march's ray states for the largest dispatch over `rect`: its
-// bands' pixels, its ring's or its queued pixels' (grown as the pixel
-// buffers are, and bound again).
-void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
+// bands' pixels, its ring's or its queued pixels'; none unforwarded.
+std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const
 {
   if (this->MarchPieces <= 1)
   {
-    return;
+    return 0;
   }
   constexpr std::uint64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const auto roundUp = [&](std::uint64_t n) { return (n + groupPixels - 1) / groupPixels * groupPixels; };
@@ -574,7 +573,13 @@ void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<i
   const RenderParameters& p = setup.Parameters;
   const int wavelengths = static_cast<int>(setup.Bins.size());
   const int nodes = p.SpectralNodes == 0 || wavelengths <= p.SpectralNodes ? 4 : p.SpectralNodes;
-  const std::uint64_t bytes = slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
+  return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
+}
+
+// The ray states of rayStateBytes, grown as the pixel buffers are (and bound again).
+void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
+{
+  const std::uint64_t bytes = this->rayStateBytes(setup, rect);
   if (this->Buffers->RayStates->size() < bytes)
   {
     this->Buffers->RayStates.reset();

@@ -721,7 +721,10 @@ std::uint64_t RenderSession::frameImageBytes(const FrameSetup& setup, bool kept)
   const std::uint64_t capacity = kept ? std::max(setup.PixelCapacity, b.PixelCapacity) : setup.PixelCapacity;
   const std::uint64_t spectrumBytes =
     kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
-  return capacity * ImageBytesPerPixel + spectrumBytes;
+  const std::uint64_t rays = std::max(this->rayStateBytes(setup, setup.Region), this->rayStateBytes(setup,
+    { 0, 0, setup.Thumbnail[0], setup.Thumbnail[1] }));
+  return capacity * ImageBytesPerPixel + spectrumBytes +
+    (kept ? std::max<std::uint64_t>(rays, b.RayStates->size()) : rays);
 }
 
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
