@@ -827,10 +827,11 @@ void resetRay()
   firstCrossedDomain = -1;
 }
 
-// A forwarded ray's words in rayStates: its state (RAY_MARCHING, or
-// RAY_FINISHED once its pixel has it), then what keepRay keeps.
+// A forwarded ray's words in rayStates: the layer its walk stands in (the
+// piece that takes it up), or RAY_FINISHED once its pixel has it; then what
+// keepRay keeps.
 const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
-const uint RAY_MARCHING = 1u, RAY_FINISHED = 2u;
+const uint RAY_FINISHED = 0xffffffffu;
 bool raySaving; // keepRay's way: into rayStates, or out of them
 int rayWord;    // keepRay's next word
 
@@ -910,6 +911,20 @@ void keepSum(inout PixelSum sum)
   keepInt(sum.alike);
 }
 
+// Energy conservation's sums (the view transmittance, the scattering in the
+// round's Bragg shadow) and the last Bragg shadow evaluated.
+void keepShadowedSums()
+{
+  for (int l = 0; l < WAVELENGTHS; ++l)
+  {
+    keepFloat(viewTransmittance[l]);
+    keepFloat(shadowRadiance[l]);
+  }
+  for (int k = 0; k < SPECTRAL_NODES; ++k) keepFloat(shadowNodes[k]);
+  keepInt(shadowPassedDomain);
+  for (int l = 0; l < 4 * SHADOW_ROW_VEC4S; ++l) keepFloat(shadowPassed[l]);
+}
+
 // Saves (`saving`) or restores the ray of invocation `slot` of a forwarded
 // march: everything its march reads again, bit for bit, so that a ray
 // forwarded between pieces is marched step for step as one never forwarded
@@ -935,31 +950,22 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
   keepFloat(scatteredNodes.z);
   keepFloat(scatteredNodes.w);
   keepSum(sum);
-  for (int l = 0; l < WAVELENGTHS; ++l)
-  {
-    keepFloat(radiance[l]);
-    keepFloat(viewTransmittance[l]);
-    keepFloat(shadowRadiance[l]);
-  }
-  for (int k = 0; k < SPECTRAL_NODES; ++k)
-  {
-    keepFloat(scatterNodes[k]);
-    keepFloat(shadowNodes[k]);
-  }
-  keepInt(shadowPassedDomain);
-  for (int l = 0; l < 4 * SHADOW_ROW_VEC4S; ++l) keepFloat(shadowPassed[l]);
+  for (int l = 0; l < WAVELENGTHS; ++l) keepFloat(radiance[l]);
+  for (int k = 0; k < SPECTRAL_NODES; ++k) keepFloat(scatterNodes[k]);
+  if (ENERGY_CONSERVATION) keepShadowedSums(); // else never read
   if (!saving) setRayScales();
 }
 
 // A forwarded march's ray taken up again by a later dispatch: false where its
-// pixel has it already or it walks on in another piece.
+// pixel has it already or it walks on in another piece (one word read).
 bool resumeRay(int slot, inout PixelSum sum, out float tHit, out float transmitted)
 {
   tHit = 0.0;
   transmitted = 0.0;
-  if (rayStates[slot * RAY_WORDS] == RAY_FINISHED) return false;
+  uint layer = rayStates[slot * RAY_WORDS];
+  if (layer == RAY_FINISHED || !inMarchPiece(ivec3(0, 0, int(layer)))) return false;
   keepRay(slot, false, sum, tHit, transmitted);
-  return inMarchPiece(walkState.walk.cell);
+  return true;
 }
 
 // The pixels the march writes: the rectangle's, then (for the edge select)
@@ -1229,7 +1235,7 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   }
   if (hit && !marchOn())
   {
-    rayStates[slot * RAY_WORDS] = RAY_MARCHING;
+    rayStates[slot * RAY_WORDS] = uint(clamp(walkState.walk.cell.z, 0, P.gridDimensions.z - 1));
     keepRay(slot, true, sum, tHit, transmitted);
     return false;
   }

@@ -90,8 +90,6 @@ public:
   opal::RenderSession Session;
 };
 
-// The renderer with the validation layer on, or nullptr (and a message) if
-// this machine has no Vulkan device.
 // Two renders of the same frame equal value for value: every image array,
 // the spectrum where kept, and the exposure.
 inline bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
@@ -100,6 +98,8 @@ inline bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
     a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
 }
 
+// The renderer with the validation layer on, or nullptr (and a message) if
+// this machine has no Vulkan device.
 inline std::unique_ptr<SceneRenderer> makeRenderer()
 {
   try

@@ -28,7 +28,6 @@ opal::RenderParameters smallView()
   return p;
 }
 
-// The same image, value for value.
 std::string stages(const opal::FrameStages& ran)
 {
   std::string s;

@@ -410,8 +410,8 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
 {
   const int wavelengths = static_cast<int>(setup.Bins.size());
   const RenderParameters& p = setup.Parameters;
-  const bool exact = p.SpectralNodes == 0 || wavelengths <= p.SpectralNodes;
-  const int nodes = exact ? 4 : p.SpectralNodes;
+  const bool exact = marchNodes(setup) == 0;
+  const int nodes = exact ? 4 : marchNodes(setup);
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
   const int coupled = p.BraggModel == BraggModelKind::CoupledWave ? 1 : 0;
   const int energy = conservesEnergy(p) ? 1 : 0;
@@ -510,6 +510,7 @@ void RenderSession::recordMarchRows(
   VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const
 {
   const int groupsX = marchGroups(width);
+  const auto groupsY = static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide);
   const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
   for (int column = 0; column < groupsX; column += maxGroupsX)
   {
@@ -517,12 +518,12 @@ void RenderSession::recordMarchRows(
     const auto groups = static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column));
     if (mode == gpu::MarchSelectEdges)
     {
-      march.dispatch(commands, work, groups,
-        static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
-      continue; // marches no ray
+      march.dispatch(commands, work, groups, groupsY); // marches no ray
     }
-    this->recordMarch(commands, march, work, groups,
-      static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide));
+    else
+    {
+      this->recordMarch(commands, march, work, groups, groupsY);
+    }
   }
 }
 
@@ -539,21 +540,31 @@ void RenderSession::recordMarchRing(
 
 // Records the march's `work` over groupsX x groupsY workgroups: one
 // dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
-// per piece of layers z, the pieces in order and that as many times as there
-// are pieces: a straight ray crosses each piece once at most, so even one
-// crossing them against that order reaches its last.
+// per piece of layers z, the pieces in order and then back (2N - 1
+// dispatches): a straight ray walks z one way, so the sweep its way takes
+// it from the piece it starts in to the one it leaves from.
 void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
-  gpu::MarchWork piece = work;
+  gpu::MarchWork pieceWork = work;
   const int pieces = this->MarchPieces;
-  for (int pass = 0; pass < pieces * pieces; ++pass)
+  for (int pass = 0; pass < 2 * pieces - 1; ++pass)
   {
-    const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], pass % pieces, pieces);
-    piece.piece = gpu::ivec2(layers.first, layers.second);
-    piece.resumed = pass > 0 ? 1 : 0;
-    march.dispatch(commands, piece, groupsX, groupsY);
+    const int piece = pass < pieces ? pass : 2 * pieces - 2 - pass;
+    const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
+    pieceWork.piece = gpu::ivec2(layers.first, layers.second);
+    pieceWork.resumed = pass > 0 ? 1 : 0;
+    march.dispatch(commands, pieceWork, groupsX, groupsY);
   }
+}
+
+// The spectral nodes the march sums the body's scattering on: 0 where it
+// takes every wavelength (SpectralNodes 0, or no fewer bins than nodes).
+int RenderSession::marchNodes(const FrameSetup& setup)
+{
+  const int wavelengths = static_cast<int>(setup.Bins.size());
+  const int nodes = setup.Parameters.SpectralNodes;
+  return nodes == 0 || wavelengths <= nodes ? 0 : nodes;
 }
 
 // A forwarded march's ray states for the largest dispatch over `rect`: its
@@ -570,21 +581,20 @@ std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::a
     std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rect[3])) * groupPixels,
       roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))),
       roundUp(static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])) });
-  const RenderParameters& p = setup.Parameters;
   const int wavelengths = static_cast<int>(setup.Bins.size());
-  const int nodes = p.SpectralNodes == 0 || wavelengths <= p.SpectralNodes ? 4 : p.SpectralNodes;
+  const int nodes = marchNodes(setup) == 0 ? 4 : marchNodes(setup);
   return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
 }
 
-// The ray states of rayStateBytes, grown as the pixel buffers are (and bound again).
+// The ray states of rayStateBytes, grown as the pixel buffers are (and bound
+// again); a refused allocation keeps the buffer bound before.
 void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
 {
   const std::uint64_t bytes = this->rayStateBytes(setup, rect);
   if (this->Buffers->RayStates->size() < bytes)
   {
-    this->Buffers->RayStates.reset();
-    this->Buffers->RayStates =
-      std::make_unique<VulkanBuffer>(*this->Context, bytes, "forwarded rays", BufferPlacement::DeviceLocal);
+    auto grown = std::make_unique<VulkanBuffer>(*this->Context, bytes, "forwarded rays", BufferPlacement::DeviceLocal);
+    this->Buffers->RayStates = std::move(grown);
     this->bindBuffers();
   }
 }

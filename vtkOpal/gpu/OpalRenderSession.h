@@ -307,6 +307,7 @@ private:
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY = 1) const;
+  static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);

@@ -317,6 +317,10 @@ void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*
   for (std::size_t i = 0; i < runs.size(); ++i)
   {
     char* mapped = runs[i].Buffer->as<char>();
+    if (runs[i].Bytes == 0)
+    {
+      continue; // no staging where every run is empty or mapped
+    }
     std::copy_n(from[i], runs[i].Bytes, mapped ? mapped + runs[i].Begin : staging->as<char>() + offset);
     copies[i] = VkBufferCopy{ offset, runs[i].Begin, mapped ? 0 : runs[i].Bytes };
     offset += mapped ? 0 : stagedSize(runs[i].Bytes);

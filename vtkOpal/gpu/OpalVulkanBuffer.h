@@ -133,7 +133,6 @@ private:
 struct BufferRun
 {
   const VulkanBuffer* Buffer;
-
   std::uint64_t Begin;
   std::uint64_t Bytes;
 };
