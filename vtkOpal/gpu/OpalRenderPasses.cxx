@@ -3,7 +3,6 @@
 #include "OpalRenderSession.h"
 
 #include "OpalEmbeddedShaders.h"
-#include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
 
 #include <algorithm>
@@ -456,6 +455,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
   this->prepareRayStates(setup, rect);
+  this->prepareMarchFieldCopies();
   const ComputePipeline& march = this->marchPipeline(setup);
   const bool refine = target.PixelSamples > 1;
   // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are
@@ -536,67 +536,6 @@ void RenderSession::recordMarchRing(
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
   this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0 },
     static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
-}
-
-// Records the march's `work` over groupsX x groupsY workgroups: one
-// dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
-// per piece of layers z, the pieces in order and then back (2N - 1
-// dispatches): a straight ray walks z one way, so the sweep its way takes
-// it from the piece it starts in to the one it leaves from.
-void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
-  std::uint32_t groupsX, std::uint32_t groupsY) const
-{
-  gpu::MarchWork pieceWork = work;
-  const int pieces = this->MarchPieces;
-  for (int pass = 0; pass < 2 * pieces - 1; ++pass)
-  {
-    const int piece = pass < pieces ? pass : 2 * pieces - 2 - pass;
-    const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
-    pieceWork.piece = gpu::ivec2(layers.first, layers.second);
-    pieceWork.resumed = pass > 0 ? 1 : 0;
-    march.dispatch(commands, pieceWork, groupsX, groupsY);
-  }
-}
-
-// The spectral nodes the march sums the body's scattering on: 0 where it
-// takes every wavelength (SpectralNodes 0, or no fewer bins than nodes).
-int RenderSession::marchNodes(const FrameSetup& setup)
-{
-  const int wavelengths = static_cast<int>(setup.Bins.size());
-  const int nodes = setup.Parameters.SpectralNodes;
-  return nodes == 0 || wavelengths <= nodes ? 0 : nodes;
-}
-
-// A forwarded march's ray states for the largest dispatch over `rect`: its
-// bands' pixels, its ring's or its queued pixels'; none unforwarded.
-std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const
-{
-  if (this->MarchPieces <= 1)
-  {
-    return 0;
-  }
-  constexpr std::uint64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
-  const auto roundUp = [&](std::uint64_t n) { return (n + groupPixels - 1) / groupPixels * groupPixels; };
-  const std::uint64_t slots =
-    std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rect[3])) * groupPixels,
-      roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))),
-      roundUp(static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])) });
-  const int wavelengths = static_cast<int>(setup.Bins.size());
-  const int nodes = marchNodes(setup) == 0 ? 4 : marchNodes(setup);
-  return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
-}
-
-// The ray states of rayStateBytes, grown as the pixel buffers are (and bound
-// again); a refused allocation keeps the buffer bound before.
-void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
-{
-  const std::uint64_t bytes = this->rayStateBytes(setup, rect);
-  if (this->Buffers->RayStates->size() < bytes)
-  {
-    auto grown = std::make_unique<VulkanBuffer>(*this->Context, bytes, "forwarded rays", BufferPlacement::DeviceLocal);
-    this->Buffers->RayStates = std::move(grown);
-    this->bindBuffers();
-  }
 }
 
 // The pixels the edge select queued, each the mean of PixelSamples^2

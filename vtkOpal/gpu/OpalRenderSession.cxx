@@ -261,6 +261,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   : Context(std::make_unique<VulkanContext>(options))
   , Buffers(std::make_unique<FrameBuffers>())
   , MarchPieces(std::max(options.MarchPieces, 1))
+  , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly)
 {
   checkWorkgroupSizes(this->Context->limits());
   std::vector<VkDescriptorType> types(gpu::BindingCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -736,6 +737,17 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
+  // One buffer holds a forwarded march's ray states: refused here, before
+  // any pass, not by the buffer's own check between the light pass and the march.
+  const std::uint64_t rays = this->rayStateBytes(setup, setup.Region);
+  const std::uint64_t range = this->Context->limits().maxStorageBufferRange;
+  if (rays > range)
+  {
+    throw VulkanError("the march forwarded through " + std::to_string(this->MarchPieces) + " pieces needs a " +
+        std::to_string(rays) + "-byte buffer of ray states, more than the device's maxStorageBufferRange of " +
+        std::to_string(range) + " bytes; use fewer pixels",
+      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  }
   const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();
   if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())
   {

@@ -310,6 +310,18 @@ private:
   static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
+  // A field the march reads per voxel, its bytes per voxel and its whole
+  // values' copy (VulkanOptions::MarchPieceFieldsOnly).
+  struct FieldCopy
+  {
+    VulkanBuffer* Field;
+    std::uint64_t VoxelBytes;
+    VulkanBuffer* Whole;
+  };
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> marchFields() const;
+  void prepareMarchFieldCopies();
+  std::vector<FieldCopy> marchFieldCopies() const;
+  void recordPieceFields(VkCommandBuffer commands, const std::vector<FieldCopy>& copies, std::pair<int, int> layers) const;
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);
@@ -343,6 +355,8 @@ private:
   std::unique_ptr<DeviceVolume> Volume;
   std::unique_ptr<FrameBuffers> Buffers;
   int MarchPieces = 1; // VulkanOptions::MarchPieces
+  bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
+  std::vector<std::unique_ptr<VulkanBuffer>> WholeFields; // prepareMarchFieldCopies
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
   std::optional<ScatteredLightKey> ScatteredLight;             // what the scattered light buffer holds
   std::string ScatteredLightWarning;                           // the solve's shortfall, if any

@@ -87,16 +87,6 @@ void VulkanBuffer::allocate(VkMemoryRequirements requirements, BufferPlacement p
   }
 }
 
-void VulkanBuffer::recordClear(VkCommandBuffer commands) const
-{
-  vkCmdFillBuffer(commands, this->buffer(), 0, VK_WHOLE_SIZE, 0);
-  auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
-    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-
 namespace
 {
 void barrier(VkCommandBuffer commands, VkPipelineStageFlags from, VkAccessFlags written, VkPipelineStageFlags to,
@@ -108,32 +98,24 @@ void barrier(VkCommandBuffer commands, VkPipelineStageFlags from, VkAccessFlags 
   vkCmdPipelineBarrier(commands, from, to, 0, 1, &memory, 0, nullptr, 0, nullptr);
 }
 
-// Copies out of a buffer: before them the passes' and copies' writes made
-// visible to transfers (a fence wait orders execution, not memory, between
-// submits); after them the copies' writes to the host.
-void beforeCopiesOut(VkCommandBuffer commands)
+// Before copies out of a buffer (copiesAccess: transfer reads) or into one
+// (transfer writes): the passes' and copies' writes made visible to the
+// copies (a fence wait orders execution, not memory, between submits), and
+// the passes' reads done before a copy overwrites what they read.
+void beforeCopies(VkCommandBuffer commands, VkAccessFlags copiesAccess)
 {
   barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-    VK_ACCESS_TRANSFER_READ_BIT);
+    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, copiesAccess);
 }
 
+// After copies out: their writes visible to the host.
 void afterCopiesOut(VkCommandBuffer commands)
 {
   barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
     VK_ACCESS_HOST_READ_BIT);
 }
 
-// Copies into a buffer: before them the passes' reads and writes of it done
-// (they may not overwrite what a pass still reads, nor land before what it
-// wrote); after them the copies' writes visible to the passes.
-void beforeCopiesIn(VkCommandBuffer commands)
-{
-  barrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-    VK_ACCESS_TRANSFER_WRITE_BIT);
-}
-
+// After copies in: their writes visible to the passes.
 void afterCopiesIn(VkCommandBuffer commands)
 {
   barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -165,7 +147,7 @@ std::unique_ptr<VulkanBuffer> stageOut(
   }
   auto staging = std::make_unique<VulkanBuffer>(context, total, "read-back staging", BufferPlacement::HostReadback);
   context.submitAndWait([&](VkCommandBuffer commands) {
-    beforeCopiesOut(commands);
+    beforeCopies(commands, VK_ACCESS_TRANSFER_READ_BIT);
     std::uint64_t offset = 0;
     for (std::size_t i = 0; i < runs.size(); ++i)
     {
@@ -198,6 +180,26 @@ HostReadback::HostReadback(
   std::vector<const char*> views;
   this->Staging = stageOut(context, runs, views);
   this->Views.assign(views.begin(), views.end());
+}
+
+void VulkanBuffer::recordClear(VkCommandBuffer commands) const
+{
+  beforeCopies(commands, VK_ACCESS_TRANSFER_WRITE_BIT);
+  vkCmdFillBuffer(commands, this->buffer(), 0, VK_WHOLE_SIZE, 0);
+  auto barrier = vulkanStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+void VulkanBuffer::recordCopyFrom(
+  VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t begin, std::uint64_t bytes) const
+{
+  beforeCopies(commands, VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+  const VkBufferCopy region{ begin, begin, bytes };
+  vkCmdCopyBuffer(commands, source.buffer(), this->buffer(), 1, &region);
+  afterCopiesIn(commands);
 }
 
 std::uint64_t VulkanBuffer::address() const
@@ -256,7 +258,7 @@ void VulkanBuffer::fillRange(std::uint64_t begin, std::uint64_t bytes, const Con
     [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
       write(first, count, staging.Mapped);
       this->Context.submitAndWait([&](VkCommandBuffer commands) {
-        beforeCopiesIn(commands);
+        beforeCopies(commands, VK_ACCESS_TRANSFER_WRITE_BIT);
         const VkBufferCopy region{ 0, begin + first, count };
         vkCmdCopyBuffer(commands, staging.buffer(), this->buffer(), 1, &region);
         afterCopiesIn(commands);
@@ -277,7 +279,7 @@ void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const Con
   this->inStagingRounds(bytes, BufferPlacement::HostReadback, " (read-back staging)",
     [&](std::uint64_t first, std::uint64_t count, VulkanBuffer& staging) {
       this->Context.submitAndWait([&](VkCommandBuffer commands) {
-        beforeCopiesOut(commands);
+        beforeCopies(commands, VK_ACCESS_TRANSFER_READ_BIT);
         const VkBufferCopy region{ begin + first, 0, count };
         vkCmdCopyBuffer(commands, this->buffer(), staging.buffer(), 1, &region);
         afterCopiesOut(commands);
@@ -330,7 +332,7 @@ void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*
     return;
   }
   runs.front().Buffer->context().submitAndWait([&](VkCommandBuffer commands) {
-    beforeCopiesIn(commands);
+    beforeCopies(commands, VK_ACCESS_TRANSFER_WRITE_BIT);
     for (std::size_t i = 0; i < runs.size(); ++i)
     {
       if (copies[i].size > 0)

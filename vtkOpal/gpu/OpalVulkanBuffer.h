@@ -80,9 +80,14 @@ public:
   void write(std::uint64_t begin, std::uint64_t bytes, const void* source);
   // A round's bytes: a multiple of every field's value (at most 16 bytes).
   static constexpr std::uint64_t FillRoundBytes = std::uint64_t(64) << 20;
-  // Records: the whole buffer set to zero on the device, then a barrier so
-  // that the next dispatch (or indirect dispatch) sees it.
+  // Records: the whole buffer set to zero on the device, after the passes'
+  // and copies' reads and writes of it, then a barrier so that the next
+  // dispatch (or indirect dispatch) sees it.
   void recordClear(VkCommandBuffer commands) const;
+  // Records: bytes [begin, begin + bytes) of `source` copied into the same
+  // bytes of this buffer, after the passes' and copies' reads and writes of
+  // either, before the next dispatch's.
+  void recordCopyFrom(VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t begin, std::uint64_t bytes) const;
   VulkanContext& context() const { return this->Context; }
 
 private:

@@ -41,6 +41,12 @@ struct VulkanOptions
   // (slabs of layers z) as the data-parallel render would between ranks
   // (docs/design.md §8.1), in one process: 1, none.
   int MarchPieces = 1;
+  // With MarchPieces, each piece's dispatch finds the fields the march reads
+  // per voxel (SurfaceDistance aside) only for its layers and a one-voxel
+  // halo, every other layer zeroed, as a rank holding only its piece would
+  // lack them (the whole fields back after the march): a test that the
+  // march reads no further (docs/design.md §8.1).
+  bool MarchPieceFieldsOnly = false;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.
   struct SimulatedLimits
