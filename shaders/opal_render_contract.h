@@ -344,12 +344,16 @@ struct MarchWork
   ivec2 piece;
   int resumed;
 };
+// The most layers z a step of the view march's surface traces passes; a
+// forwarded march's piece reads SurfaceDistance ViewTraceLayers + 2 layers
+// beyond its own (docs/design.md §8.1).
+OPAL_CONSTANT int ViewTraceLayers = 4;
 // The words a forwarded march keeps per ray, exactly (view_march.comp's
-// keepRay and its layer word): its place, walk and round, its recorded
-// crossings, its sums and, with energy conservation, the last Bragg shadow it
-// met (41 bins and 16 nodes: 1.5 KB), and its pixel's sums so far.
+// keepRay and its layer word): its place, its entry and exit traces, walk and
+// round, its recorded crossings, its sums and, with energy conservation, the
+// last Bragg shadow it met (41 bins and 16 nodes: 1.5 KB), and its pixel's sums so far.
 #define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
-  (174 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
+  (182 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 
 // Push constants of the highlight's shade pass: the queued pixels
 // [first, first + count) this dispatch shades.

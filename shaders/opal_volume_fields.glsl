@@ -136,41 +136,81 @@ float bisectSurface(vec3 origin, vec3 direction, float outsideT, float insideT)
   return insideT;
 }
 
-// First zero of SurfaceDistance along the ray in [tStart, tEnd] going from
-// outside (positive) to inside: sphere tracing with steps of at least
-// minStep, then bisection. -1 if none.
-float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd, float minStep)
+// A trace of SurfaceDistance's first zero along a ray, by sphere tracing and
+// then bisection: an entry (from outside in) or an exit (from inside out).
+// Its steps can stop and go on: a forwarded march's ray goes on in the piece
+// its next point lies in (docs/design.md §8.1).
+struct SurfaceTrace
 {
-  float t = tStart;
-  float previous = t;
-  for (int i = 0; i < 1024 && t <= tEnd; ++i)
-  {
-    float d = surfaceDistance(origin + t * direction);
-    if (d <= 0.0)
-    {
-      return bisectSurface(origin, direction, previous, t);
-    }
-    previous = t;
-    t += max(0.9 * d, minStep);
-  }
-  return -1.0;
+  float t;        // the next point to read; once done, the zero (an entry's -1: none; an exit's: tEnd at most)
+  float previous; // the last point read on the side the trace started
+  int steps;      // points read
+  bool done;
+};
+
+// How a trace steps: which way it crosses, its least step (mm), the most
+// layers z a step may pass (0: any; the view's traces, so that a forwarded
+// march bisects and takes the normal near the point that ended the steps),
+// and whether it may stop before a point SURFACE_POINT_HELD does not hold.
+struct TraceRule
+{
+  bool entering;
+  float minStep;
+  float stepLayers;
+  bool pausable;
+};
+
+// Whether SurfaceDistance at p is read here: everywhere but in a forwarded
+// march, which defines it before this file.
+#ifndef SURFACE_POINT_HELD
+#define SURFACE_POINT_HELD(p) true
+#endif
+
+SurfaceTrace surfaceTrace(float tStart)
+{
+  return SurfaceTrace(tStart, tStart, 0, false);
 }
 
-// Where a ray starting inside leaves the surface (SurfaceDistance turns positive), or tEnd.
-float traceSurfaceExit(vec3 origin, vec3 direction, float tEnd)
+// Steps `s` on (at most 1024 points entering, 4096 leaving, and with a
+// bound on the steps' layers as many more as it can take across the grid's
+// layers) until it is done, or, pausable, its next point is not held here
+// (false), or its last point on its starting side lies beyond `limit` (an
+// exit traced only as far as a walk needs it: the zero lies beyond that
+// point; 1e30: no limit, which the compiler folds away).
+bool traceSurfaceOn(inout SurfaceTrace s, vec3 origin, vec3 direction, float tEnd, TraceRule rule, float limit)
 {
-  float h = P.smallestSpacing;
-  float t = 0.0;
-  float previous = t;
-  for (int i = 0; i < 4096 && t <= tEnd; ++i)
+  if (s.done) return true;
+  bool bounded = rule.stepLayers > 0.0;
+  float longest = bounded ? rule.stepLayers * P.gridSpacing.z / max(abs(direction.z), 1e-20) : 1e30;
+  int most = (rule.entering ? 1024 : 4096) + (bounded ? int(float(P.gridDimensions.z) / rule.stepLayers) + 1 : 0);
+  for (; s.steps < most && s.t <= tEnd; ++s.steps)
   {
-    float d = surfaceDistance(origin + t * direction);
-    if (d > 0.0)
+    if (limit < 1e30 && s.previous > limit) return true;
+    vec3 p = origin + s.t * direction;
+    if (rule.pausable && !SURFACE_POINT_HELD(p)) return false;
+    float d = surfaceDistance(p);
+    if (rule.entering ? d <= 0.0 : d > 0.0)
     {
-      return bisectSurface(origin, direction, t, previous);
+      // The bisection's outside end first: the last point for an entry, this one for an exit.
+      float outside = rule.entering ? s.previous : s.t, inside = rule.entering ? s.t : s.previous;
+      s.t = bisectSurface(origin, direction, outside, inside);
+      s.done = true;
+      return true;
     }
-    previous = t;
-    t += max(-0.9 * d, 0.05 * h);
+    s.previous = s.t;
+    s.t += min(max(rule.entering ? 0.9 * d : -0.9 * d, rule.minStep), longest);
   }
-  return min(t, tEnd);
+  s.t = rule.entering ? -1.0 : min(s.t, tEnd);
+  s.done = true;
+  return true;
+}
+
+// First zero of SurfaceDistance along the ray in [tStart, tEnd] going from
+// outside (positive) to inside, in steps of at least minStep (of any
+// length); -1 if none.
+float traceSurfaceEntry(vec3 origin, vec3 direction, float tStart, float tEnd, float minStep)
+{
+  SurfaceTrace s = surfaceTrace(tStart);
+  traceSurfaceOn(s, origin, direction, tEnd, TraceRule(true, minStep, 0.0, false), 1e30);
+  return s.t;
 }

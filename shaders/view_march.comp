@@ -44,6 +44,10 @@ const bool SCATTERED_LIGHT = SCATTERED_LIGHT_MODE != MarchScatteredLightNone;
 // march walks only the layers z in marchWork.piece and keeps a ray that
 // leaves them for the dispatch of the piece it enters.
 layout(constant_id = MarchForwardedConstant) const bool FORWARDED = false;
+// A forwarded ray's entry trace reads SurfaceDistance only at points in its
+// piece, and goes on in the piece of the next (defined below).
+bool surfacePointHeld(vec3 p);
+#define SURFACE_POINT_HELD(p) surfacePointHeld(p)
 
 #define PAIRED_FIELDS_CONSTANT MarchPairedFieldsConstant
 #include "opal_volume_fields.glsl"
@@ -647,9 +651,57 @@ bool inMarchPiece(ivec3 cell)
   return z >= marchWork.piece.x && z < marchWork.piece.y;
 }
 
+// Whether the forwarded march's piece holds p; the layer of the last point
+// asked about, where a paused entry trace goes on (the same rounding as the test).
+int askedLayer;
+bool surfacePointHeld(vec3 p)
+{
+  if (!FORWARDED) return true;
+  ivec3 cell = voxelOf(p);
+  askedLayer = cell.z;
+  return inMarchPiece(cell);
+}
+
+// The refracted ray being marched: from rayOrigin along rayInward to where it
+// leaves the opal (exitTrace); its entry trace while it is not yet entered;
+// where its walk stands, in which round, and that round's crossings and steps
+// so far (all a forwarded march keeps, keepRay).
+vec3 rayOrigin;
+vec3 rayInward;
+SurfaceTrace entryTrace;
+SurfaceTrace exitTrace;
+bool rayEntered;
+WalkState walkState;
+int walkRound;
+int walkCount;
+int walkGuard;
+
+// The view ray's traces step at most ViewTraceLayers layers z: a forwarded
+// march then bisects, and takes the normal at the entry, within
+// ViewTraceLayers + 2 layers of the piece whose point ended the steps
+// (the halo of SurfaceDistance a piece holds), and traces the exit no
+// further ahead of its walk (docs/design.md §8.1). Unforwarded the same, so
+// that both find the same surface.
+TraceRule viewTrace(bool entering)
+{
+  return TraceRule(entering, 0.05 * P.smallestSpacing, float(ViewTraceLayers), entering);
+}
+
+// The refracted ray's exit (`exit`, the trace to tEnd of the ray from origin
+// along inward), traced only as far as the walk needs it (a forwarded march
+// reads SurfaceDistance only near its walk): where it lies, or, while it lies
+// beyond `t`, a point before it and beyond t (the trace's last point inside),
+// which stands for it in every comparison with t. (The test before the call
+// is traceSurfaceOn's own: it spares the walk a call in most cells.)
+float exitBeyond(inout SurfaceTrace exit, vec3 origin, vec3 inward, float tEnd, float t)
+{
+  if (!exit.done && exit.previous <= t) traceSurfaceOn(exit, origin, inward, tEnd, viewTrace(false), t);
+  return exit.done ? exit.t : exit.previous;
+}
+
 // Walks the refracted ray on from `state`, gathering scattering and
 // recording domain crossings (`count` so far in this round, `guard` its
-// steps), until it leaves the opal at tExit or the record is full. False
+// steps), until it leaves the opal (exitBeyond) or the record is full. False
 // where it leaves the forwarded march's piece first: the walk goes on from
 // there in the piece it enters, as if never interrupted.
 // With ENERGY_CONSERVATION a round records one crossing and ends where the
@@ -657,11 +709,17 @@ bool inMarchPiece(ivec3 cell)
 // gathers scattering in one Bragg shadow besides the unshadowed light, and
 // ends before a voxel in another (outside a crossing: inside one, the
 // domain's own scattering keeps the round's shadow).
-bool walkRecording(inout WalkState state, inout int count, inout int guard, vec3 origin, vec3 inward, float tExit)
+bool walkRecording(
+  inout WalkState state, inout SurfaceTrace exit, inout int count, inout int guard, vec3 origin, vec3 inward)
 {
+  // Unforwarded the exit is traced whole at the start; forwarded, a cell at a
+  // time, once the cell is known to lie in the piece (1e30 stands for it before).
+  float tEnd = gridBoxHits(origin, inward).y;
+  float tExit = FORWARDED ? 1e30 : exitBeyond(exit, origin, inward, tEnd, 1e30);
   for (; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
     if (FORWARDED && !inMarchPiece(state.walk.cell)) return false;
+    if (FORWARDED) tExit = exitBeyond(exit, origin, inward, tEnd, cellExit(state.walk));
     float tNext = min(cellExit(state.walk), tExit);
     float segment = tNext - state.t;
     if (segment > 0.0 && insideGrid(state.walk.cell))
@@ -735,17 +793,6 @@ void flushScattering(inout WalkState state)
   state.shadow = NO_SHADOW;
 }
 
-// The refracted ray being marched: from rayOrigin along rayInward to where it
-// leaves the opal at rayExit; where its walk stands, in which round, and that
-// round's crossings and steps so far (all a forwarded march keeps, keepRay).
-vec3 rayOrigin;
-vec3 rayInward;
-float rayExit;
-WalkState walkState;
-int walkRound;
-int walkCount;
-int walkGuard;
-
 // The refracted ray voxel by voxel on from where it stands to where it leaves
 // the opal, gathering scattering and each domain once per crossing; false
 // where it leaves the forwarded march's piece first.
@@ -753,13 +800,15 @@ bool marchOn()
 {
   // Locals while it walks (the walk's loop on private globals was ~5% slower on lavapipe).
   WalkState state = walkState;
+  SurfaceTrace exit = exitTrace;
   int round = walkRound, count = walkCount, guard = walkGuard;
   vec3 origin = rayOrigin, inward = rayInward;
   for (; round < 4096 && !state.done; ++round)
   {
-    if (!walkRecording(state, count, guard, origin, inward, rayExit))
+    if (!walkRecording(state, exit, count, guard, origin, inward))
     {
       walkState = state;
+      exitTrace = exit;
       walkRound = round;
       walkCount = count;
       walkGuard = guard;
@@ -827,8 +876,8 @@ void resetRay()
   firstCrossedDomain = -1;
 }
 
-// A forwarded ray's words in rayStates: the layer its walk stands in (the
-// piece that takes it up), or RAY_FINISHED once its pixel has it; then what
+// A forwarded ray's words in rayStates: the layer its walk stands in, or its
+// entry trace's next point (the piece that takes it up), or RAY_FINISHED once its pixel has it; then what
 // keepRay keeps.
 const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
 const uint RAY_FINISHED = 0xffffffffu;
@@ -868,6 +917,16 @@ void keepShadow(inout LightShadow shadow)
   keepInt(shadow.domain);
   keepFloat(shadow.lengthMm);
   keepFloat(shadow.ownLengthMm);
+}
+
+void keepTrace(inout SurfaceTrace trace)
+{
+  keepFloat(trace.t);
+  keepFloat(trace.previous);
+  keepInt(trace.steps);
+  int done = trace.done ? 1 : 0;
+  keepInt(done);
+  trace.done = done != 0;
 }
 
 void keepWalk()
@@ -939,7 +998,11 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
   keepFloat(transmitted);
   keepVec3(rayOrigin);
   keepVec3(rayInward);
-  keepFloat(rayExit);
+  keepTrace(entryTrace);
+  keepTrace(exitTrace);
+  int entered = rayEntered ? 1 : 0;
+  keepInt(entered);
+  rayEntered = entered != 0;
   keepWalk();
   keepFloat(dominantLambda);
   keepFloat(dominantY);
@@ -957,7 +1020,7 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
 }
 
 // A forwarded march's ray taken up again by a later dispatch: false where its
-// pixel has it already or it walks on in another piece (one word read).
+// pixel has it already or it traces or walks on in another piece (one word read).
 bool resumeRay(int slot, inout PixelSum sum, out float tHit, out float transmitted)
 {
   tHit = 0.0;
@@ -997,19 +1060,27 @@ bool ringPixel(int item, out ivec2 local)
   return item < 2 * size.y;
 }
 
-// Starts the primary ray through `pixel` (image coordinates): false where it
-// misses the opal; else its distance to the surface and the share 1 - F of
-// the light it carries out, and its refracted ray ready to march (marchOn).
-// With `mirror` >= 0 it records at that pixel where its mirror image passes
-// the light (for the highlight pass).
-bool startRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
+// What enterRay found of a primary ray: the opal (its refracted ray ready to
+// march), no opal, or (forwarded) the next point of its entry trace in another piece.
+const int RAY_ENTERED = 1, RAY_MISSED = 0, RAY_PAUSED = -1;
+
+// Traces the primary ray through `pixel` (image coordinates) to the opal,
+// from the grid's box (`fresh`) or on from entryTrace. Entered: its distance to the surface (tHit) and the
+// share 1 - F of the light it carries out (transmitted), its refracted ray
+// ready to march (marchOn). With `mirror` >= 0 it records at that pixel where
+// its mirror image passes the light (for the highlight pass).
+int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float transmitted)
 {
   vec3 eye = P.eye;
   vec3 direction = primaryDirection(pixel);
   vec2 box = gridBoxHits(eye, direction);
-  tHit = box.x <= box.y ? traceSurfaceEntry(eye, direction, box.x, box.y, 0.05 * P.smallestSpacing) : -1.0;
+  tHit = -1.0;
   transmitted = 0.0;
-  if (tHit < 0.0) return false;
+  if (box.x > box.y) return RAY_MISSED;
+  if (fresh) entryTrace = surfaceTrace(box.x);
+  if (!traceSurfaceOn(entryTrace, eye, direction, box.y, viewTrace(true), 1e30)) return RAY_PAUSED;
+  tHit = entryTrace.t;
+  if (tHit < 0.0) return RAY_MISSED;
   resetRay();
   // P_in: Fresnel reflection of the light and refraction of the view ray (paper §6.1).
   vec3 entry = eye + tHit * direction;
@@ -1026,12 +1097,19 @@ bool startRay(vec2 pixel, int mirror, out float tHit, out float transmitted)
   vec3 inward = refract(direction, normal, 1.0 / mu);
   rayOrigin = entry - 1e-4 * P.smallestSpacing * normal;
   rayInward = inward;
-  rayExit = traceSurfaceExit(rayOrigin, inward, gridBoxHits(rayOrigin, inward).y);
+  exitTrace = surfaceTrace(0.0);
+  rayEntered = true;
   walkState = WalkState(startWalk(rayOrigin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
   walkRound = 0;
   walkCount = 0;
   walkGuard = 0;
-  return true;
+  return RAY_ENTERED;
+}
+
+// The layer z a forwarded ray goes on in: its walk's, or its entry trace's next point's.
+int rayLayer()
+{
+  return clamp(rayEntered ? walkState.walk.cell.z : askedLayer, 0, P.gridDimensions.z - 1);
 }
 
 // Adds a marched ray, `weight` of the pixel. Spectral radiance: the light's
@@ -1215,14 +1293,14 @@ bool queuedPixel(int stage, out ivec2 local, out int item, out bool outline)
 // Sub-ray `subRay` of the n x n of the pixel `local` (n = 1: its centre ray),
 // started and marched (its pixel's sums so far in `sum`), or in a forwarded
 // march's later dispatch taken up again: false where it finished before or
-// walks on in another piece (saved for it); else whether it met the opal,
+// traces or walks on in another piece (saved for it); else whether it met the opal,
 // where, and the share 1 - F it carries out.
 bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, bool spectrum, inout PixelSum sum,
   out bool hit, out float tHit, out float transmitted)
 {
   int slot = marchItem();
-  hit = true;
-  if (FORWARDED && marchWork.resumed != 0)
+  bool resumed = FORWARDED && marchWork.resumed != 0;
+  if (resumed)
   {
     if (!resumeRay(slot, sum, tHit, transmitted)) return false;
   }
@@ -1230,12 +1308,14 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   {
     if (outline) sum.alike = 0;
     if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
-    vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
-    hit = startRay(at, n == 1 ? pixelIndex : -1, tHit, transmitted);
+    rayEntered = false;
   }
-  if (hit && !marchOn())
+  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
+  int entry = rayEntered ? RAY_ENTERED : enterRay(at, n == 1 ? pixelIndex : -1, !resumed, tHit, transmitted);
+  hit = entry == RAY_ENTERED;
+  if (entry == RAY_PAUSED || (hit && !marchOn()))
   {
-    rayStates[slot * RAY_WORDS] = uint(clamp(walkState.walk.cell.z, 0, P.gridDimensions.z - 1));
+    rayStates[slot * RAY_WORDS] = uint(rayLayer());
     keepRay(slot, true, sum, tHit, transmitted);
     return false;
   }

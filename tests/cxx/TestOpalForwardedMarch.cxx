@@ -2,9 +2,10 @@
 // (docs/design.md §8.1), in one process: each dispatch walks only one slab of
 // layers z, a ray leaving it is saved and taken up by the dispatch of the
 // slab it enters. The data-parallel render is to forward rays so between
-// ranks. Each piece's dispatch finds the fields it reads per voxel
-// (SurfaceDistance aside) only for its layers and a one-voxel halo, the rest
-// zeroed, as a rank holding only its piece would lack them. The forwarded
+// ranks. Each piece's dispatch finds the fields it reads per voxel only for
+// its layers and their halo (one layer; SurfaceDistance, which the entry and
+// exit traces read, six), the rest zeroed, as a rank holding only its piece
+// would lack them. The forwarded
 // march must give the image of the march never forwarded, value for value:
 // every state a ray carries across a face (its walk and round, its recorded
 // crossings, its sums on the nodes and bins, its pixel's sums) comes back bit
@@ -29,7 +30,7 @@ namespace
 // The image through `pieces` pieces, under the validation layer (its
 // synchronization checks included: a ray state read before its write is a
 // message); with `piecesOnly`, each piece's dispatch finds the fields it
-// reads per voxel only for its layers and a one-voxel halo, the others zeroed.
+// reads per voxel only for its layers and their halo, the others zeroed.
 opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces,
   opal::VulkanOptions options = {}, bool piecesOnly = true)
 {

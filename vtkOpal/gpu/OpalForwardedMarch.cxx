@@ -21,11 +21,12 @@ using namespace sessiondetail;
 
 // Records the march's `work` over groupsX x groupsY workgroups: one
 // dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
-// per piece of layers z, the pieces in order and then back (2N - 1
-// dispatches): a straight ray walks z one way, so the sweep its way takes
-// it from the piece it starts in to the one it leaves from. With
-// MarchPieceFieldsOnly each dispatch finds only its piece's fields
-// (recordPieceFields), the whole fields back after the last.
+// per piece of layers z, the pieces in order, back, in order and back again
+// (4N - 3 dispatches). A ray's points move along z one way while it traces
+// its entry, may step back (a piece or more) to where its walk begins, and move one
+// way while it walks: four sweeps take every ray from the piece it starts in
+// to the one it leaves from. With MarchPieceFieldsOnly each dispatch finds
+// only its piece's fields (recordPieceFields), the whole fields back after the last.
 void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
@@ -36,9 +37,11 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
   {
     copy.Whole->recordCopyFrom(commands, *copy.Field, 0, copy.Field->size());
   }
-  for (int pass = 0; pass < 2 * pieces - 1; ++pass)
+  const int period = 2 * pieces - 2;
+  for (int pass = 0; pass < std::max(2 * period + 1, 1); ++pass)
   {
-    const int piece = pass < pieces ? pass : 2 * pieces - 2 - pass;
+    const int at = period > 0 ? pass % period : 0;
+    const int piece = at < pieces ? at : period - at;
     const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
     this->recordPieceFields(commands, copies, layers);
     pieceWork.piece = gpu::ivec2(layers.first, layers.second);
@@ -51,10 +54,12 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
   }
 }
 
-// The per-voxel fields the view march reads, with their bytes per voxel,
-// SurfaceDistance aside (its traces read whole rays, docs/design.md §8.1):
-// the cells, the absorption's, the light pass's and the every-order field.
-std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::marchFields() const
+// The fields the view march reads per voxel, with their bytes per voxel and
+// the layers z beyond a piece its reads take (docs/design.md §8.1): the
+// cells, the absorption's, the light pass's and the every-order field one
+// (the light field's trilinear read); SurfaceDistance ViewTraceLayers + 2
+// (the view traces' steps, their bisection and the normal at the entry).
+std::vector<RenderSession::FieldCopy> RenderSession::marchFields() const
 {
   const DeviceVolume& v = *this->Volume;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields = this->lightPassFields(v.HasShadowField);
@@ -68,7 +73,14 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::marchFields(
     const auto scattered = this->scatteredFieldFields();
     fields.insert(fields.end(), scattered.begin(), scattered.end());
   }
-  return fields;
+  std::vector<FieldCopy> copies;
+  for (const auto& [field, bytes] : fields)
+  {
+    copies.push_back({ field, bytes, 1, nullptr });
+  }
+  copies.push_back(
+    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::ViewTraceLayers + 2, nullptr });
+  return copies;
 }
 
 // With MarchPieceFieldsOnly and MarchPieces above 1, a buffer for the whole
@@ -81,40 +93,39 @@ void RenderSession::prepareMarchFieldCopies()
   {
     return;
   }
-  for (const auto& [field, bytes] : this->marchFields())
+  for (const FieldCopy& copy : this->marchFields())
   {
     this->WholeFields.push_back(
-      std::make_unique<VulkanBuffer>(*this->Context, field->size(), "whole field", this->Volume->FieldPlacement));
+      std::make_unique<VulkanBuffer>(*this->Context, copy.Field->size(), "whole field", this->Volume->FieldPlacement));
   }
 }
 
 // The march's fields with their whole copies (prepareMarchFieldCopies).
 std::vector<RenderSession::FieldCopy> RenderSession::marchFieldCopies() const
 {
-  std::vector<FieldCopy> copies;
   if (this->WholeFields.empty())
   {
-    return copies;
+    return {};
   }
-  const std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields = this->marchFields();
-  for (std::size_t i = 0; i < fields.size(); ++i)
+  std::vector<FieldCopy> copies = this->marchFields();
+  for (std::size_t i = 0; i < copies.size(); ++i)
   {
-    copies.push_back({ fields[i].first, fields[i].second, this->WholeFields.at(i).get() });
+    copies[i].Whole = this->WholeFields.at(i).get();
   }
   return copies;
 }
 
-// Records: each field zeroed but for the piece's layers and a one-voxel halo
-// on either side (the light field's trilinear reads), which take the whole
-// field's values: a rank that holds only its piece lacks the rest, so a
-// march reading beyond would change the image (TestOpalForwardedMarch).
+// Records: each field zeroed but for the piece's layers and its halo on
+// either side, which take the whole field's values: a rank that holds only
+// its piece lacks the rest, so a march reading beyond would change the image
+// (TestOpalForwardedMarch).
 void RenderSession::recordPieceFields(
   VkCommandBuffer commands, const std::vector<FieldCopy>& copies, std::pair<int, int> layers) const
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
-  const int first = std::max(layers.first - 1, 0), last = std::min(layers.second + 1, dims[2]);
   for (const FieldCopy& copy : copies)
   {
+    const int first = std::max(layers.first - copy.Halo, 0), last = std::min(layers.second + copy.Halo, dims[2]);
     const std::uint64_t layerBytes = static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]) * copy.VoxelBytes;
     // The last layer's copy runs to the buffer's end: an unpaired field's
     // read of a voxel and the next one (the grid's last voxel has none) may pass it.

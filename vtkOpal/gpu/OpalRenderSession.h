@@ -310,15 +310,17 @@ private:
   static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
-  // A field the march reads per voxel, its bytes per voxel and its whole
-  // values' copy (VulkanOptions::MarchPieceFieldsOnly).
+  // A field the march reads per voxel, its bytes per voxel, the layers
+  // beyond a piece its reads take, and its whole values' copy
+  // (VulkanOptions::MarchPieceFieldsOnly).
   struct FieldCopy
   {
     VulkanBuffer* Field;
     std::uint64_t VoxelBytes;
+    int Halo;
     VulkanBuffer* Whole;
   };
-  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> marchFields() const;
+  std::vector<FieldCopy> marchFields() const;
   void prepareMarchFieldCopies();
   std::vector<FieldCopy> marchFieldCopies() const;
   void recordPieceFields(VkCommandBuffer commands, const std::vector<FieldCopy>& copies, std::pair<int, int> layers) const;

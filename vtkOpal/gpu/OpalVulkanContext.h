@@ -42,8 +42,8 @@ struct VulkanOptions
   // (docs/design.md §8.1), in one process: 1, none.
   int MarchPieces = 1;
   // With MarchPieces, each piece's dispatch finds the fields the march reads
-  // per voxel (SurfaceDistance aside) only for its layers and a one-voxel
-  // halo, every other layer zeroed, as a rank holding only its piece would
+  // per voxel only for its layers and their halo (one layer, SurfaceDistance
+  // ViewTraceLayers + 2), every other layer zeroed, as a rank holding only its piece would
   // lack them (the whole fields back after the march): a test that the
   // march reads no further (docs/design.md §8.1).
   bool MarchPieceFieldsOnly = false;
