@@ -26,16 +26,18 @@ if [[ "$mode" == run ]]; then
 else
   # Open MPI refuses to run as root unless told (the MPI tests set this too).
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-  ctest --test-dir "$build" --output-on-failure
+  # Two tests at a time: much of a test is one thread (a process's start, the
+  # device's set-up, the sanitized host code), so the second core would idle.
+  ctest --test-dir "$build" --output-on-failure -j2
   # The second configuration: the C++ tests (the Vulkan ones on lavapipe
   # included) and the programs under AddressSanitizer and UBSan.
   sanitize="${build}-sanitize"
   cmake -S "$root" -B "$sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOPAL_SANITIZE=ON
   cmake --build "$sanitize" -j2 --target opal-cxx-tests
-  ctest --test-dir "$sanitize" --output-on-failure -L cxx
+  ctest --test-dir "$sanitize" --output-on-failure -L cxx -j2
   # The fuzz targets (libFuzzer, clang): kept regression inputs, then a bounded run each.
   fuzz="${build}-fuzz"
   cmake -S "$root/fuzz" -B "$fuzz" -DCMAKE_CXX_COMPILER=clang++
   cmake --build "$fuzz" -j2
-  ctest --test-dir "$fuzz" --output-on-failure
+  ctest --test-dir "$fuzz" --output-on-failure -j2
 fi
