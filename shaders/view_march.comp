@@ -989,20 +989,24 @@ void keepShadowedSums()
 // forwarded between pieces is marched step for step as one never forwarded
 // (one layout both ways), the last Bragg shadow evaluated included (its
 // value follows the path length it was first met with, not its domain
-// alone). The absorption's node factors are evaluated again.
+// alone). The absorption's node factors are evaluated again. A ray still
+// tracing its entry keeps only that trace and its pixel's sums (16 words):
+// entering sets the rest.
 void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout float transmitted)
 {
   raySaving = saving;
   rayWord = slot * RAY_WORDS + 1;
+  keepTrace(entryTrace);
+  keepSum(sum);
+  int entered = rayEntered ? 1 : 0;
+  keepInt(entered);
+  rayEntered = entered != 0;
+  if (!rayEntered) return;
   keepFloat(tHit);
   keepFloat(transmitted);
   keepVec3(rayOrigin);
   keepVec3(rayInward);
-  keepTrace(entryTrace);
   keepTrace(exitTrace);
-  int entered = rayEntered ? 1 : 0;
-  keepInt(entered);
-  rayEntered = entered != 0;
   keepWalk();
   keepFloat(dominantLambda);
   keepFloat(dominantY);
@@ -1012,7 +1016,6 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
   keepFloat(scatteredNodes.y);
   keepFloat(scatteredNodes.z);
   keepFloat(scatteredNodes.w);
-  keepSum(sum);
   for (int l = 0; l < WAVELENGTHS; ++l) keepFloat(radiance[l]);
   for (int k = 0; k < SPECTRAL_NODES; ++k) keepFloat(scatterNodes[k]);
   if (ENERGY_CONSERVATION) keepShadowedSums(); // else never read
