@@ -167,6 +167,13 @@ std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::a
   return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
 }
 
+// The frame's largest march: over its region or the exposure's thumbnail.
+std::uint64_t RenderSession::frameRayStateBytes(const FrameSetup& setup) const
+{
+  return std::max(
+    this->rayStateBytes(setup, setup.Region), this->rayStateBytes(setup, { 0, 0, setup.Thumbnail[0], setup.Thumbnail[1] }));
+}
+
 // The ray states of rayStateBytes, grown as the pixel buffers are (and bound
 // again); a refused allocation keeps the buffer bound before.
 void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)

@@ -192,10 +192,8 @@ std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const
   }
   if (!context.bufferDeviceAddresses())
   {
-    throw VulkanError("the volume's light field needs a " + std::to_string(widest) +
-        "-byte buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
-        " bytes, and the device cannot address buffers (bufferDeviceAddress); use fewer voxels",
-      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    throw storageRangeError("the volume's light field needs", widest, "buffer", range,
+      ", and the device cannot address buffers (bufferDeviceAddress); use fewer voxels");
   }
   return { BufferPlacement::DeviceAddressed, volume.Dimensions[0] == 1 };
 }
@@ -722,8 +720,7 @@ std::uint64_t RenderSession::frameImageBytes(const FrameSetup& setup, bool kept)
   const std::uint64_t capacity = kept ? std::max(setup.PixelCapacity, b.PixelCapacity) : setup.PixelCapacity;
   const std::uint64_t spectrumBytes =
     kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
-  const std::uint64_t rays = std::max(this->rayStateBytes(setup, setup.Region), this->rayStateBytes(setup,
-    { 0, 0, setup.Thumbnail[0], setup.Thumbnail[1] }));
+  const std::uint64_t rays = this->frameRayStateBytes(setup);
   return capacity * ImageBytesPerPixel + spectrumBytes +
     (kept ? std::max<std::uint64_t>(rays, b.RayStates->size()) : rays);
 }
@@ -739,14 +736,12 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
   // One buffer holds a forwarded march's ray states: refused here, before
   // any pass, not by the buffer's own check between the light pass and the march.
-  const std::uint64_t rays = this->rayStateBytes(setup, setup.Region);
+  const std::uint64_t rays = this->frameRayStateBytes(setup);
   const std::uint64_t range = this->Context->limits().maxStorageBufferRange;
   if (rays > range)
   {
-    throw VulkanError("the march forwarded through " + std::to_string(this->MarchPieces) + " pieces needs a " +
-        std::to_string(rays) + "-byte buffer of ray states, more than the device's maxStorageBufferRange of " +
-        std::to_string(range) + " bytes; use fewer pixels",
-      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    throw storageRangeError("the march forwarded through " + std::to_string(this->MarchPieces) + " pieces needs", rays,
+      "buffer of ray states", range, "; use fewer pixels");
   }
   const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();
   if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())

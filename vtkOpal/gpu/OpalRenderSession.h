@@ -309,6 +309,7 @@ private:
     std::uint32_t groupsY = 1) const;
   static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
+  std::uint64_t frameRayStateBytes(const FrameSetup& setup) const;
   void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
   // A field the march reads per voxel, its bytes per voxel, the layers
   // beyond a piece its reads take, and its whole values' copy

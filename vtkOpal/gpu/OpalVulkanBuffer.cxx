@@ -20,10 +20,7 @@ VulkanBuffer::VulkanBuffer(
   const std::uint64_t range = context.limits().maxStorageBufferRange;
   if (this->Size > range && placement != BufferPlacement::DeviceAddressed)
   {
-    throw VulkanError("the " + what + " needs a " + std::to_string(this->Size) +
-        "-byte storage buffer, more than the device's maxStorageBufferRange of " + std::to_string(range) +
-        " bytes; use fewer voxels or pixels",
-      VK_ERROR_OUT_OF_DEVICE_MEMORY);
+    throw storageRangeError("the " + what + " needs", this->Size, "storage buffer", range, "; use fewer voxels or pixels");
   }
   VkDevice device = context.device();
   auto info = vulkanStruct<VkBufferCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO);

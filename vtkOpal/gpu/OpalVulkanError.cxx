@@ -34,4 +34,12 @@ const char* vulkanResultName(VkResult result)
   }
 }
 
+VulkanError storageRangeError(
+  const std::string& needs, std::uint64_t bytes, const std::string& buffer, std::uint64_t range, const std::string& remedy)
+{
+  return VulkanError(needs + " a " + std::to_string(bytes) + "-byte " + buffer +
+      ", more than the device's maxStorageBufferRange of " + std::to_string(range) + " bytes" + remedy,
+    VK_ERROR_OUT_OF_DEVICE_MEMORY);
+}
+
 } // namespace opal

@@ -3,6 +3,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +45,12 @@ public:
 };
 
 const char* vulkanResultName(VkResult result);
+
+// The refusal of a buffer beyond the device's maxStorageBufferRange: "<needs>
+// a <bytes>-byte <buffer>, more than the device's maxStorageBufferRange of
+// <range> bytes<remedy>" (remedy from its "; " or ", ").
+VulkanError storageRangeError(
+  const std::string& needs, std::uint64_t bytes, const std::string& buffer, std::uint64_t range, const std::string& remedy);
 
 // Throws VulkanError("<call> failed: <VK_ERROR_...>") unless result is
 // VK_SUCCESS; DeviceLostError for VK_ERROR_DEVICE_LOST.
