@@ -2,10 +2,10 @@
 // (docs/design.md §8.1), in one process: each dispatch walks only one slab of
 // layers z, a ray leaving it is saved and taken up by the dispatch of the
 // slab it enters. The data-parallel render is to forward rays so between
-// ranks. Each piece's dispatch finds the fields it reads per voxel only for
-// its layers and their halo (one layer; SurfaceDistance, which the entry and
-// exit traces read, six), the rest zeroed, as a rank holding only its piece
-// would lack them. The forwarded
+// ranks. Each piece's dispatch reads the fields it reads per voxel from
+// buffers holding only its layers and their halo (one layer; SurfaceDistance,
+// which the entry and exit traces read, six), addressed from their first
+// layer, as a rank holding only its piece will. The forwarded
 // march must give the image of the march never forwarded, value for value:
 // every state a ray carries across a face (its walk and round, its recorded
 // crossings, its sums on the nodes and bins, its pixel's sums) comes back bit
@@ -15,7 +15,8 @@
 // sub-rays (their sums kept between dispatches) and the spectrum; fire-opal
 // (whose ray carries the most) in 2, 3 and 7 pieces, also with its fields
 // read by address and through staging buffers; more pieces than layers
-// (pieces of none); and ray states beyond the storage-buffer range, refused.
+// (pieces of none); ray states beyond the storage-buffer range, refused; and
+// pieces' fields alone on a device that cannot address buffers, refused.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -29,8 +30,8 @@ namespace
 {
 // The image through `pieces` pieces, under the validation layer (its
 // synchronization checks included: a ray state read before its write is a
-// message); with `piecesOnly`, each piece's dispatch finds the fields it
-// reads per voxel only for its layers and their halo, the others zeroed.
+// message); with `piecesOnly`, each piece's dispatch reads the fields it
+// reads per voxel from buffers of its layers and their halo alone.
 opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces,
   opal::VulkanOptions options = {}, bool piecesOnly = true)
 {
@@ -113,10 +114,11 @@ int TestOpalForwardedMarch(int, char*[])
   const opal::RenderFrame byAddress = unforwarded.Session.render(side);
   OPAL_CHECK(byAddress.Status == opal::FrameStatus::Completed && !byAddress.Ran.PairedFields,
     "set-up: fire-opal's fields held one value per voxel, by address");
-  // (Each piece's fields alone would need their whole copies beside them, beyond this memory limit.)
-  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, addressed, false), byAddress.Image),
-    "fire-opal, its fields by address and through staging: the march forwarded through 3 pieces gives the "
-    "unforwarded image");
+  opal::VulkanOptions staged; // each piece's fields alone are read by address at any memory limit
+  staged.StagingTransfers = true;
+  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
+    "fire-opal, its fields by address and through staging: the march forwarded through 3 pieces, each "
+    "reading its fields alone, gives the unforwarded image");
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
   paper.Dimensions = { 40, 20, 3 };
@@ -148,5 +150,23 @@ int TestOpalForwardedMarch(int, char*[])
   small.ImageSize = { 8, 6 };
   OPAL_CHECK(limited.Session.render(small).Status == opal::FrameStatus::Completed,
     "after the refusal, a frame whose ray states fit completes");
+
+  // Each piece's fields alone are read by address: a device that cannot
+  // address buffers is refused up front, naming what it lacks.
+  opal::VulkanOptions unaddressable;
+  unaddressable.MarchPieces = 2;
+  unaddressable.MarchPieceFieldsOnly = true;
+  unaddressable.Simulated.WithoutBufferDeviceAddress = true;
+  message.clear();
+  try
+  {
+    opaltest::SceneRenderer refused(unaddressable);
+  }
+  catch (const opal::VulkanError& e)
+  {
+    message = e.what();
+  }
+  OPAL_CHECK(message.find("MarchPieceFieldsOnly") != std::string::npos && message.find("bufferDeviceAddress") != std::string::npos,
+    "pieces' fields alone on a device that cannot address buffers: refused, naming both (got: " + message + ")");
   return opaltest::finish("TestOpalForwardedMarch");
 }

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -25,32 +26,30 @@ using namespace sessiondetail;
 // (4N - 3 dispatches). A ray's points move along z one way while it traces
 // its entry, may step back (a piece or more) to where its walk begins, and move one
 // way while it walks: four sweeps take every ray from the piece it starts in
-// to the one it leaves from. With MarchPieceFieldsOnly each dispatch finds
-// only its piece's fields (recordPieceFields), the whole fields back after the last.
+// to the one it leaves from. With MarchPieceFieldsOnly each dispatch reads
+// its piece's fields alone (recordPieceFields), the whole fields' addresses
+// back after the last.
 void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
   gpu::MarchWork pieceWork = work;
   const int pieces = this->MarchPieces;
-  const std::vector<FieldCopy> copies = this->marchFieldCopies();
-  for (const FieldCopy& copy : copies)
-  {
-    copy.Whole->recordCopyFrom(commands, *copy.Field, 0, copy.Field->size());
-  }
+  const std::vector<PieceField> fields = this->pieceFields();
   const int period = 2 * pieces - 2;
   for (int pass = 0; pass < std::max(2 * period + 1, 1); ++pass)
   {
     const int at = period > 0 ? pass % period : 0;
     const int piece = at < pieces ? at : period - at;
     const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
-    this->recordPieceFields(commands, copies, layers);
+    this->recordPieceFields(commands, fields, layers);
     pieceWork.piece = gpu::ivec2(layers.first, layers.second);
     pieceWork.resumed = pass > 0 ? 1 : 0;
     march.dispatch(commands, pieceWork, groupsX, groupsY);
   }
-  for (const FieldCopy& copy : copies)
+  if (!fields.empty())
   {
-    copy.Field->recordCopyFrom(commands, *copy.Whole, 0, copy.Field->size());
+    const gpu::VolumeAddresses whole = this->volumeAddresses({});
+    this->Volume->Addresses->recordWrite(commands, &whole, sizeof(whole));
   }
 }
 
@@ -59,7 +58,7 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
 // cells, the absorption's, the light pass's and the every-order field one
 // (the light field's trilinear read); SurfaceDistance ViewTraceLayers + 2
 // (the view traces' steps, their bisection and the normal at the entry).
-std::vector<RenderSession::FieldCopy> RenderSession::marchFields() const
+std::vector<RenderSession::PieceField> RenderSession::marchFields() const
 {
   const DeviceVolume& v = *this->Volume;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields = this->lightPassFields(v.HasShadowField);
@@ -73,69 +72,91 @@ std::vector<RenderSession::FieldCopy> RenderSession::marchFields() const
     const auto scattered = this->scatteredFieldFields();
     fields.insert(fields.end(), scattered.begin(), scattered.end());
   }
-  std::vector<FieldCopy> copies;
+  std::vector<PieceField> pieceFields;
   for (const auto& [field, bytes] : fields)
   {
-    copies.push_back({ field, bytes, 1, nullptr });
+    pieceFields.push_back({ field, bytes, 1, nullptr });
   }
-  copies.push_back(
+  pieceFields.push_back(
     { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::ViewTraceLayers + 2, nullptr });
-  return copies;
+  return pieceFields;
 }
 
-// With MarchPieceFieldsOnly and MarchPieces above 1, a buffer for the whole
-// of each of the march's fields (marchFields), made for each march region
-// (a test's option, so kept simple); none otherwise.
-void RenderSession::prepareMarchFieldCopies()
+// A piece's layers of a field and its halo, clamped to the grid, as bytes
+// [first, second) of the whole field. The last layer's run goes to the
+// field's end: an unpaired field's read of a voxel and the next one (the
+// grid's last voxel has none) may pass it.
+std::pair<std::uint64_t, std::uint64_t> RenderSession::pieceBytes(const PieceField& field, std::pair<int, int> layers) const
 {
-  this->WholeFields.clear();
-  if (!this->MarchPieceFieldsOnly || this->MarchPieces <= 1)
+  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
+  const int first = std::max(layers.first - field.Halo, 0), last = std::min(layers.second + field.Halo, dims[2]);
+  const std::uint64_t layerBytes = static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]) * field.VoxelBytes;
+  return { first * layerBytes, last == dims[2] ? field.Whole->size() : std::max(first, last) * layerBytes };
+}
+
+// With MarchPieceFieldsOnly (and MarchPieces above 1), a buffer per field of
+// the march (marchFields) for the largest piece's layers and halo, made for
+// each march region (a test's option, so kept simple); none otherwise.
+void RenderSession::preparePieceFields()
+{
+  this->PieceFieldBuffers.clear();
+  if (!this->MarchPieceFieldsOnly)
   {
     return;
   }
-  for (const FieldCopy& copy : this->marchFields())
+  const int layers = this->Volume->Shape.Dimensions[2];
+  for (const PieceField& field : this->marchFields())
   {
-    this->WholeFields.push_back(
-      std::make_unique<VulkanBuffer>(*this->Context, copy.Field->size(), "whole field", this->Volume->FieldPlacement));
+    std::uint64_t bytes = 0;
+    for (int piece = 0; piece < this->MarchPieces; ++piece)
+    {
+      const auto [begin, end] = this->pieceBytes(field, evenShare(layers, piece, this->MarchPieces));
+      bytes = std::max(bytes, end - begin);
+    }
+    this->PieceFieldBuffers.push_back(
+      std::make_unique<VulkanBuffer>(*this->Context, bytes, "piece field", BufferPlacement::DeviceAddressed));
   }
 }
 
-// The march's fields with their whole copies (prepareMarchFieldCopies).
-std::vector<RenderSession::FieldCopy> RenderSession::marchFieldCopies() const
+// The march's fields with their pieces' buffers (preparePieceFields).
+std::vector<RenderSession::PieceField> RenderSession::pieceFields() const
 {
-  if (this->WholeFields.empty())
+  if (this->PieceFieldBuffers.empty())
   {
     return {};
   }
-  std::vector<FieldCopy> copies = this->marchFields();
-  for (std::size_t i = 0; i < copies.size(); ++i)
+  std::vector<PieceField> fields = this->marchFields();
+  for (std::size_t i = 0; i < fields.size(); ++i)
   {
-    copies[i].Whole = this->WholeFields.at(i).get();
+    fields[i].Piece = this->PieceFieldBuffers.at(i).get();
   }
-  return copies;
+  return fields;
 }
 
-// Records: each field zeroed but for the piece's layers and its halo on
-// either side, which take the whole field's values: a rank that holds only
-// its piece lacks the rest, so a march reading beyond would change the image
-// (TestOpalForwardedMarch).
+// Records: each field's piece layers and halo copied into its piece buffer,
+// and the address table pointing each field at its piece buffer less the
+// bytes of the layers before (docs/design.md §8.1): the passes index the
+// whole grid, and a read lands in the piece buffer for the layers it holds.
+// A rank holding only its piece will address its fields so; a read beyond
+// the halo lands outside the buffer, and the image differs (TestOpalForwardedMarch).
 void RenderSession::recordPieceFields(
-  VkCommandBuffer commands, const std::vector<FieldCopy>& copies, std::pair<int, int> layers) const
+  VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const
 {
-  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
-  for (const FieldCopy& copy : copies)
+  std::map<const VulkanBuffer*, std::uint64_t> addresses;
+  for (const PieceField& field : fields)
   {
-    const int first = std::max(layers.first - copy.Halo, 0), last = std::min(layers.second + copy.Halo, dims[2]);
-    const std::uint64_t layerBytes = static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(dims[1]) * copy.VoxelBytes;
-    // The last layer's copy runs to the buffer's end: an unpaired field's
-    // read of a voxel and the next one (the grid's last voxel has none) may pass it.
-    const std::uint64_t begin = first * layerBytes;
-    const std::uint64_t end = last == dims[2] ? copy.Field->size() : last * layerBytes;
-    copy.Field->recordClear(commands);
-    if (first < last)
+    const auto [begin, end] = this->pieceBytes(field, layers);
+    if (begin < end)
     {
-      copy.Field->recordCopyFrom(commands, *copy.Whole, begin, end - begin);
+      field.Piece->recordCopyFrom(commands, *field.Whole, begin, 0, end - begin);
     }
+    // Unsigned and modulo 2^64, as the shaders add an index's bytes (voxelAddress).
+    addresses[field.Whole] = field.Piece->address() - begin;
+  }
+  if (!fields.empty())
+  {
+    const gpu::VolumeAddresses table = this->volumeAddresses(addresses);
+    this->Volume->Addresses->recordWrite(commands, &table, sizeof(table));
   }
 }
 

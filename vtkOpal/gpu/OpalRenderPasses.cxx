@@ -455,7 +455,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
   this->prepareRayStates(setup, rect);
-  this->prepareMarchFieldCopies();
+  this->preparePieceFields();
   const ComputePipeline& march = this->marchPipeline(setup);
   const bool refine = target.PixelSamples > 1;
   // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are

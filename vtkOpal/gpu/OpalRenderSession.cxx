@@ -166,9 +166,8 @@ std::unique_ptr<VulkanBuffer> absorptionBuffer(
 }
 
 // The halves of a device address, as the shaders read it.
-gpu::uvec2 addressWords(const VulkanBuffer& buffer)
+gpu::uvec2 addressWords(std::uint64_t address)
 {
-  const std::uint64_t address = buffer.address();
   return gpu::uvec2(static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32));
 }
 
@@ -181,6 +180,8 @@ gpu::uvec2 addressWords(const VulkanBuffer& buffer)
 // one's, as a pair does, so pairs would only double those fields (rows of
 // one voxel keep them: their reads have no next voxel to take). Refused
 // naming both limits beyond the range on a device that cannot address.
+// Addressed too where each piece's fields are read alone (their addresses
+// shifted, MarchPieceFieldsOnly: pairsFit false).
 std::pair<BufferPlacement, bool> fieldLayout(const VulkanContext& context, const RenderVolume& volume, bool pairsFit)
 {
   const std::uint64_t widest = std::max<std::uint64_t>(
@@ -259,9 +260,15 @@ RenderSession::RenderSession(const VulkanOptions& options)
   : Context(std::make_unique<VulkanContext>(options))
   , Buffers(std::make_unique<FrameBuffers>())
   , MarchPieces(std::max(options.MarchPieces, 1))
-  , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly)
+  , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly && this->MarchPieces > 1)
 {
   checkWorkgroupSizes(this->Context->limits());
+  if (this->MarchPieceFieldsOnly && !this->Context->bufferDeviceAddresses())
+  {
+    throw VulkanError("MarchPieceFieldsOnly reads each piece's fields by address, and the device cannot address "
+                      "buffers (bufferDeviceAddress)",
+      VK_ERROR_FEATURE_NOT_PRESENT);
+  }
   std::vector<VkDescriptorType> types(gpu::BindingCount, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   types[gpu::ParametersBinding] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
   this->Bindings = std::make_unique<StorageBufferBindings>(*this->Context, types, PushConstantBytes);
@@ -351,7 +358,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
   std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
-    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs));
+    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !this->MarchPieceFieldsOnly);
   this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
@@ -900,6 +907,21 @@ void RenderSession::bindBuffers()
 void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) const
 {
   const DeviceVolume& v = *this->Volume;
+  const gpu::VolumeAddresses addresses = this->volumeAddresses({});
+  v.Addresses->upload(&addresses, sizeof(addresses));
+  for (int binding : { gpu::VoxelCellBinding, gpu::SurfaceDistanceBinding, gpu::LightFieldBinding,
+         gpu::LightAbsorptionBinding, gpu::AbsorptionCellBinding, gpu::LightShadowBinding, gpu::LightEntryVoxelsBinding,
+         gpu::ScatteredLightBinding, gpu::ScatteredLightGridBinding })
+  {
+    buffers[static_cast<std::size_t>(binding)] = v.Addresses.get();
+  }
+}
+
+// The address table: each field's buffer's address, or where `shifted`
+// names the buffer, the address given (a piece's, recordPieceFields).
+gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanBuffer*, std::uint64_t>& shifted) const
+{
+  const DeviceVolume& v = *this->Volume;
   gpu::VolumeAddresses addresses;
   const std::pair<gpu::uvec2*, const VulkanBuffer*> fields[] = { { &addresses.voxelCells, v.Cells.get() },
     { &addresses.surfaceDistance, v.SurfaceDistance.get() }, { &addresses.lightField, v.LightField.get() },
@@ -909,15 +931,10 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
     { &addresses.scatteredLightGrid, v.ScatteredLightGrid.get() } };
   for (const auto& [address, buffer] : fields)
   {
-    *address = addressWords(*buffer);
+    const auto piece = shifted.find(buffer);
+    *address = addressWords(piece != shifted.end() ? piece->second : buffer->address());
   }
-  v.Addresses->upload(&addresses, sizeof(addresses));
-  for (int binding : { gpu::VoxelCellBinding, gpu::SurfaceDistanceBinding, gpu::LightFieldBinding,
-         gpu::LightAbsorptionBinding, gpu::AbsorptionCellBinding, gpu::LightShadowBinding, gpu::LightEntryVoxelsBinding,
-         gpu::ScatteredLightBinding, gpu::ScatteredLightGridBinding })
-  {
-    buffers[static_cast<std::size_t>(binding)] = v.Addresses.get();
-  }
+  return addresses;
 }
 
 RenderImage RenderSession::readBack(const FrameSetup& setup) const

@@ -34,6 +34,7 @@ class StorageBufferBindings;
 namespace gpu
 {
 struct MarchWork;
+struct VolumeAddresses;
 }
 class VulkanBuffer;
 struct ScatteredLight;
@@ -256,6 +257,7 @@ private:
   void uploadWavelengthTable(const std::vector<WavelengthBin>& bins, LightSpectrum illuminant);
   void bindBuffers();
   void addressFields(std::vector<const VulkanBuffer*>& buffers) const;
+  gpu::VolumeAddresses volumeAddresses(const std::map<const VulkanBuffer*, std::uint64_t>& shifted) const;
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   // Rows z in [rows.first, rows.second) of every layer; `afterLayer` (where
   // given) after each layer but the last, one layer a submit, false stops.
@@ -312,19 +314,20 @@ private:
   std::uint64_t frameRayStateBytes(const FrameSetup& setup) const;
   void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
   // A field the march reads per voxel, its bytes per voxel, the layers
-  // beyond a piece its reads take, and its whole values' copy
+  // beyond a piece its reads take, and the buffer that holds a piece's
   // (VulkanOptions::MarchPieceFieldsOnly).
-  struct FieldCopy
+  struct PieceField
   {
-    VulkanBuffer* Field;
+    const VulkanBuffer* Whole;
     std::uint64_t VoxelBytes;
     int Halo;
-    VulkanBuffer* Whole;
+    VulkanBuffer* Piece;
   };
-  std::vector<FieldCopy> marchFields() const;
-  void prepareMarchFieldCopies();
-  std::vector<FieldCopy> marchFieldCopies() const;
-  void recordPieceFields(VkCommandBuffer commands, const std::vector<FieldCopy>& copies, std::pair<int, int> layers) const;
+  std::vector<PieceField> marchFields() const;
+  std::pair<std::uint64_t, std::uint64_t> pieceBytes(const PieceField& field, std::pair<int, int> layers) const;
+  void preparePieceFields();
+  std::vector<PieceField> pieceFields() const;
+  void recordPieceFields(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);
@@ -359,7 +362,7 @@ private:
   std::unique_ptr<FrameBuffers> Buffers;
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
-  std::vector<std::unique_ptr<VulkanBuffer>> WholeFields; // prepareMarchFieldCopies
+  std::vector<std::unique_ptr<VulkanBuffer>> PieceFieldBuffers; // preparePieceFields
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
   std::optional<ScatteredLightKey> ScatteredLight;             // what the scattered light buffer holds
   std::string ScatteredLightWarning;                           // the solve's shortfall, if any

@@ -190,12 +190,19 @@ void VulkanBuffer::recordClear(VkCommandBuffer commands) const
     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
-void VulkanBuffer::recordCopyFrom(
-  VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t begin, std::uint64_t bytes) const
+void VulkanBuffer::recordCopyFrom(VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t sourceBegin,
+  std::uint64_t begin, std::uint64_t bytes) const
 {
   beforeCopies(commands, VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-  const VkBufferCopy region{ begin, begin, bytes };
+  const VkBufferCopy region{ sourceBegin, begin, bytes };
   vkCmdCopyBuffer(commands, source.buffer(), this->buffer(), 1, &region);
+  afterCopiesIn(commands);
+}
+
+void VulkanBuffer::recordWrite(VkCommandBuffer commands, const void* source, std::uint64_t bytes) const
+{
+  beforeCopies(commands, VK_ACCESS_TRANSFER_WRITE_BIT);
+  vkCmdUpdateBuffer(commands, this->buffer(), 0, bytes, source);
   afterCopiesIn(commands);
 }
 

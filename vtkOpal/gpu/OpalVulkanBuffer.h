@@ -84,10 +84,14 @@ public:
   // and copies' reads and writes of it, then a barrier so that the next
   // dispatch (or indirect dispatch) sees it.
   void recordClear(VkCommandBuffer commands) const;
-  // Records: bytes [begin, begin + bytes) of `source` copied into the same
-  // bytes of this buffer, after the passes' and copies' reads and writes of
-  // either, before the next dispatch's.
-  void recordCopyFrom(VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t begin, std::uint64_t bytes) const;
+  // Records: bytes [sourceBegin, sourceBegin + bytes) of `source` copied into
+  // bytes [begin, begin + bytes) of this buffer, after the passes' and
+  // copies' reads and writes of either, before the next dispatch's.
+  void recordCopyFrom(VkCommandBuffer commands, const VulkanBuffer& source, std::uint64_t sourceBegin,
+    std::uint64_t begin, std::uint64_t bytes) const;
+  // Records: the buffer's first `bytes` (at most 65536, a multiple of 4)
+  // written from `source`, which the call copies, in order with passes and copies.
+  void recordWrite(VkCommandBuffer commands, const void* source, std::uint64_t bytes) const;
   VulkanContext& context() const { return this->Context; }
 
 private:

@@ -41,11 +41,12 @@ struct VulkanOptions
   // (slabs of layers z) as the data-parallel render would between ranks
   // (docs/design.md §8.1), in one process: 1, none.
   int MarchPieces = 1;
-  // With MarchPieces, each piece's dispatch finds the fields the march reads
-  // per voxel only for its layers and their halo (one layer, SurfaceDistance
-  // ViewTraceLayers + 2), every other layer zeroed, as a rank holding only its piece would
-  // lack them (the whole fields back after the march): a test that the
-  // march reads no further (docs/design.md §8.1).
+  // With MarchPieces, each piece's dispatch reads the fields the march reads
+  // per voxel from buffers holding only its layers and their halo (one
+  // layer, SurfaceDistance ViewTraceLayers + 2), addressed from the first
+  // layer they hold, as a rank holding only its piece will: a test that the
+  // march reads no further (docs/design.md §8.1). The volume's fields are
+  // then read by address; a device that cannot address buffers is refused.
   bool MarchPieceFieldsOnly = false;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.
