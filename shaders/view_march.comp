@@ -712,10 +712,13 @@ float exitBeyond(inout SurfaceTrace exit, vec3 origin, vec3 inward, float tEnd, 
 bool walkRecording(
   inout WalkState state, inout SurfaceTrace exit, inout int count, inout int guard, vec3 origin, vec3 inward)
 {
-  // Unforwarded the exit is traced whole at the start; forwarded, a cell at a
-  // time, once the cell is known to lie in the piece (1e30 stands for it before).
-  float tEnd = gridBoxHits(origin, inward).y;
-  float tExit = FORWARDED ? 1e30 : exitBeyond(exit, origin, inward, tEnd, 1e30);
+  // Unforwarded the exit is traced whole as the ray enters (enterRay);
+  // forwarded, a cell at a time, once the cell is known to lie in the piece
+  // (1e30 stands for it before). (lavapipe runs a branch's body for every
+  // lane, taken or not: a trace called per round, done after the first,
+  // cost the unforwarded march ~6%.)
+  float tEnd = FORWARDED ? gridBoxHits(origin, inward).y : 0.0;
+  float tExit = FORWARDED ? 1e30 : exit.t;
   for (; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
     if (FORWARDED && !inMarchPiece(state.walk.cell)) return false;
@@ -1101,6 +1104,7 @@ int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float trans
   rayOrigin = entry - 1e-4 * P.smallestSpacing * normal;
   rayInward = inward;
   exitTrace = surfaceTrace(0.0);
+  if (!FORWARDED) exitBeyond(exitTrace, rayOrigin, inward, gridBoxHits(rayOrigin, inward).y, 1e30);
   rayEntered = true;
   walkState = WalkState(startWalk(rayOrigin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
   walkRound = 0;
@@ -1316,7 +1320,9 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
   int entry = rayEntered ? RAY_ENTERED : enterRay(at, n == 1 ? pixelIndex : -1, !resumed, tHit, transmitted);
   hit = entry == RAY_ENTERED;
-  if (entry == RAY_PAUSED || (hit && !marchOn()))
+  // Unforwarded, marchOn always finishes: the constant folds the keeping away.
+  bool paused = hit ? !marchOn() : entry == RAY_PAUSED;
+  if (FORWARDED && paused)
   {
     rayStates[slot * RAY_WORDS] = uint(rayLayer());
     keepRay(slot, true, sum, tHit, transmitted);
