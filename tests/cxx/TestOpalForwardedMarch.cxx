@@ -14,7 +14,8 @@
 // Bragg shadows, every order) lit from the side, with the edge pixels'
 // sub-rays (their sums kept between dispatches) and the spectrum; fire-opal
 // (whose ray carries the most) in 2, 3 and 7 pieces, also with its fields
-// read by address and through staging buffers; more pieces than layers
+// read by address and through staging buffers, and whole and bound (paired);
+// more pieces than layers
 // (pieces of none); ray states beyond the storage-buffer range, refused; and
 // pieces' fields alone on a device that cannot address buffers, refused.
 #include "OpalPresets.h"
@@ -42,8 +43,10 @@ opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderP
   return renderer.render(stone, p);
 }
 
+// With `bound`, also forwarded through the first count of pieces with the
+// fields whole and bound, paired (the layout without piecesOnly).
 void checkForwarded(const opal::ModelParameters& model, const opal::RenderParameters& p, const std::string& scene,
-  std::initializer_list<int> pieceCounts)
+  std::initializer_list<int> pieceCounts, bool bound = false)
 {
   const auto volume = opal::buildVolume(model);
   const opal::RenderVolume stone = volume->renderVolume();
@@ -54,6 +57,11 @@ void checkForwarded(const opal::ModelParameters& model, const opal::RenderParame
     OPAL_CHECK(opaltest::identical(forwarded(stone, p, pieces), expected),
       scene + ": the march forwarded through " + std::to_string(pieces) +
         " pieces gives the unforwarded image, value for value");
+  }
+  if (bound)
+  {
+    OPAL_CHECK(opaltest::identical(forwarded(stone, p, *pieceCounts.begin(), {}, false), expected),
+      scene + ": forwarded with its fields whole and bound, the unforwarded image");
   }
 }
 
@@ -96,7 +104,7 @@ int TestOpalForwardedMarch(int, char*[])
   const opal::ResolvedFrame frame = opal::resolveFrame(side);
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
-  checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 });
+  checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
 
   // The fields read by address, one value per voxel (below the paired
   // fields' bytes: VoxelCell 8, SurfaceDistance 8, light field 16, absorption

@@ -83,9 +83,8 @@ std::vector<RenderSession::PieceField> RenderSession::marchFields() const
 }
 
 // A piece's layers of a field and its halo, clamped to the grid, as bytes
-// [first, second) of the whole field. The last layer's run goes to the
-// field's end: an unpaired field's read of a voxel and the next one (the
-// grid's last voxel has none) may pass it.
+// [first, second) of the whole field; the last layer's run goes to the
+// field's end (a buffer holds at least 16 bytes).
 std::pair<std::uint64_t, std::uint64_t> RenderSession::pieceBytes(const PieceField& field, std::pair<int, int> layers) const
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;

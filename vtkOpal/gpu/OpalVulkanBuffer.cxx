@@ -204,6 +204,10 @@ void VulkanBuffer::recordWrite(VkCommandBuffer commands, const void* source, std
   beforeCopies(commands, VK_ACCESS_TRANSFER_WRITE_BIT);
   vkCmdUpdateBuffer(commands, this->buffer(), 0, bytes, source);
   afterCopiesIn(commands);
+  // The host may write it again once the submit's fence is signalled (the
+  // volume's address table, uploaded when its buffers are bound).
+  barrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+    VK_ACCESS_HOST_READ_BIT | VK_ACCESS_HOST_WRITE_BIT);
 }
 
 std::uint64_t VulkanBuffer::address() const
