@@ -238,6 +238,11 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
   VoxelWalk walk = startWalk(origin, direction);
   float s = 0.0;
   float safe = 0.0;
+  // The cell the path leaves the surface in, bisected after the loop (lavapipe
+  // would run the bisection under a mask in every cell).
+  bool left = false;
+  float sLeft = 0.0;
+  CellContents last;
   for (int i = 0; i < 65536 && s < span; ++i)
   {
     float sNext = min(cellExit(walk), span);
@@ -248,10 +253,10 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
       float d = surfaceDistance(origin + sNext * direction);
       if (d > 0.0)
       {
-        float sOut = bisectSurface(origin, direction, sNext, s);
-        tau += medium * max(sOut - s, 0.0);
-        if (BRAGG_SHADOW) followShadow(shadow, contents.domain, max(sOut - s, 0.0));
-        return t + sOut;
+        left = true;
+        sLeft = sNext;
+        last = contents;
+        break;
       }
       safe = sNext - 0.9 * d;
     }
@@ -260,7 +265,11 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
     s = sNext;
     stepWalk(walk);
   }
-  return tEnd;
+  if (!left) return tEnd;
+  float sOut = bisectSurface(origin, direction, sLeft, s);
+  tau += last.medium * max(sOut - s, 0.0);
+  if (BRAGG_SHADOW) followShadow(shadow, last.domain, max(sOut - s, 0.0));
+  return t + sOut;
 }
 
 // An outside voxel whose path to the light misses the opal: values

@@ -183,6 +183,9 @@ bool traceSurfaceOn(inout SurfaceTrace s, vec3 origin, vec3 direction, float tEn
   bool bounded = rule.stepLayers > 0.0;
   float longest = bounded ? rule.stepLayers * P.gridSpacing.z / max(abs(direction.z), 1e-20) : 1e30;
   int most = (rule.entering ? 1024 : 4096) + (bounded ? int(float(P.gridDimensions.z) / rule.stepLayers) + 1 : 0);
+  // The bisection after the loop, not in it: lavapipe would run it under a
+  // mask at every step (docs/design.md §3.4).
+  bool crossed = false;
   for (; s.steps < most && s.t <= tEnd; ++s.steps)
   {
     if (limit < 1e30 && s.previous > limit) return true;
@@ -191,16 +194,22 @@ bool traceSurfaceOn(inout SurfaceTrace s, vec3 origin, vec3 direction, float tEn
     float d = surfaceDistance(p);
     if (rule.entering ? d <= 0.0 : d > 0.0)
     {
-      // The bisection's outside end first: the last point for an entry, this one for an exit.
-      float outside = rule.entering ? s.previous : s.t, inside = rule.entering ? s.t : s.previous;
-      s.t = bisectSurface(origin, direction, outside, inside);
-      s.done = true;
-      return true;
+      crossed = true;
+      break;
     }
     s.previous = s.t;
     s.t += min(max(rule.entering ? 0.9 * d : -0.9 * d, rule.minStep), longest);
   }
-  s.t = rule.entering ? -1.0 : min(s.t, tEnd);
+  if (crossed)
+  {
+    // The bisection's outside end first: the last point for an entry, this one for an exit.
+    float outside = rule.entering ? s.previous : s.t, inside = rule.entering ? s.t : s.previous;
+    s.t = bisectSurface(origin, direction, outside, inside);
+  }
+  else
+  {
+    s.t = rule.entering ? -1.0 : min(s.t, tEnd);
+  }
   s.done = true;
   return true;
 }

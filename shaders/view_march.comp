@@ -353,7 +353,11 @@ void diffractAtCrossing(vec3 at, DomainRecord lattice, vec3 towardEye, vec3 tauV
   {
     float lambdaB = braggSnellWavelength(lattice.planeSpacing, P.refractiveIndex, sinGlancing, k);
     float contributionY = 0.0;
-    for (int l = 0; l < WAVELENGTHS; ++l)
+    // Only the bins about the band (a bin more on either side of those it
+    // overlaps, beyond any rounding): every other bin's band is 0, and lavapipe
+    // would run the body under a mask for all WAVELENGTHS.
+    ivec2 near = binsWithin(lambdaB * vec2(1.0 - 0.5 * P.braggBandwidth, 1.0 + 0.5 * P.braggBandwidth));
+    for (int l = max(near.x - 1, 0); l <= min(near.y + 1, WAVELENGTHS - 1); ++l)
     {
       float band = braggBandAverage(bins[l].lambda, bins[l].width, lambdaB, P.braggBandwidth);
       if (band > 0.0)
