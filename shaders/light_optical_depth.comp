@@ -281,8 +281,14 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
 // point just inside (unattenuated light there would brighten the
 // terminator). From the voxel's own distance and the field's slope along the
 // path: no search, which a CPU driver would pay for every skin voxel.
-LightSample continuedFromInside(vec3 p, vec3 direction, float d, inout ShadowWalk shadow)
+// Where the light is that of the point inside, `entered`: its geometry is
+// entryGeometry's at `entry` along `along`, which the caller evaluates.
+LightSample continuedFromInside(
+  vec3 p, vec3 direction, float d, inout ShadowWalk shadow, out bool entered, out vec3 entry, out vec3 along)
 {
+  entered = false;
+  entry = p;
+  along = direction;
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
   float r = distance(P.light, p);
@@ -303,7 +309,10 @@ LightSample continuedFromInside(vec3 p, vec3 direction, float d, inout ShadowWal
   vec3 towardLight = normalize(P.light - q);
   vec3 tau = vec3(0.0);
   float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau, shadow);
-  return LightSample(tau, entryGeometry(p, q + exit * towardLight, towardLight));
+  entered = true;
+  entry = q + exit * towardLight;
+  along = towardLight;
+  return LightSample(tau, 0.0);
 }
 
 // The exact light at p (eq. 6, 7): the path to the light
@@ -330,11 +339,17 @@ LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float 
     t = lightEntry + 0.5 * P.smallestSpacing;
     inside = false;
   }
-  if (lightEntry < 0.0)
+  // One entryGeometry (a normal: six SurfaceDistance reads) for either way
+  // the light enters: lavapipe would run both calls under a mask.
+  bool entered = lightEntry >= 0.0;
+  vec3 entry = p + lightEntry * direction, along = direction;
+  LightSample light = LightSample(tau, 0.0);
+  if (!entered)
   {
-    return continuedFromInside(p, direction, surfaceDistanceAtP, shadow);
+    light = continuedFromInside(p, direction, surfaceDistanceAtP, shadow, entered, entry, along);
   }
-  return LightSample(tau, entryGeometry(p, p + lightEntry * direction, direction));
+  if (entered) light.geometry = entryGeometry(p, entry, along);
+  return light;
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
