@@ -281,14 +281,12 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
 // point just inside (unattenuated light there would brighten the
 // terminator). From the voxel's own distance and the field's slope along the
 // path: no search, which a CPU driver would pay for every skin voxel.
-// Where the light is that of the point inside, `entered`: its geometry is
-// entryGeometry's at `entry` along `along`, which the caller evaluates.
+// Where the light is that of the point inside, `entered` (false on the
+// way in): its geometry is entryGeometry's at `entry` along `along`, which
+// the caller evaluates.
 LightSample continuedFromInside(
-  vec3 p, vec3 direction, float d, inout ShadowWalk shadow, out bool entered, out vec3 entry, out vec3 along)
+  vec3 p, vec3 direction, float d, inout ShadowWalk shadow, inout bool entered, inout vec3 entry, inout vec3 along)
 {
-  entered = false;
-  entry = p;
-  along = direction;
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
   float r = distance(P.light, p);

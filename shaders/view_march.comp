@@ -713,15 +713,14 @@ float exitBeyond(inout SurfaceTrace exit, vec3 origin, vec3 inward, float tEnd, 
 // gathers scattering in one Bragg shadow besides the unshadowed light, and
 // ends before a voxel in another (outside a crossing: inside one, the
 // domain's own scattering keeps the round's shadow).
-bool walkRecording(
-  inout WalkState state, inout SurfaceTrace exit, inout int count, inout int guard, vec3 origin, vec3 inward)
+bool walkRecording(inout WalkState state, inout SurfaceTrace exit, inout int count, inout int guard, vec3 origin,
+  vec3 inward, float tEnd)
 {
   // Unforwarded the exit is traced whole as the ray enters (enterRay);
   // forwarded, a cell at a time, once the cell is known to lie in the piece
   // (1e30 stands for it before). (lavapipe runs a branch's body for every
   // lane, taken or not: a trace called per round, done after the first,
   // cost the unforwarded march ~6%.)
-  float tEnd = FORWARDED ? gridBoxHits(origin, inward).y : 0.0;
   float tExit = FORWARDED ? 1e30 : exit.t;
   for (; guard < 65536 && state.t < tExit && (ENERGY_CONSERVATION || count < MAX_CROSSINGS); ++guard)
   {
@@ -810,9 +809,11 @@ bool marchOn()
   SurfaceTrace exit = exitTrace;
   int round = walkRound, count = walkCount, guard = walkGuard;
   vec3 origin = rayOrigin, inward = rayInward;
+  // Where the ray leaves the grid's box, where a forwarded exit trace ends (unforwarded, unused).
+  float tEnd = FORWARDED ? gridBoxHits(origin, inward).y : 0.0;
   for (; round < 4096 && !state.done; ++round)
   {
-    if (!walkRecording(state, exit, count, guard, origin, inward))
+    if (!walkRecording(state, exit, count, guard, origin, inward, tEnd))
     {
       walkState = state;
       exitTrace = exit;
@@ -905,6 +906,13 @@ void keepInt(inout int v)
   ++rayWord;
 }
 
+void keepBool(inout bool b)
+{
+  int word = b ? 1 : 0;
+  keepInt(word);
+  b = word != 0;
+}
+
 void keepVec3(inout vec3 v)
 {
   keepFloat(v.x);
@@ -931,9 +939,7 @@ void keepTrace(inout SurfaceTrace trace)
   keepFloat(trace.t);
   keepFloat(trace.previous);
   keepInt(trace.steps);
-  int done = trace.done ? 1 : 0;
-  keepInt(done);
-  trace.done = done != 0;
+  keepBool(trace.done);
 }
 
 void keepWalk()
@@ -945,9 +951,7 @@ void keepWalk()
   keepFloat(walkState.t);
   keepVec3(walkState.tauView);
   keepInt(walkState.lastDomain);
-  int done = walkState.done ? 1 : 0;
-  keepInt(done);
-  walkState.done = done != 0;
+  keepBool(walkState.done);
   keepShadow(walkState.shadow);
   keepInt(walkRound);
   keepInt(walkCount);
@@ -1005,9 +1009,7 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
   rayWord = slot * RAY_WORDS + 1;
   keepTrace(entryTrace);
   keepSum(sum);
-  int entered = rayEntered ? 1 : 0;
-  keepInt(entered);
-  rayEntered = entered != 0;
+  keepBool(rayEntered);
   if (!rayEntered) return;
   keepFloat(tHit);
   keepFloat(transmitted);
@@ -1108,7 +1110,7 @@ int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float trans
   rayOrigin = entry - 1e-4 * P.smallestSpacing * normal;
   rayInward = inward;
   exitTrace = surfaceTrace(0.0);
-  if (!FORWARDED) exitBeyond(exitTrace, rayOrigin, inward, gridBoxHits(rayOrigin, inward).y, 1e30);
+  if (!FORWARDED) traceSurfaceOn(exitTrace, rayOrigin, inward, gridBoxHits(rayOrigin, inward).y, viewTrace(false), 1e30);
   rayEntered = true;
   walkState = WalkState(startWalk(rayOrigin, inward), 0.0, vec3(0.0), -1, false, NO_SHADOW);
   walkRound = 0;

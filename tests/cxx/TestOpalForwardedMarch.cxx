@@ -15,9 +15,9 @@
 // sub-rays (their sums kept between dispatches) and the spectrum; fire-opal
 // (whose ray carries the most) in 2, 3 and 7 pieces, also with its fields
 // read by address and through staging buffers, and whole and bound (paired);
-// more pieces than layers
-// (pieces of none); ray states beyond the storage-buffer range, refused; and
-// pieces' fields alone on a device that cannot address buffers, refused.
+// more pieces than layers (pieces of none); ray states beyond the
+// storage-buffer range, refused; and pieces' fields alone on a device that
+// cannot address buffers, refused.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -106,10 +106,11 @@ int TestOpalForwardedMarch(int, char*[])
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
   checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
 
-  // The fields read by address, one value per voxel (below the paired
-  // fields' bytes: VoxelCell 8, SurfaceDistance 8, light field 16, absorption
-  // cells 8 and their light field 16, the Bragg shadows 12): the march's
-  // other build, its pixels read back through staging buffers.
+  // The unforwarded march with its fields read by address, one value per
+  // voxel (below the paired fields' bytes: VoxelCell 8, SurfaceDistance 8,
+  // light field 16, absorption cells 8 and their light field 16, the Bragg
+  // shadows 12), against the forwarded one with its pixels read back through
+  // staging buffers, at a larger grid and single scattering.
   side.ScatteringOrders = opal::ScatteringOrdersKind::Single;
   fire.Dimensions = { 80, 40, 100 }; // the ray states (2 MB at 40 x 30 pixels) within the limit
   const auto fireVolume = opal::buildVolume(fire);

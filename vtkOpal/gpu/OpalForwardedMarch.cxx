@@ -36,7 +36,7 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
   const int pieces = this->MarchPieces;
   const std::vector<PieceField> fields = this->pieceFields();
   const int period = 2 * pieces - 2;
-  for (int pass = 0; pass < std::max(2 * period + 1, 1); ++pass)
+  for (int pass = 0; pass < 2 * period + 1; ++pass)
   {
     const int at = period > 0 ? pass % period : 0;
     const int piece = at < pieces ? at : period - at;
