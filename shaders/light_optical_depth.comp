@@ -24,6 +24,8 @@
 // path to the light and the path's length there (LightShadow).
 // LightPassScatteredField writes the light scattered more than once, each
 // voxel's value from the every-order solve's tally grid (§3.10).
+// FORWARDED, the walks to the light go from piece to piece of the volume,
+// kept between dispatches where they need another piece (§8.1).
 // The mode is a specialisation constant: each pipeline holds only its own code.
 #extension GL_GOOGLE_include_directive : require
 
@@ -33,10 +35,20 @@ layout(local_size_x = LightPassGroupSize) in;
 layout(constant_id = LightPassModeConstant) const int LIGHT_PASS_MODE = LightPassSweepFromAbove;
 layout(constant_id = LightAbsorptionConstant) const bool ABSORPTION = false;
 layout(constant_id = LightBraggShadowConstant) const bool BRAGG_SHADOW = false;
+// Walks to the light forwarded between pieces of the volume (docs/design.md
+// §8.1; LightPassMarchTowardsLight and LightPassMarchQueued): each dispatch
+// walks only the layers z in work.piece and keeps a walk that needs another
+// for the dispatch of that piece.
+layout(constant_id = LightForwardedConstant) const bool FORWARDED = false;
+// A forwarded walk's entry trace reads SurfaceDistance only at points in its
+// piece, and goes on in the piece of the next (defined below).
+bool surfacePointHeld(vec3 p);
+#define SURFACE_POINT_HELD(p) surfacePointHeld(p)
 #define PAIRED_FIELDS_CONSTANT LightPairedFieldsConstant
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_voxel_walk.glsl"
+#include "opal_kept_state.glsl"
 
 #ifdef OPAL_VOLUME_ADDRESSES
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer LightFieldRef { LightFieldPair value; };
@@ -226,29 +238,84 @@ float skinDepth()
   return length(P.gridSpacing);
 }
 
+// Whether a forwarded walk's piece holds layer z (those beyond the grid in its
+// first or last piece); the layer of the last one asked about, where a kept
+// walk goes on. Unforwarded every layer is held.
+int neededLayer;
+bool layerHeld(int z)
+{
+  if (!FORWARDED) return true;
+  neededLayer = clamp(z, 0, P.gridDimensions.z - 1);
+  return neededLayer >= work.piece.x && neededLayer < work.piece.y;
+}
+
+bool surfacePointHeld(vec3 p)
+{
+  return layerHeld(voxelOf(p).z);
+}
+
+// Whether a forwarded walk inside, going along z by stepZ, may read the cell
+// of layer z: its piece's, or one of the TraceStepLayers + 1 layers before
+// the piece on the side it comes from, where a trace's bisection may put the
+// walk's start (the cells' halo there, docs/design.md §8.1). A walk so never
+// goes back to a piece it left: it moves one way in z from its start.
+bool walkLayerHeld(int z, int stepZ)
+{
+  int behind = TraceStepLayers + 1;
+  bool inHalo = stepZ > 0 ? z < work.piece.x && z >= work.piece.x - behind
+                          : stepZ < 0 && z >= work.piece.y && z < work.piece.y + behind;
+  return !FORWARDED || inHalo || layerHeld(z);
+}
+
+// The light's trace of the surface entry: steps of at least half the least
+// spacing, none passing more than TraceStepLayers layers z (forwarded, the
+// bisection after them then reads within the piece's halo; unforwarded the
+// same, so that both find the same surface), pausing where forwarded.
+TraceRule lightTrace()
+{
+  return TraceRule(true, 0.5 * P.smallestSpacing, float(TraceStepLayers), FORWARDED);
+}
+
+// walkInside's loop, kept between a forwarded walk's dispatches: the cell
+// walk, the distance walked and the distance known to be inside, its steps.
+struct InsideWalk
+{
+  VoxelWalk walk;
+  float s;
+  float safe;
+  int steps;
+};
+
+InsideWalk startInside(vec3 p, vec3 direction, float t)
+{
+  return InsideWalk(startWalk(p + t * direction, direction), 0.0, 0.0, 0);
+}
+
 // Walks the path from p + t direction cell by cell while it stays inside the
 // smooth surface, adding each cell's coefficients times its length there to tau;
-// returns where the path leaves the surface (bisected), or tEnd. The surface
+// `exit`: where the path leaves the surface (bisected), or tEnd. The surface
 // is tested only beyond the distance known to be safe, as sphere tracing
-// does (a distance field changes at most as fast as one moves).
-float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, inout ShadowWalk shadow)
+// does (a distance field changes at most as fast as one moves). False where
+// a forwarded walk needs a cell its piece does not hold: it goes on from
+// `w` in the piece that does, as if never interrupted.
+bool walkInside(inout InsideWalk w, vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau,
+  inout ShadowWalk shadow, out float exit)
 {
+  exit = tEnd;
   vec3 origin = p + t * direction;
   float span = tEnd - t;
-  VoxelWalk walk = startWalk(origin, direction);
-  float s = 0.0;
-  float safe = 0.0;
   // The cell the path leaves the surface in, bisected after the loop (lavapipe
   // would run the bisection under a mask in every cell).
   bool left = false;
   float sLeft = 0.0;
   CellContents last;
-  for (int i = 0; i < 65536 && s < span; ++i)
+  for (; w.steps < 65536 && w.s < span; ++w.steps)
   {
-    float sNext = min(cellExit(walk), span);
-    CellContents contents = contentsOf(walk.cell);
+    if (!walkLayerHeld(w.walk.cell.z, w.walk.stepDir.z)) return false;
+    float sNext = min(cellExit(w.walk), span);
+    CellContents contents = contentsOf(w.walk.cell);
     vec3 medium = contents.medium;
-    if (sNext > safe)
+    if (sNext > w.safe)
     {
       float d = surfaceDistance(origin + sNext * direction);
       if (d > 0.0)
@@ -258,18 +325,86 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
         last = contents;
         break;
       }
-      safe = sNext - 0.9 * d;
+      w.safe = sNext - 0.9 * d;
     }
-    tau += medium * (sNext - s);
-    if (BRAGG_SHADOW) followShadow(shadow, contents.domain, sNext - s);
-    s = sNext;
-    stepWalk(walk);
+    tau += medium * (sNext - w.s);
+    if (BRAGG_SHADOW) followShadow(shadow, contents.domain, sNext - w.s);
+    w.s = sNext;
+    stepWalk(w.walk);
   }
-  if (!left) return tEnd;
-  float sOut = bisectSurface(origin, direction, sLeft, s);
-  tau += last.medium * max(sOut - s, 0.0);
-  if (BRAGG_SHADOW) followShadow(shadow, last.domain, max(sOut - s, 0.0));
-  return t + sOut;
+  if (!left) return true;
+  float sOut = bisectSurface(origin, direction, sLeft, w.s);
+  tau += last.medium * max(sOut - w.s, 0.0);
+  if (BRAGG_SHADOW) followShadow(shadow, last.domain, max(sOut - w.s, 0.0));
+  exit = t + sOut;
+  return true;
+}
+
+// A voxel's walk to the light (lightWalkOn), in the order of its phases.
+const int LightWalkUnstarted = -1; // a forwarded walk whose voxel's piece comes later
+const int LightWalkStretches = 0; // the stretches inside the opal, to the light
+const int LightWalkContinued = 1; // no stretch: the value continued from the inside
+const int LightWalkMedium = 2;    // that value's coefficients, read at `point`
+const int LightWalkFromInside = 3; // that value's walk from the point inside, `point`
+const int LightWalkDone = 4;
+
+// All a walk to the light carries from step to step (all a forwarded walk
+// keeps, keepLightWalk): its phase, the stretch loop's t, the light's entry
+// so far and the stretch, whether it traces or walks, the entry trace, the
+// walk inside, the optical depths, the geometry factor, the Bragg shadow, and
+// the continued value's point and length back.
+struct LightWalk
+{
+  int phase;
+  float t;
+  float lightEntry;
+  int stretch;
+  bool tracing;
+  SurfaceTrace trace;
+  InsideWalk inside;
+  vec3 tau;
+  float geometry;
+  ShadowWalk shadow;
+  vec3 point;
+  float back;
+};
+
+// Where the light enters (`entry`, along `along`) is known: its geometry
+// factor. Forwarded as each walk ends, whose piece holds the point;
+// unforwarded once for the last (lightWalkOn: lavapipe would run two calls
+// under a mask).
+void lightEnters(inout LightWalk w, vec3 p, vec3 entry, vec3 along, bool last)
+{
+  if (FORWARDED != last) w.geometry = entryGeometry(p, entry, along);
+}
+
+// The exact light at p (eq. 6, 7): the path to the light
+// crossed cell by cell through every stretch inside the opal; the light
+// enters where the stretch nearest the light leaves it (L_in). An outside
+// p behind the opal thus gets the light through it, one beside it the
+// continuation (continueFromInside). False where forwarded and paused.
+bool walkStretches(inout LightWalk w, vec3 p, vec3 direction, float tEnd)
+{
+  for (; w.stretch < 64 && w.t < tEnd; ++w.stretch)
+  {
+    if (w.tracing)
+    {
+      if (!traceSurfaceOn(w.trace, p, direction, tEnd, lightTrace(), 1e30)) return false;
+      w.t = w.trace.t;
+      if (w.t < 0.0) break;
+      w.inside = startInside(p, direction, w.t);
+      w.tracing = false;
+    }
+    float exit;
+    if (!walkInside(w.inside, p, direction, w.t, tEnd, w.tau, w.shadow, exit)) return false;
+    w.lightEntry = exit;
+    lightEnters(w, p, p + exit * direction, direction, false);
+    if (BRAGG_SHADOW) followShadow(w.shadow, -1, 0.0); // outside between stretches
+    w.t = w.lightEntry + 0.5 * P.smallestSpacing;
+    w.trace = surfaceTrace(w.t);
+    w.tracing = true;
+  }
+  return true;
 }
 
 // An outside voxel whose path to the light misses the opal: values
@@ -277,77 +412,124 @@ float walkInside(vec3 p, vec3 direction, float t, float tEnd, inout vec3 tau, in
 // stay close to the inside's. Where the surface below it faces the light,
 // linearly across that surface (d / cos_L back along the path): the optical
 // depth negative in proportion to the distance, the Fresnel transmission at
-// cos_L. Beside the shadow line (cos_L small), the light of the nearest
-// point just inside (unattenuated light there would brighten the
-// terminator). From the voxel's own distance and the field's slope along the
-// path: no search, which a CPU driver would pay for every skin voxel.
-// Where the light is that of the point inside, `entered` (false on the
-// way in): its geometry is entryGeometry's at `entry` along `along`, which
-// the caller evaluates.
-LightSample continuedFromInside(
-  vec3 p, vec3 direction, float d, inout ShadowWalk shadow, inout bool entered, inout vec3 entry, inout vec3 along)
+// cos_L (its coefficients read next, LightWalkMedium). Beside the shadow
+// line (cos_L small), the light of the nearest point just inside, walked to
+// the light next (LightWalkFromInside; unattenuated light there would
+// brighten the terminator). From the voxel's own distance and the field's
+// slope along the path: no search, which a CPU driver would pay for every
+// skin voxel.
+void continueFromInside(inout LightWalk w, vec3 p, vec3 direction, float d)
 {
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
   float r = distance(P.light, p);
   if (cosL > 0.25)
   {
-    float back = d / cosL;
-    vec3 medium = mediumIn(voxelOf(p - (back + 0.5 * P.smallestSpacing) * direction));
-    float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - back * direction) : r;
+    w.back = d / cosL;
+    w.point = p - (w.back + 0.5 * P.smallestSpacing) * direction;
+    float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - w.back * direction) : r;
     float transmission = 1.0 - fresnelReflectance(cosL, P.refractiveIndex);
-    return LightSample(-medium * back, transmission * P.apexDistanceSquared / (falloff * falloff));
+    w.geometry = transmission * P.apexDistanceSquared / (falloff * falloff);
+    w.phase = LightWalkMedium;
+    return;
   }
-  vec3 q = p - (d + 0.01 * P.smallestSpacing) * surfaceNormal(p);
-  if (!insideGrid(voxelOf(q)) || surfaceDistance(q) > 0.0)
+  w.point = p - (d + 0.01 * P.smallestSpacing) * surfaceNormal(p);
+  if (!insideGrid(voxelOf(w.point)) || surfaceDistance(w.point) > 0.0)
   {
     // Beside the grid's faces the field's continuation has no nearest point to offer.
-    return LightSample(vec3(0.0), P.apexDistanceSquared / (r * r));
+    w.geometry = P.apexDistanceSquared / (r * r);
+    w.phase = LightWalkDone;
+    return;
   }
-  vec3 towardLight = normalize(P.light - q);
-  vec3 tau = vec3(0.0);
-  float exit = walkInside(q, towardLight, 0.0, min(gridBoxHits(q, towardLight).y, distance(P.light, q)), tau, shadow);
-  entered = true;
-  entry = q + exit * towardLight;
-  along = towardLight;
-  return LightSample(tau, 0.0);
+  w.inside = startInside(w.point, normalize(P.light - w.point), 0.0);
+  w.phase = LightWalkFromInside;
 }
 
-// The exact light at p (eq. 6, 7): the path to the light
-// crossed cell by cell through every stretch inside the opal; the light
-// enters where the stretch nearest the light leaves it (L_in). An outside
-// p behind the opal thus gets the light through it, one beside it the
-// continuation above.
-LightSample lightAlongPath(vec3 p, vec3 direction, float distanceToLight, float surfaceDistanceAtP, inout ShadowWalk shadow)
+// Takes the walk to the light from voxel `index` at p on through its
+// phases until it is done (true), or, forwarded, needs a layer its piece
+// does not hold (false: neededLayer).
+bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEnd)
 {
-  float tEnd = min(gridBoxHits(p, direction).y, distanceToLight);
-  vec3 tau = vec3(0.0);
-  float lightEntry = -1.0;
-  float t = 0.0;
-  bool inside = surfaceDistanceAtP <= 0.0;
-  for (int stretch = 0; stretch < 64 && t < tEnd; ++stretch)
+  if (w.phase == LightWalkStretches)
   {
-    if (!inside)
-    {
-      t = traceSurfaceEntry(p, direction, t, tEnd, 0.5 * P.smallestSpacing);
-      if (t < 0.0) break;
-    }
-    lightEntry = walkInside(p, direction, t, tEnd, tau, shadow);
-    if (BRAGG_SHADOW) followShadow(shadow, -1, 0.0); // outside between stretches
-    t = lightEntry + 0.5 * P.smallestSpacing;
-    inside = false;
+    if (!walkStretches(w, p, direction, tEnd)) return false;
+    w.phase = w.lightEntry >= 0.0 ? LightWalkDone : LightWalkContinued;
   }
-  // One entryGeometry (a normal: six SurfaceDistance reads) for either way
-  // the light enters: lavapipe would run both calls under a mask.
-  bool entered = lightEntry >= 0.0;
-  vec3 entry = p + lightEntry * direction, along = direction;
-  LightSample light = LightSample(tau, 0.0);
-  if (!entered)
+  if (w.phase == LightWalkContinued)
   {
-    light = continuedFromInside(p, direction, surfaceDistanceAtP, shadow, entered, entry, along);
+    if (!layerHeld(voxelOf(p).z)) return false;
+    continueFromInside(w, p, direction, voxelSurfaceDistance(index));
   }
-  if (entered) light.geometry = entryGeometry(p, entry, along);
-  return light;
+  if (w.phase == LightWalkMedium)
+  {
+    ivec3 cell = voxelOf(w.point);
+    if (!layerHeld(cell.z)) return false;
+    w.tau = -mediumIn(cell) * w.back;
+    w.phase = LightWalkDone;
+  }
+  // One entryGeometry for either way the light enters (a normal: six
+  // SurfaceDistance reads): lavapipe would run two calls under a mask.
+  bool entered = w.lightEntry >= 0.0;
+  vec3 entry = p + w.lightEntry * direction, along = direction;
+  if (w.phase == LightWalkFromInside)
+  {
+    vec3 towardLight = normalize(P.light - w.point);
+    float tEndInside = min(gridBoxHits(w.point, towardLight).y, distance(P.light, w.point));
+    float exit;
+    if (!walkInside(w.inside, w.point, towardLight, 0.0, tEndInside, w.tau, w.shadow, exit)) return false;
+    entered = true;
+    entry = w.point + exit * towardLight;
+    along = towardLight;
+    lightEnters(w, p, entry, along, false);
+    w.phase = LightWalkDone;
+  }
+  if (entered) lightEnters(w, p, entry, along, true);
+  return true;
+}
+
+// A voxel's walk to the light as it starts: inside, walking from p; outside,
+// tracing its entry.
+LightWalk startLightWalk(int index, vec3 p, vec3 direction, float d)
+{
+  LightWalk w;
+  w.phase = LightWalkStretches;
+  w.t = 0.0;
+  w.lightEntry = -1.0;
+  w.stretch = 0;
+  w.tracing = d > 0.0;
+  w.trace = surfaceTrace(0.0);
+  if (!w.tracing) w.inside = startInside(p, direction, 0.0);
+  w.tau = vec3(0.0);
+  w.geometry = 0.0;
+  w.shadow = startShadow(BRAGG_SHADOW ? VOXEL_CELL_AT(index).domainId : -1);
+  w.point = p;
+  w.back = 0.0;
+  return w;
+}
+
+// Saves (`saving`) or restores the walk of invocation `slot` of a forwarded
+// light pass: everything its steps read again, bit for bit (LightStateWords
+// with the layer word).
+void keepLightWalk(int slot, bool saving, inout LightWalk w)
+{
+  beginKeeping(slot, LightStateWords, saving);
+  keepInt(w.phase);
+  keepFloat(w.t);
+  keepFloat(w.lightEntry);
+  keepInt(w.stretch);
+  keepBool(w.tracing);
+  keepTrace(w.trace);
+  keepVoxelWalk(w.inside.walk);
+  keepFloat(w.inside.s);
+  keepFloat(w.inside.safe);
+  keepInt(w.inside.steps);
+  keepVec3(w.tau);
+  keepFloat(w.geometry);
+  keepShadow(w.shadow.record);
+  keepInt(w.shadow.own);
+  keepInt(w.shadow.phase);
+  keepVec3(w.point);
+  keepFloat(w.back);
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
@@ -462,6 +644,30 @@ int voxelOfInvocation()
   return local < nx * work.count ? local % nx + nx * (work.layer + ny * (work.first + local / nx)) : -1;
 }
 
+// A forwarded walk to the light in this dispatch: in the first, a voxel of
+// another piece's kept untouched for it (false); in a later one, its walk
+// taken up again where this piece holds the layer it goes on in (false
+// where done or elsewhere: one word read); `started` once begun.
+bool takeUpWalk(int slot, ivec3 c, out LightWalk w, out bool started)
+{
+  started = false;
+  if (work.resumed == 0)
+  {
+    if (layerHeld(c.z)) return true;
+    // Not started: its voxel's own reads wait for its piece.
+    keepLayer(slot, LightStateWords, uint(neededLayer));
+    beginKeeping(slot, LightStateWords, true);
+    int phase = LightWalkUnstarted;
+    keepInt(phase);
+    return false;
+  }
+  uint layer = keptLayer(slot, LightStateWords);
+  if (layer == KEPT_FINISHED || !layerHeld(int(layer))) return false;
+  keepLightWalk(slot, false, w);
+  started = w.phase != LightWalkUnstarted;
+  return true;
+}
+
 void main()
 {
   int index = voxelOfInvocation();
@@ -478,21 +684,36 @@ void main()
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
-  // A voxel centre: its own SurfaceDistance, no interpolation needed.
-  float d = voxelSurfaceDistance(index);
-  if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
+  int slot = passItem(LightPassGroupSize);
+  LightWalk w;
+  bool started = false;
+  if (FORWARDED && !takeUpWalk(slot, c, w, started)) return;
+  if (!started)
   {
-    // Outside beyond the skin: nothing inside reads it; unattenuated light.
-    storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)),
-      startShadow(-1));
+    // A voxel centre: its own SurfaceDistance, no interpolation needed.
+    float d = voxelSurfaceDistance(index);
+    if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
+    {
+      // Outside beyond the skin: nothing inside reads it; unattenuated light.
+      storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)),
+        startShadow(-1));
+      if (FORWARDED) keepLayer(slot, LightStateWords, KEPT_FINISHED);
+      return;
+    }
+    if (LIGHT_PASS_MODE == LightPassSweepFromAbove)
+    {
+      sweepFromLayerAbove(index, c, p, direction);
+      return;
+    }
+    w = startLightWalk(index, p, direction, d);
+  }
+  if (!lightWalkOn(w, index, p, direction, min(gridBoxHits(p, direction).y, distanceToLight)))
+  {
+    // Unforwarded every walk finishes: the constant folds the keeping away.
+    keepLayer(slot, LightStateWords, uint(neededLayer));
+    keepLightWalk(slot, true, w);
     return;
   }
-  if (LIGHT_PASS_MODE == LightPassSweepFromAbove)
-  {
-    sweepFromLayerAbove(index, c, p, direction);
-    return;
-  }
-  ShadowWalk shadow = startShadow(BRAGG_SHADOW ? VOXEL_CELL_AT(index).domainId : -1);
-  LightSample light = lightAlongPath(p, direction, distanceToLight, d, shadow);
-  storeLight(index, light, shadow);
+  storeLight(index, LightSample(w.tau, w.geometry), w.shadow);
+  if (FORWARDED) keepLayer(slot, LightStateWords, KEPT_FINISHED);
 }

@@ -307,11 +307,16 @@ struct VolumeAddresses
 // LightPassMarchTowardsLight and LightPassScatteredField; the layer y = layer
 // in the other two modes, LightPassSweepFromAbove sweeping its rows
 // z = first to first + count - 1 (a share of the layer, docs/design.md §8.1).
+// A forwarded walk to the light (§8.1) walks only within layers z in
+// [piece.x, piece.y), each walk kept where it needs another piece and taken
+// up again by a later dispatch of the same voxels (`resumed` 1).
 struct LightPassWork
 {
   int first;
   int count;
   int layer;
+  int resumed;
+  ivec2 piece;
 };
 
 // Invocations per workgroup of the light pass.
@@ -344,10 +349,13 @@ struct MarchWork
   ivec2 piece;
   int resumed;
 };
-// The most layers z a step of the view march's surface traces passes; a
-// forwarded march's piece reads SurfaceDistance ViewTraceLayers + 2 layers
-// beyond its own (docs/design.md §8.1).
-OPAL_CONSTANT int ViewTraceLayers = 4;
+// The most layers z a step of the view march's and the light pass's surface
+// traces passes; a forwarded pass's piece reads SurfaceDistance
+// TraceStepLayers + 2 layers beyond its own (docs/design.md §8.1).
+OPAL_CONSTANT int TraceStepLayers = 4;
+// The words a forwarded walk to the light keeps per voxel, exactly
+// (light_optical_depth.comp's keepLightWalk and its layer word).
+OPAL_CONSTANT int LightStateWords = 38;
 // The words a forwarded march keeps per ray, exactly (view_march.comp's
 // keepRay and its layer word): its place, its entry and exit traces, walk and
 // round, its recorded crossings, its sums and, with energy conservation, the
@@ -378,7 +386,8 @@ OPAL_CONSTANT int LightPassModeConstant = 0;        // int: one of the light pas
 OPAL_CONSTANT int LightAbsorptionConstant = 1;      // bool: the volume absorbs (docs/design.md §3.9)
 OPAL_CONSTANT int LightBraggShadowConstant = 2;     // bool: record the Bragg shadows (§7.2)
 OPAL_CONSTANT int LightPairedFieldsConstant = 3;    // bool: the fields hold pairs (PairedFields)
-OPAL_CONSTANT int LightPassConstantCount = 4;
+OPAL_CONSTANT int LightForwardedConstant = 4;       // bool: walks forwarded between pieces (LightPassWork.piece)
+OPAL_CONSTANT int LightPassConstantCount = 5;
 // The highlight pass:
 OPAL_CONSTANT int HighlightModeConstant = 0;        // int: HighlightSelect or HighlightShade
 OPAL_CONSTANT int HighlightPairedFieldsConstant = 1; // bool: the fields hold pairs (PairedFields)

@@ -56,6 +56,7 @@ bool surfacePointHeld(vec3 p);
 #include "opal_coupled_wave.glsl"
 #include "opal_voxel_walk.glsl"
 #include "opal_bragg_transmission.glsl"
+#include "opal_kept_state.glsl"
 
 // The light and absorption fields' LightFieldPairs read as one vec4 each
 // (voxel in xy, its +x neighbour in zw): a CPU driver gathers a struct's
@@ -118,8 +119,6 @@ layout(std430, set = 0, binding = EdgeQueueBinding) buffer EdgeQueue { DispatchQ
 layout(std430, set = 0, binding = EdgePixelsBinding) buffer EdgePixels { uint edgePixels[]; };
 // A queued pixel's sub-rays summed so far, between the refine's dispatches.
 layout(std430, set = 0, binding = PixelSumsBinding) buffer PixelSums { PixelSum pixelSums[]; };
-// A forwarded march's rays between its dispatches (keepRay), per invocation.
-layout(std430, set = 0, binding = RayStatesBinding) buffer RayStates { uint rayStates[]; };
 
 layout(push_constant) uniform MarchPush { MarchWork marchWork; };
 
@@ -680,15 +679,15 @@ int walkRound;
 int walkCount;
 int walkGuard;
 
-// The view ray's traces step at most ViewTraceLayers layers z: a forwarded
+// The view ray's traces step at most TraceStepLayers layers z: a forwarded
 // march then bisects, and takes the normal at the entry, within
-// ViewTraceLayers + 2 layers of the piece whose point ended the steps
+// TraceStepLayers + 2 layers of the piece whose point ended the steps
 // (the halo of SurfaceDistance a piece holds), and traces the exit no
 // further ahead of its walk (docs/design.md §8.1). Unforwarded the same, so
 // that both find the same surface.
 TraceRule viewTrace(bool entering)
 {
-  return TraceRule(entering, 0.05 * P.smallestSpacing, float(ViewTraceLayers), entering);
+  return TraceRule(entering, 0.05 * P.smallestSpacing, float(TraceStepLayers), entering);
 }
 
 // The refracted ray's exit (`exit`, the trace to tEnd of the ray from origin
@@ -884,70 +883,14 @@ void resetRay()
   firstCrossedDomain = -1;
 }
 
-// A forwarded ray's words in rayStates: the layer its walk stands in, or its
-// entry trace's next point (the piece that takes it up), or RAY_FINISHED once its pixel has it; then what
-// keepRay keeps.
+// A forwarded ray's words in keptStates (opal_kept_state.glsl): the layer its
+// walk stands in, or its entry trace's next point (the piece that takes it
+// up), or KEPT_FINISHED once its pixel has it; then what keepRay keeps.
 const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
-const uint RAY_FINISHED = 0xffffffffu;
-bool raySaving; // keepRay's way: into rayStates, or out of them
-int rayWord;    // keepRay's next word
-
-void keepFloat(inout float v)
-{
-  if (raySaving) rayStates[rayWord] = floatBitsToUint(v);
-  else v = uintBitsToFloat(rayStates[rayWord]);
-  ++rayWord;
-}
-
-void keepInt(inout int v)
-{
-  if (raySaving) rayStates[rayWord] = uint(v);
-  else v = int(rayStates[rayWord]);
-  ++rayWord;
-}
-
-void keepBool(inout bool b)
-{
-  int word = b ? 1 : 0;
-  keepInt(word);
-  b = word != 0;
-}
-
-void keepVec3(inout vec3 v)
-{
-  keepFloat(v.x);
-  keepFloat(v.y);
-  keepFloat(v.z);
-}
-
-void keepIvec3(inout ivec3 v)
-{
-  keepInt(v.x);
-  keepInt(v.y);
-  keepInt(v.z);
-}
-
-void keepShadow(inout LightShadow shadow)
-{
-  keepInt(shadow.domain);
-  keepFloat(shadow.lengthMm);
-  keepFloat(shadow.ownLengthMm);
-}
-
-void keepTrace(inout SurfaceTrace trace)
-{
-  keepFloat(trace.t);
-  keepFloat(trace.previous);
-  keepInt(trace.steps);
-  keepBool(trace.done);
-}
 
 void keepWalk()
 {
-  keepIvec3(walkState.walk.cell);
-  keepIvec3(walkState.walk.stepDir);
-  keepVec3(walkState.walk.tMax);
-  keepVec3(walkState.walk.tDelta);
+  keepVoxelWalk(walkState.walk);
   keepFloat(walkState.t);
   keepVec3(walkState.tauView);
   keepInt(walkState.lastDomain);
@@ -1005,8 +948,7 @@ void keepShadowedSums()
 // entering sets the rest.
 void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout float transmitted)
 {
-  raySaving = saving;
-  rayWord = slot * RAY_WORDS + 1;
+  beginKeeping(slot, RAY_WORDS, saving);
   keepTrace(entryTrace);
   keepSum(sum);
   keepBool(rayEntered);
@@ -1037,8 +979,8 @@ bool resumeRay(int slot, inout PixelSum sum, out float tHit, out float transmitt
 {
   tHit = 0.0;
   transmitted = 0.0;
-  uint layer = rayStates[slot * RAY_WORDS];
-  if (layer == RAY_FINISHED || !inMarchPiece(ivec3(0, 0, int(layer)))) return false;
+  uint layer = keptLayer(slot, RAY_WORDS);
+  if (layer == KEPT_FINISHED || !inMarchPiece(ivec3(0, 0, int(layer)))) return false;
   keepRay(slot, false, sum, tHit, transmitted);
   return true;
 }
@@ -1330,11 +1272,11 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   bool paused = hit ? !marchOn() : entry == RAY_PAUSED;
   if (FORWARDED && paused)
   {
-    rayStates[slot * RAY_WORDS] = uint(rayLayer());
+    keepLayer(slot, RAY_WORDS, uint(rayLayer()));
     keepRay(slot, true, sum, tHit, transmitted);
     return false;
   }
-  if (FORWARDED) rayStates[slot * RAY_WORDS] = RAY_FINISHED;
+  if (FORWARDED) keepLayer(slot, RAY_WORDS, KEPT_FINISHED);
   return true;
 }
 

@@ -1,23 +1,29 @@
-// The view march with its rays forwarded between pieces of the volume
-// (docs/design.md §8.1), in one process: each dispatch walks only one slab of
-// layers z, a ray leaving it is saved and taken up by the dispatch of the
-// slab it enters. The data-parallel render is to forward rays so between
-// ranks. Each piece's dispatch reads the fields it reads per voxel from
-// buffers holding only its layers and their halo (one layer; SurfaceDistance,
-// which the entry and exit traces read, six), addressed from their first
-// layer, as a rank holding only its piece will. The forwarded
-// march must give the image of the march never forwarded, value for value:
-// every state a ray carries across a face (its walk and round, its recorded
-// crossings, its sums on the nodes and bins, its pixel's sums) comes back bit
-// for bit, and no read reaches beyond the halo, or a value differs. fig12's optics, pinfire's grains and fire-opal (an
+// The view march's rays and the light pass's walks to the light forwarded
+// between pieces of the volume (docs/design.md §8.1), in one process: each
+// dispatch walks only one slab of layers z, a ray or walk leaving it is saved
+// and taken up by the dispatch of the slab it enters. The data-parallel
+// render is to forward them so between ranks. Each piece's dispatch reads
+// the fields it reads per voxel from buffers holding only its layers and
+// their halo (the march: one layer; the walks to the light: five of the
+// cells; SurfaceDistance, which the traces read, six), addressed from their
+// first layer, as a rank holding only its piece will. The forwarded render
+// must give the image of the one never forwarded, value for value: every
+// state a ray or walk carries across a face (a ray's walk and round, its
+// recorded crossings, its sums on the nodes and bins, its pixel's sums; a
+// walk's trace, cell walk, optical depths and Bragg shadow) comes back bit
+// for bit, and no read reaches beyond the halo, or a value differs. The
+// walks to the light are forwarded too: every voxel's where the light is
+// low or to the side, the skin voxels' the sweep from above queues.
+// fig12's optics and pinfire's grains lit from above; fire-opal (an
 // absorbing body, coupled-wave fcc planes, energy conservation's rounds and
-// Bragg shadows, every order) lit from the side, with the edge pixels'
-// sub-rays (their sums kept between dispatches) and the spectrum; fire-opal
-// (whose ray carries the most) in 2, 3 and 7 pieces, also with its fields
-// read by address and through staging buffers, and whole and bound (paired);
-// more pieces than layers (pieces of none); ray states beyond the
-// storage-buffer range, refused; and pieces' fields alone on a device that
-// cannot address buffers, refused.
+// Bragg shadows, every order) lit from the side, and from the front and low
+// (its walks to the light along z); with the edge pixels' sub-rays (their
+// sums kept between dispatches) and the spectrum; fire-opal (whose ray
+// carries the most) in 2, 3 and 7 pieces, also with its fields read by
+// address and through staging buffers, and whole and bound (paired); more
+// pieces than layers (pieces of none); ray states beyond the storage-buffer
+// range, refused; and pieces' fields alone on a device that cannot address
+// buffers, refused.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -55,7 +61,7 @@ void checkForwarded(const opal::ModelParameters& model, const opal::RenderParame
   for (const int pieces : pieceCounts)
   {
     OPAL_CHECK(opaltest::identical(forwarded(stone, p, pieces), expected),
-      scene + ": the march forwarded through " + std::to_string(pieces) +
+      scene + ": forwarded through " + std::to_string(pieces) +
         " pieces gives the unforwarded image, value for value");
   }
   if (bound)
@@ -106,6 +112,12 @@ int TestOpalForwardedMarch(int, char*[])
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
   checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
 
+  // Lit from the front and low, a light whose walks all cross the pieces along z.
+  opal::RenderParameters front = side;
+  front.ScatteringOrders = opal::ScatteringOrdersKind::Single;
+  front.LightPosition = { 1.0, 4.0, -30.0 };
+  checkForwarded(fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
+
   // The unforwarded march with its fields read by address, one value per
   // voxel (below the paired fields' bytes: VoxelCell 8, SurfaceDistance 8,
   // light field 16, absorption cells 8 and their light field 16, the Bragg
@@ -126,7 +138,7 @@ int TestOpalForwardedMarch(int, char*[])
   opal::VulkanOptions staged; // each piece's fields alone are read by address at any memory limit
   staged.StagingTransfers = true;
   OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
-    "fire-opal, its fields by address and through staging: the march forwarded through 3 pieces, each "
+    "fire-opal, its fields by address and through staging: forwarded through 3 pieces, each "
     "reading its fields alone, gives the unforwarded image");
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
@@ -135,7 +147,7 @@ int TestOpalForwardedMarch(int, char*[])
   const opal::RenderVolume thin = thinVolume->renderVolume();
   opaltest::SceneRenderer whole({});
   OPAL_CHECK(opaltest::identical(forwarded(thin, p, 7), whole.render(thin, p)),
-    "three layers in seven pieces: the forwarded march gives the unforwarded image");
+    "three layers in seven pieces: the forwarded render gives the unforwarded image");
 
   // Ray states beyond the device's storage-buffer range: the frame refused
   // before any pass, naming the range, and the session renders the next frame.

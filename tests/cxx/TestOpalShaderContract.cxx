@@ -103,6 +103,8 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("work.", LightPassWork, first),
     OPAL_FIELD("work.", LightPassWork, count),
     OPAL_FIELD("work.", LightPassWork, layer),
+    OPAL_FIELD("work.", LightPassWork, resumed),
+    OPAL_FIELD("work.", LightPassWork, piece),
     OPAL_FIELD("marchWork.", MarchWork, origin),
     OPAL_FIELD("marchWork.", MarchWork, mode),
     OPAL_FIELD("marchWork.", MarchWork, first),

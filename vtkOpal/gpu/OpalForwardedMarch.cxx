@@ -1,7 +1,7 @@
-// The view march with its rays forwarded between pieces of the volume, slabs
-// of layers z (docs/design.md §8.1): the host's side, in one process
-// (VulkanOptions::MarchPieces), as the data-parallel render is to forward
-// rays between ranks.
+// The view march's rays and the light pass's walks to the light forwarded
+// between pieces of the volume, slabs of layers z (docs/design.md §8.1): the
+// host's side, in one process (VulkanOptions::MarchPieces), as the
+// data-parallel render is to forward them between ranks.
 #include "OpalRenderSession.h"
 
 #include "OpalParallel.h"
@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <utility>
@@ -20,21 +21,39 @@ namespace opal
 
 using namespace sessiondetail;
 
+namespace
+{
+// The layers beyond a piece a forwarded walk to the light reads cells in:
+// where a trace's bisection puts its start behind the piece (walkLayerHeld).
+constexpr int LightCellsHalo = gpu::TraceStepLayers + 1;
+} // namespace
+
 // Records the march's `work` over groupsX x groupsY workgroups: one
 // dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
-// per piece of layers z, the pieces in order, back, in order and back again
-// (4N - 3 dispatches). A ray's points move along z one way while it traces
-// its entry, may step back (a piece or more) to where its walk begins, and move one
-// way while it walks: four sweeps take every ray from the piece it starts in
-// to the one it leaves from. With MarchPieceFieldsOnly each dispatch reads
-// its piece's fields alone (recordPieceFields), the whole fields' addresses
-// back after the last.
+// per pass of recordPiecePasses. A ray's points move along z one way while
+// it traces its entry, may step back (a piece or more) to where its walk
+// begins, and move one way while it walks: four sweeps take every ray from
+// the piece it starts in to the one it leaves from.
 void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
   gpu::MarchWork pieceWork = work;
+  this->recordPiecePasses(commands, this->pieceFields(), [&](std::pair<int, int> layers, bool resumed) {
+    pieceWork.piece = gpu::ivec2(layers.first, layers.second);
+    pieceWork.resumed = resumed ? 1 : 0;
+    march.dispatch(commands, pieceWork, groupsX, groupsY);
+  });
+}
+
+// The passes of a pass forwarded through MarchPieces pieces of layers z: the
+// pieces in order, back, in order and back again (4N - 3 passes; one over
+// all layers unforwarded). With MarchPieceFieldsOnly each pass reads its
+// piece's `fields` alone (recordPieceFields), the whole fields' addresses
+// back after the last.
+void RenderSession::recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields,
+  const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const
+{
   const int pieces = this->MarchPieces;
-  const std::vector<PieceField> fields = this->pieceFields();
   const int period = 2 * pieces - 2;
   for (int pass = 0; pass < 2 * period + 1; ++pass)
   {
@@ -42,9 +61,7 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
     const int piece = at < pieces ? at : period - at;
     const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
     this->recordPieceFields(commands, fields, layers);
-    pieceWork.piece = gpu::ivec2(layers.first, layers.second);
-    pieceWork.resumed = pass > 0 ? 1 : 0;
-    march.dispatch(commands, pieceWork, groupsX, groupsY);
+    dispatch(layers, pass > 0);
   }
   if (!fields.empty())
   {
@@ -56,7 +73,7 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
 // The fields the view march reads per voxel, with their bytes per voxel and
 // the layers z beyond a piece its reads take (docs/design.md §8.1): the
 // cells, the absorption's, the light pass's and the every-order field one
-// (the light field's trilinear read); SurfaceDistance ViewTraceLayers + 2
+// (the light field's trilinear read); SurfaceDistance TraceStepLayers + 2
 // (the view traces' steps, their bisection and the normal at the entry).
 std::vector<RenderSession::PieceField> RenderSession::marchFields() const
 {
@@ -78,7 +95,7 @@ std::vector<RenderSession::PieceField> RenderSession::marchFields() const
     pieceFields.push_back({ field, bytes, 1, nullptr });
   }
   pieceFields.push_back(
-    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::ViewTraceLayers + 2, nullptr });
+    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::TraceStepLayers + 2, nullptr });
   return pieceFields;
 }
 
@@ -94,7 +111,8 @@ std::pair<std::uint64_t, std::uint64_t> RenderSession::pieceBytes(const PieceFie
 }
 
 // With MarchPieceFieldsOnly (and MarchPieces above 1), a buffer per field of
-// the march (marchFields) for the largest piece's layers and halo, made for
+// the march (marchFields) for the largest piece's layers and halo (the
+// march's or the walks to the light's, the larger), made for
 // each march region (a test's option, so kept simple); none otherwise.
 void RenderSession::preparePieceFields()
 {
@@ -104,8 +122,9 @@ void RenderSession::preparePieceFields()
     return;
   }
   const int layers = this->Volume->Shape.Dimensions[2];
-  for (const PieceField& field : this->marchFields())
+  for (PieceField field : this->marchFields())
   {
+    field.Halo = std::max(field.Halo, LightCellsHalo); // the walks to the light's too (lightPieceFields)
     std::uint64_t bytes = 0;
     for (int piece = 0; piece < this->MarchPieces; ++piece)
     {
@@ -128,6 +147,31 @@ std::vector<RenderSession::PieceField> RenderSession::pieceFields() const
   for (std::size_t i = 0; i < fields.size(); ++i)
   {
     fields[i].Piece = this->PieceFieldBuffers.at(i).get();
+  }
+  return fields;
+}
+
+// The fields a forwarded walk to the light reads (docs/design.md §8.1), with
+// their pieces' buffers: the cells and the absorption's only in the cells it
+// walks, those of TraceStepLayers + 1 layers beyond the piece where a walk
+// starts behind it (walkLayerHeld), SurfaceDistance as the march reads it.
+// The light fields it writes stay whole: a walk ends in any piece and stores
+// at its own voxel.
+std::vector<RenderSession::PieceField> RenderSession::lightPieceFields() const
+{
+  const DeviceVolume& v = *this->Volume;
+  std::vector<PieceField> fields;
+  for (PieceField field : this->pieceFields())
+  {
+    if (field.Whole == v.Cells.get() || field.Whole == v.AbsorptionCells.get())
+    {
+      field.Halo = LightCellsHalo;
+      fields.push_back(field);
+    }
+    else if (field.Whole == v.SurfaceDistance.get())
+    {
+      fields.push_back(field);
+    }
   }
   return fields;
 }
@@ -187,18 +231,49 @@ std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::a
   return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
 }
 
-// The frame's largest march: over its region or the exposure's thumbnail.
+// The frame's largest march (over its region or the exposure's thumbnail).
 std::uint64_t RenderSession::frameRayStateBytes(const FrameSetup& setup) const
 {
   return std::max(
     this->rayStateBytes(setup, setup.Region), this->rayStateBytes(setup, { 0, 0, setup.Thumbnail[0], setup.Thumbnail[1] }));
 }
 
-// The ray states of rayStateBytes, grown as the pixel buffers are (and bound
-// again); a refused allocation keeps the buffer bound before.
-void RenderSession::prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect)
+// The frame's states of its forwarded passes, the largest of one buffer:
+// its march's or its light pass's.
+std::uint64_t RenderSession::frameStateBytes(const FrameSetup& setup) const
 {
-  const std::uint64_t bytes = this->rayStateBytes(setup, rect);
+  return std::max(this->frameRayStateBytes(setup), this->lightStateBytes());
+}
+
+// The voxels a submit of the forwarded light pass takes: ForwardedLightVoxels,
+// fewer where their kept walks would pass the storage-buffer range.
+std::int64_t RenderSession::forwardedLightVoxels() const
+{
+  const std::uint64_t walkBytes = gpu::LightStateWords * sizeof(std::uint32_t);
+  return std::clamp<std::int64_t>(
+    static_cast<std::int64_t>(this->Context->limits().maxStorageBufferRange / walkBytes), 1, ForwardedLightVoxels);
+}
+
+// The forwarded light pass's kept walks, LightStateWords per voxel of a
+// submit of the per-voxel walks or of a layer y's queued walks (all its
+// voxels at most); none unforwarded.
+std::uint64_t RenderSession::lightStateBytes() const
+{
+  if (this->MarchPieces <= 1)
+  {
+    return 0;
+  }
+  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
+  const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * dims[2];
+  return static_cast<std::uint64_t>(std::max(this->forwardedLightVoxels(), layerVoxels)) * gpu::LightStateWords *
+    sizeof(std::uint32_t);
+}
+
+// The buffer of a forwarded pass's states (the march's rays, the light's
+// walks) grown to `bytes`, as the pixel buffers are (and bound again); a
+// refused allocation keeps the buffer bound before.
+void RenderSession::prepareRayStates(std::uint64_t bytes)
+{
   if (this->Buffers->RayStates->size() < bytes)
   {
     auto grown = std::make_unique<VulkanBuffer>(*this->Context, bytes, "forwarded rays", BufferPlacement::DeviceLocal);

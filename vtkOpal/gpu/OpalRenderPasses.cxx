@@ -50,7 +50,15 @@ bool RenderSession::sweepLightLayers(
   const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * (rows.second - rows.first);
   const auto groups = static_cast<std::uint32_t>((layerVoxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
   const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
-  const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow);
+  // With MarchPieces the queued walks are forwarded between the pieces (docs/design.md §8.1).
+  const bool forwarded = this->MarchPieces > 1;
+  const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow, forwarded);
+  if (forwarded)
+  {
+    this->prepareRayStates(this->lightStateBytes());
+    this->preparePieceFields();
+  }
+  const std::vector<PieceField> fields = this->lightPieceFields();
   for (int top = layers - 1; top >= 0;)
   {
     const int layersPerSubmit = afterLayer
@@ -64,10 +72,14 @@ bool RenderSession::sweepLightLayers(
       }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
-        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer };
+        gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0) };
         sweep.dispatch(commands, work, groups);
-        enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
-          static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
+        this->recordPiecePasses(commands, fields, [&](std::pair<int, int> layers, bool resumed) {
+          work.piece = gpu::ivec2(layers.first, layers.second);
+          work.resumed = resumed ? 1 : 0;
+          enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
+            static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
+        });
       }
     });
     const int swept = std::min(layersPerSubmit, top + 1);
@@ -81,26 +93,46 @@ bool RenderSession::sweepLightLayers(
   return true;
 }
 
-// Every voxel marches to the light (lights low or to the side).
+// Every voxel marches to the light (lights low or to the side); with
+// MarchPieces, its walk forwarded between the pieces (docs/design.md §8.1).
 bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
 {
-  return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-    progress.stageCallback(), 0, this->Volume->Shape.voxelCount());
+  const bool forwarded = this->MarchPieces > 1;
+  if (forwarded)
+  {
+    this->prepareRayStates(this->lightStateBytes());
+    this->preparePieceFields();
+  }
+  return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow, forwarded),
+    this->SlabPacer, progress.stageCallback(), 0, this->Volume->Shape.voxelCount(), forwarded);
 }
 
 // `pass` (a light pass's mode over voxel ranges) over voxels [begin, end), in
-// submits `pacer` sizes; `keepGoing` (the fraction done) after each, false stops.
+// submits `pacer` sizes; `keepGoing` (the fraction done) after each, false
+// stops. `forwarded`: each submit's walks forwarded between the pieces
+// (recordPiecePasses), forwardedLightVoxels at most.
 bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer,
-  const std::function<bool(double)>& keepGoing, std::size_t begin, std::size_t end)
+  const std::function<bool(double)>& keepGoing, std::size_t begin, std::size_t end, bool forwarded)
 {
+  const std::int64_t most = forwarded ? this->forwardedLightVoxels() : std::int64_t(1) << 30;
   for (std::size_t first = begin; first < end;)
   {
     const auto count = static_cast<std::int32_t>(
-      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), 1 << 30)), end - first));
-    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0 };
+      std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), most)), end - first));
+    gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0) };
+    const auto groups = static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
-      pass.dispatch(commands, work, static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
+      if (!forwarded)
+      {
+        pass.dispatch(commands, work, groups);
+        return;
+      }
+      this->recordPiecePasses(commands, this->lightPieceFields(), [&](std::pair<int, int> layers, bool resumed) {
+        work.piece = gpu::ivec2(layers.first, layers.second);
+        work.resumed = resumed ? 1 : 0;
+        pass.dispatch(commands, work, groups);
+      });
     });
     pacer.measured(count, secondsSince(start));
     first += static_cast<std::size_t>(count);
@@ -113,14 +145,15 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
 }
 
 // A light pass's mode for the volume: with ABSORPTION if it absorbs, with
-// BRAGG_SHADOW if asked (made on first use).
-ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
+// BRAGG_SHADOW if asked, FORWARDED if `forwarded` (made on first use).
+ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow, bool forwarded)
 {
   const int absorbs = this->Volume->Absorbs ? 1 : 0;
   const int shadow = braggShadow ? 1 : 0;
   const bool addressed = this->Volume->addressed();
   const int paired = this->Volume->PairedFields ? 1 : 0;
-  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow, addressed ? 1 : 0, paired }];
+  const int forwards = forwarded ? 1 : 0;
+  std::unique_ptr<ComputePipeline>& pass = this->LightPasses[{ mode, absorbs, shadow, addressed ? 1 : 0, paired, forwards }];
   if (!pass)
   {
     const embedded::Spirv code =
@@ -128,7 +161,8 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow)
     pass = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, code.Words, code.WordCount,
       specialisation(gpu::LightPassConstantCount,
         { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, absorbs },
-          { gpu::LightBraggShadowConstant, shadow }, { gpu::LightPairedFieldsConstant, paired } }));
+          { gpu::LightBraggShadowConstant, shadow }, { gpu::LightPairedFieldsConstant, paired },
+          { gpu::LightForwardedConstant, forwards } }));
   }
   return *pass;
 }
@@ -454,7 +488,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.writeSpectrum = target.Spectrum ? 1 : 0;
   block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
-  this->prepareRayStates(setup, rect);
+  this->prepareRayStates(this->rayStateBytes(setup, rect));
   this->preparePieceFields();
   const ComputePipeline& march = this->marchPipeline(setup);
   const bool refine = target.PixelSamples > 1;

@@ -277,11 +277,11 @@ RenderSession::RenderSession(const VulkanOptions& options)
   // Without absorption and Bragg shadows (pipelines with either made on first use).
   for (int mode : { gpu::LightPassMarchTowardsLight, gpu::LightPassSweepFromAbove, gpu::LightPassMarchQueued })
   {
-    this->LightPasses[{ mode, 0, 0, 0, 1 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
+    this->LightPasses[{ mode, 0, 0, 0, 1, 0 }] = std::make_unique<ComputePipeline>(*this->Context, *this->Bindings,
       light.Words, light.WordCount,
       specialisation(gpu::LightPassConstantCount,
         { { gpu::LightPassModeConstant, mode }, { gpu::LightAbsorptionConstant, 0 }, { gpu::LightBraggShadowConstant, 0 },
-          { gpu::LightPairedFieldsConstant, 1 } }));
+          { gpu::LightPairedFieldsConstant, 1 }, { gpu::LightForwardedConstant, 0 } }));
   }
   this->ColourPass =
     std::make_unique<ComputePipeline>(*this->Context, *this->Bindings, colour.Words, colour.WordCount);
@@ -727,7 +727,7 @@ std::uint64_t RenderSession::frameImageBytes(const FrameSetup& setup, bool kept)
   const std::uint64_t capacity = kept ? std::max(setup.PixelCapacity, b.PixelCapacity) : setup.PixelCapacity;
   const std::uint64_t spectrumBytes =
     kept ? std::max<std::uint64_t>(setup.spectrumBytes(), b.SpectrumFloats * sizeof(float)) : setup.spectrumBytes();
-  const std::uint64_t rays = this->frameRayStateBytes(setup);
+  const std::uint64_t rays = this->frameStateBytes(setup);
   return capacity * ImageBytesPerPixel + spectrumBytes +
     (kept ? std::max<std::uint64_t>(rays, b.RayStates->size()) : rays);
 }
@@ -741,14 +741,19 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
-  // One buffer holds a forwarded march's ray states: refused here, before
-  // any pass, not by the buffer's own check between the light pass and the march.
-  const std::uint64_t rays = this->frameRayStateBytes(setup);
+  // One buffer holds a forwarded pass's states: refused here, before any
+  // pass, not by the buffer's own check between the light pass and the march.
   const std::uint64_t range = this->Context->limits().maxStorageBufferRange;
+  const std::string forwarded = " forwarded through " + std::to_string(this->MarchPieces) + " pieces needs";
+  const std::uint64_t rays = this->frameRayStateBytes(setup);
   if (rays > range)
   {
-    throw storageRangeError("the march forwarded through " + std::to_string(this->MarchPieces) + " pieces needs", rays,
-      "buffer of ray states", range, "; use fewer pixels");
+    throw storageRangeError("the march" + forwarded, rays, "buffer of ray states", range, "; use fewer pixels");
+  }
+  if (this->lightStateBytes() > range)
+  {
+    throw storageRangeError("the light pass" + forwarded, this->lightStateBytes(), "buffer of walk states", range,
+      "; use fewer voxels in x and z");
   }
   const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();
   if (physicalMemoryBytes() > 0 && hostBytes + deviceBytes > physicalMemoryBytes())

@@ -265,7 +265,7 @@ private:
     const std::function<bool(int layer)>& afterLayer = nullptr);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing,
-    std::size_t first, std::size_t end);
+    std::size_t first, std::size_t end, bool forwarded = false);
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> lightPassFields(bool braggShadow) const;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> scatteredFieldFields() const;
   bool prepareScatteredLight(const FrameSetup& setup, double sharedSolveSeconds, Progress& progress, RenderFrame& frame);
@@ -309,10 +309,18 @@ private:
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY = 1) const;
+  struct PieceField;
+  // Records `dispatch` (a piece's layers z, whether a later pass) once per
+  // pass of a pass forwarded through MarchPieces pieces, each reading `fields`' piece alone.
+  void recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields,
+    const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const;
   static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   std::uint64_t frameRayStateBytes(const FrameSetup& setup) const;
-  void prepareRayStates(const FrameSetup& setup, const std::array<int, 4>& rect);
+  std::uint64_t frameStateBytes(const FrameSetup& setup) const;
+  std::int64_t forwardedLightVoxels() const;
+  std::uint64_t lightStateBytes() const;
+  void prepareRayStates(std::uint64_t bytes);
   // A field the march reads per voxel, its bytes per voxel, the layers
   // beyond a piece its reads take, and the buffer that holds a piece's
   // (VulkanOptions::MarchPieceFieldsOnly).
@@ -327,6 +335,7 @@ private:
   std::pair<std::uint64_t, std::uint64_t> pieceBytes(const PieceField& field, std::pair<int, int> layers) const;
   void preparePieceFields();
   std::vector<PieceField> pieceFields() const;
+  std::vector<PieceField> lightPieceFields() const;
   void recordPieceFields(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
@@ -338,7 +347,7 @@ private:
   void runColourPass(const FrameSetup& setup, double exposure);
   RenderImage readBack(const FrameSetup& setup) const;
   ComputePipeline& marchPipeline(const FrameSetup& setup);
-  ComputePipeline& lightPass(int mode, bool braggShadow);
+  ComputePipeline& lightPass(int mode, bool braggShadow, bool forwarded = false);
   ComputePipeline& highlightPass(int mode);
   ComputePipeline& shadowTablePass(int wavelengths, bool coupledWave);
 
@@ -347,7 +356,7 @@ private:
   // The light pass's three modes (shaders/opal_render_contract.h), by mode,
   // whether the volume absorbs (docs/design.md §3.9) and whether the pass
   // records Bragg shadows (§7.2), and whether it reads the fields by address (§3.7).
-  std::map<std::array<int, 5>, std::unique_ptr<ComputePipeline>> LightPasses;
+  std::map<std::array<int, 6>, std::unique_ptr<ComputePipeline>> LightPasses;
   // The highlight pass's two modes (select and shade), by mode and address reads.
   std::map<std::array<int, 3>, std::unique_ptr<ComputePipeline>> HighlightPasses;
   std::unique_ptr<ComputePipeline> ColourPass;

@@ -25,6 +25,9 @@ namespace opal
 namespace sessiondetail
 {
 constexpr std::uint32_t PushConstantBytes = 48;   // the largest push-constant struct of the contract (MarchWork)
+// Voxels a submit of the light pass's walks takes when forwarded (docs/design.md
+// §8.1): their kept walks, LightStateWords each, 10 MB.
+constexpr std::int64_t ForwardedLightVoxels = std::int64_t(1) << 16;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // On the device per voxel: its VoxelCell (8), SurfaceDistance and the light
 // field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with

@@ -37,16 +37,18 @@ struct VulkanOptions
   // discrete GPU's) even where it is host-visible (lavapipe): uploads and
   // read-backs go through staging buffers, the path a discrete GPU takes.
   bool StagingTransfers = false;
-  // The view march forwards each ray through this many pieces of the volume
-  // (slabs of layers z) as the data-parallel render would between ranks
-  // (docs/design.md §8.1), in one process: 1, none.
+  // The view march forwards each ray, and the light pass each walk to the
+  // light, through this many pieces of the volume (slabs of layers z) as the
+  // data-parallel render would between ranks (docs/design.md §8.1), in one
+  // process: 1, none.
   int MarchPieces = 1;
-  // With MarchPieces, each piece's dispatch reads the fields the march reads
-  // per voxel from buffers holding only its layers and their halo (one
-  // layer, SurfaceDistance ViewTraceLayers + 2), addressed from the first
-  // layer they hold, as a rank holding only its piece will: a test that the
-  // march reads no further (docs/design.md §8.1). The volume's fields are
-  // then read by address; a device that cannot address buffers is refused.
+  // With MarchPieces, each piece's dispatch reads the fields the march and
+  // the walks to the light read per voxel from buffers holding only its
+  // layers and their halo (the march one layer, the walks five;
+  // SurfaceDistance TraceStepLayers + 2), addressed from the first layer
+  // they hold, as a rank holding only its piece will: a test that they read
+  // no further (docs/design.md §8.1). The volume's fields are then read by
+  // address; a device that cannot address buffers is refused.
   bool MarchPieceFieldsOnly = false;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.

@@ -1,0 +1,88 @@
+// A forwarded pass's states between its dispatches (docs/design.md §8.1): the
+// view march's rays, the light pass's walks to the light. Each invocation
+// owns `words` uints from slot * words: the first the layer z its piece must
+// hold to take it up (KEPT_FINISHED once done), then what its pass keeps,
+// each value written and read back bit for bit by the same keep* calls (one
+// layout both ways). Needs opal_volume_fields.glsl (SurfaceTrace).
+layout(std430, set = 0, binding = RayStatesBinding) buffer KeptStates { uint keptStates[]; };
+
+const uint KEPT_FINISHED = 0xffffffffu;
+bool keptSaving; // the keep* calls' way: into keptStates, or out of them
+int keptWord;    // their next word
+
+// The keep* calls after this save (`saving`) or restore slot `slot`'s state
+// of `words` words, after its layer word.
+void beginKeeping(int slot, int words, bool saving)
+{
+  keptSaving = saving;
+  keptWord = slot * words + 1;
+}
+
+// The layer word of slot `slot`: where it goes on, or KEPT_FINISHED.
+uint keptLayer(int slot, int words)
+{
+  return keptStates[slot * words];
+}
+
+void keepLayer(int slot, int words, uint layer)
+{
+  keptStates[slot * words] = layer;
+}
+
+void keepFloat(inout float v)
+{
+  if (keptSaving) keptStates[keptWord] = floatBitsToUint(v);
+  else v = uintBitsToFloat(keptStates[keptWord]);
+  ++keptWord;
+}
+
+void keepInt(inout int v)
+{
+  if (keptSaving) keptStates[keptWord] = uint(v);
+  else v = int(keptStates[keptWord]);
+  ++keptWord;
+}
+
+void keepBool(inout bool b)
+{
+  int word = b ? 1 : 0;
+  keepInt(word);
+  b = word != 0;
+}
+
+void keepVec3(inout vec3 v)
+{
+  keepFloat(v.x);
+  keepFloat(v.y);
+  keepFloat(v.z);
+}
+
+void keepIvec3(inout ivec3 v)
+{
+  keepInt(v.x);
+  keepInt(v.y);
+  keepInt(v.z);
+}
+
+void keepShadow(inout LightShadow shadow)
+{
+  keepInt(shadow.domain);
+  keepFloat(shadow.lengthMm);
+  keepFloat(shadow.ownLengthMm);
+}
+
+void keepTrace(inout SurfaceTrace trace)
+{
+  keepFloat(trace.t);
+  keepFloat(trace.previous);
+  keepInt(trace.steps);
+  keepBool(trace.done);
+}
+
+void keepVoxelWalk(inout VoxelWalk walk)
+{
+  keepIvec3(walk.cell);
+  keepIvec3(walk.stepDir);
+  keepVec3(walk.tMax);
+  keepVec3(walk.tDelta);
+}
