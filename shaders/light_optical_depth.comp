@@ -445,10 +445,11 @@ void continueFromInside(inout LightWalk w, vec3 p, vec3 direction, float d)
   w.phase = LightWalkFromInside;
 }
 
-// Takes the walk to the light from voxel `index` at p on through its
-// phases until it is done (true), or, forwarded, needs a layer its piece
-// does not hold (false: neededLayer).
-bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEnd)
+// Takes the walk to the light from voxel `index` at p (SurfaceDistance d,
+// where it started in this dispatch) on through its phases until it is done
+// (true), or, forwarded, needs a layer its piece does not hold (false:
+// neededLayer).
+bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEnd, float d)
 {
   if (w.phase == LightWalkStretches)
   {
@@ -458,7 +459,9 @@ bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEn
   if (w.phase == LightWalkContinued)
   {
     if (!layerHeld(voxelOf(p).z)) return false;
-    continueFromInside(w, p, direction, voxelSurfaceDistance(index));
+    // Forwarded, read again in p's piece: a walk taken up has not read it.
+    // (Unforwarded the read is not repeated: lavapipe would load it for every lane.)
+    continueFromInside(w, p, direction, FORWARDED ? voxelSurfaceDistance(index) : d);
   }
   if (w.phase == LightWalkMedium)
   {
@@ -688,10 +691,11 @@ void main()
   LightWalk w;
   bool started = false;
   if (FORWARDED && !takeUpWalk(slot, c, w, started)) return;
+  float d = 0.0;
   if (!started)
   {
     // A voxel centre: its own SurfaceDistance, no interpolation needed.
-    float d = voxelSurfaceDistance(index);
+    d = voxelSurfaceDistance(index);
     if (LIGHT_PASS_MODE != LightPassMarchQueued && d > skinDepth())
     {
       // Outside beyond the skin: nothing inside reads it; unattenuated light.
@@ -707,7 +711,7 @@ void main()
     }
     w = startLightWalk(index, p, direction, d);
   }
-  if (!lightWalkOn(w, index, p, direction, min(gridBoxHits(p, direction).y, distanceToLight)))
+  if (!lightWalkOn(w, index, p, direction, min(gridBoxHits(p, direction).y, distanceToLight), d))
   {
     // Unforwarded every walk finishes: the constant folds the keeping away.
     keepLayer(slot, LightStateWords, uint(neededLayer));
