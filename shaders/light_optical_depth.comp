@@ -345,8 +345,9 @@ const int LightWalkUnstarted = -1; // a forwarded walk whose voxel's piece comes
 const int LightWalkStretches = 0; // the stretches inside the opal, to the light
 const int LightWalkContinued = 1; // no stretch: the value continued from the inside
 const int LightWalkMedium = 2;    // that value's coefficients, read at `point`
-const int LightWalkFromInside = 3; // that value's walk from the point inside, `point`
-const int LightWalkDone = 4;
+const int LightWalkNearestInside = 3; // or that value's point just inside, `point`, read
+const int LightWalkFromInside = 4; // and walked from to the light
+const int LightWalkDone = 5;
 
 // All a walk to the light carries from step to step (all a forwarded walk
 // keeps, keepLightWalk): its phase, the stretch loop's t, the light's entry
@@ -407,6 +408,23 @@ bool walkStretches(inout LightWalk w, vec3 p, vec3 direction, float tEnd)
   return true;
 }
 
+// The nearest point just inside (`point`), read where its piece holds it (on
+// a grid much finer in z it may lie beyond p's halo): beside the grid's
+// faces the field's continuation has no nearest point to offer; else its
+// walk to the light starts.
+void startFromInside(inout LightWalk w, vec3 p)
+{
+  if (!insideGrid(voxelOf(w.point)) || surfaceDistance(w.point) > 0.0)
+  {
+    float r = distance(P.light, p);
+    w.geometry = P.apexDistanceSquared / (r * r);
+    w.phase = LightWalkDone;
+    return;
+  }
+  w.inside = startInside(w.point, normalize(P.light - w.point), 0.0);
+  w.phase = LightWalkFromInside;
+}
+
 // An outside voxel whose path to the light misses the opal: values
 // continued from the inside, so that reads between it and inside voxels
 // stay close to the inside's. Where the surface below it faces the light,
@@ -414,7 +432,7 @@ bool walkStretches(inout LightWalk w, vec3 p, vec3 direction, float tEnd)
 // depth negative in proportion to the distance, the Fresnel transmission at
 // cos_L (its coefficients read next, LightWalkMedium). Beside the shadow
 // line (cos_L small), the light of the nearest point just inside, walked to
-// the light next (LightWalkFromInside; unattenuated light there would
+// the light next (LightWalkNearestInside; unattenuated light there would
 // brighten the terminator). From the voxel's own distance and the field's
 // slope along the path: no search, which a CPU driver would pay for every
 // skin voxel.
@@ -422,27 +440,21 @@ void continueFromInside(inout LightWalk w, vec3 p, vec3 direction, float d)
 {
   // cos_L = dot(normal, direction): SurfaceDistance's derivative along the path.
   float cosL = (d - surfaceDistance(p - P.smallestSpacing * direction)) / P.smallestSpacing;
-  float r = distance(P.light, p);
   if (cosL > 0.25)
   {
     w.back = d / cosL;
     w.point = p - (w.back + 0.5 * P.smallestSpacing) * direction;
-    float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - w.back * direction) : r;
+    float falloff = P.lightFalloffAtEntry != 0 ? distance(P.light, p - w.back * direction) : distance(P.light, p);
     float transmission = 1.0 - fresnelReflectance(cosL, P.refractiveIndex);
     w.geometry = transmission * P.apexDistanceSquared / (falloff * falloff);
     w.phase = LightWalkMedium;
     return;
   }
   w.point = p - (d + 0.01 * P.smallestSpacing) * surfaceNormal(p);
-  if (!insideGrid(voxelOf(w.point)) || surfaceDistance(w.point) > 0.0)
-  {
-    // Beside the grid's faces the field's continuation has no nearest point to offer.
-    w.geometry = P.apexDistanceSquared / (r * r);
-    w.phase = LightWalkDone;
-    return;
-  }
-  w.inside = startInside(w.point, normalize(P.light - w.point), 0.0);
-  w.phase = LightWalkFromInside;
+  w.phase = LightWalkNearestInside;
+  // Unforwarded at once (a phase block of its own cost lavapipe, which runs
+  // it under a mask for every lane, 4% of a side light's pass).
+  if (!FORWARDED) startFromInside(w, p);
 }
 
 // Takes the walk to the light from voxel `index` at p (SurfaceDistance d,
@@ -474,6 +486,11 @@ bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEn
   // SurfaceDistance reads): lavapipe would run two calls under a mask.
   bool entered = w.lightEntry >= 0.0;
   vec3 entry = p + w.lightEntry * direction, along = direction;
+  if (FORWARDED && w.phase == LightWalkNearestInside)
+  {
+    if (!layerHeld(voxelOf(w.point).z)) return false;
+    startFromInside(w, p);
+  }
   if (w.phase == LightWalkFromInside)
   {
     vec3 towardLight = normalize(P.light - w.point);
@@ -499,7 +516,7 @@ LightWalk startLightWalk(int index, vec3 p, vec3 direction, float d)
   w.t = 0.0;
   w.lightEntry = -1.0;
   w.stretch = 0;
-  w.tracing = d > 0.0;
+  w.tracing = !(d <= 0.0);
   w.trace = surfaceTrace(0.0);
   if (!w.tracing) w.inside = startInside(p, direction, 0.0);
   w.tau = vec3(0.0);
@@ -711,9 +728,12 @@ void main()
     }
     w = startLightWalk(index, p, direction, d);
   }
-  if (!lightWalkOn(w, index, p, direction, min(gridBoxHits(p, direction).y, distanceToLight), d))
+  bool done = lightWalkOn(w, index, p, direction, min(gridBoxHits(p, direction).y, distanceToLight), d);
+  // Forwarded, a finished walk is stored in the piece that holds its voxel
+  // (between ranks, the rank that holds it), which takes it up again.
+  // Unforwarded every walk finishes here: the constant folds the keeping away.
+  if (!done || (FORWARDED && !layerHeld(c.z)))
   {
-    // Unforwarded every walk finishes: the constant folds the keeping away.
     keepLayer(slot, LightStateWords, uint(neededLayer));
     keepLightWalk(slot, true, w);
     return;

@@ -6,18 +6,21 @@
 // the fields it reads per voxel from buffers holding only its layers and
 // their halo (the march: one layer; the walks to the light: five of the
 // cells; SurfaceDistance, which the traces read, six), addressed from their
-// first layer, as a rank holding only its piece will. The forwarded render
+// first layer, as a rank holding only its piece will; the walks write their
+// light there too, each at its voxel in the piece that holds it. The forwarded render
 // must give the image of the one never forwarded, value for value: every
 // state a ray or walk carries across a face (a ray's walk and round, its
 // recorded crossings, its sums on the nodes and bins, its pixel's sums; a
 // walk's trace, cell walk, optical depths and Bragg shadow) comes back bit
 // for bit, and no read reaches beyond the halo, or a value differs. The
 // walks to the light are forwarded too: every voxel's where the light is
-// low or to the side, the skin voxels' the sweep from above queues.
+// low or to the side, the skin voxels' the sweep from above queues; the
+// sweep runs piece by piece, each with its piece's fields and two rows.
 // fig12's optics and pinfire's grains lit from above; fire-opal (an
 // absorbing body, coupled-wave fcc planes, energy conservation's rounds and
 // Bragg shadows, every order) lit from the side, and from the front and low
-// (its walks to the light along z); with the edge pixels' sub-rays (their
+// (its walks to the light along z), and on a grid eight times finer in z
+// than across; with the edge pixels' sub-rays (their
 // sums kept between dispatches) and the spectrum; fire-opal (whose ray
 // carries the most) in 2, 3 and 7 pieces, also with its fields read by
 // address and through staging buffers, and whole and bound (paired); more
@@ -117,6 +120,14 @@ int TestOpalForwardedMarch(int, char*[])
   front.ScatteringOrders = opal::ScatteringOrdersKind::Single;
   front.LightPosition = { 1.0, 4.0, -30.0 };
   checkForwarded(fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
+
+  // A grid eight times finer in z than across, lit from the side: the
+  // traces' steps and the halos count layers, not millimetres.
+  opal::ModelParameters fine = fire;
+  fine.Dimensions = { 20, 10, 80 };
+  fine.PhysicalSize = { 4.0, 2.0, 2.0 };
+  front.LightPosition = side.LightPosition;
+  checkForwarded(fine, front, "fire-opal on a grid eight times finer in z, lit from the side", { 3, 7 });
 
   // The unforwarded march with its fields read by address, one value per
   // voxel (below the paired fields' bytes: VoxelCell 8, SurfaceDistance 8,

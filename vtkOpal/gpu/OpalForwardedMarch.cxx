@@ -38,7 +38,7 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
   gpu::MarchWork pieceWork = work;
-  this->recordPiecePasses(commands, this->pieceFields(), [&](std::pair<int, int> layers, bool resumed) {
+  this->recordPiecePasses(commands, this->pieceFields(), MarchSweeps, [&](std::pair<int, int> layers, bool resumed) {
     pieceWork.piece = gpu::ivec2(layers.first, layers.second);
     pieceWork.resumed = resumed ? 1 : 0;
     march.dispatch(commands, pieceWork, groupsX, groupsY);
@@ -46,23 +46,56 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
 }
 
 // The passes of a pass forwarded through MarchPieces pieces of layers z: the
-// pieces in order, back, in order and back again (4N - 3 passes; one over
-// all layers unforwarded). With MarchPieceFieldsOnly each pass reads its
-// piece's `fields` alone (recordPieceFields), the whole fields' addresses
-// back after the last.
-void RenderSession::recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields,
+// pieces in order, back, in order and so on, `sweeps` sweeps ((N - 1) sweeps
+// + 1 passes; one over all layers unforwarded). With MarchPieceFieldsOnly
+// each pass reads and writes its piece's `fields` alone (recordPieceFields,
+// recordWrittenBack), the whole fields' addresses back after the last.
+void RenderSession::recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields, int sweeps,
   const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const
 {
   const int pieces = this->MarchPieces;
   const int period = 2 * pieces - 2;
-  for (int pass = 0; pass < 2 * period + 1; ++pass)
+  for (int pass = 0; pass < sweeps * (pieces - 1) + 1; ++pass)
   {
     const int at = period > 0 ? pass % period : 0;
     const int piece = at < pieces ? at : period - at;
     const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
     this->recordPieceFields(commands, fields, layers);
     dispatch(layers, pass > 0);
+    this->recordWrittenBack(commands, fields, layers);
   }
+  this->recordWholeFields(commands, fields);
+}
+
+// Records the sweep from above of layer y = `layer`'s rows z `rows`: one
+// dispatch, or with MarchPieces one per piece of them, each reading and
+// writing its piece's `fields` alone (sweepPieceFields), as a rank holding
+// its piece does (docs/design.md §8.1).
+void RenderSession::recordSweepLayer(VkCommandBuffer commands, const ComputePipeline& sweep,
+  const std::vector<PieceField>& fields, std::pair<int, int> rows, int layer) const
+{
+  const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
+  for (int piece = 0; piece < this->MarchPieces; ++piece)
+  {
+    const std::pair<int, int> layers = evenShare(dims[2], piece, this->MarchPieces);
+    const int first = std::max(rows.first, layers.first), end = std::min(rows.second, layers.second);
+    if (first >= end)
+    {
+      continue;
+    }
+    this->recordPieceFields(commands, fields, layers);
+    const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * (end - first);
+    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0) },
+      static_cast<std::uint32_t>((voxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
+    this->recordWrittenBack(commands, fields, layers);
+  }
+  this->recordWholeFields(commands, fields);
+}
+
+// Records the address table pointing at the whole fields again, after
+// passes that read `fields`' pieces (none: nothing to restore).
+void RenderSession::recordWholeFields(VkCommandBuffer commands, const std::vector<PieceField>& fields) const
+{
   if (!fields.empty())
   {
     const gpu::VolumeAddresses whole = this->volumeAddresses({});
@@ -92,10 +125,10 @@ std::vector<RenderSession::PieceField> RenderSession::marchFields() const
   std::vector<PieceField> pieceFields;
   for (const auto& [field, bytes] : fields)
   {
-    pieceFields.push_back({ field, bytes, 1, nullptr });
+    pieceFields.push_back({ field, bytes, 1, nullptr, false });
   }
   pieceFields.push_back(
-    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::TraceStepLayers + 2, nullptr });
+    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::TraceStepLayers + 2, nullptr, false });
   return pieceFields;
 }
 
@@ -151,29 +184,45 @@ std::vector<RenderSession::PieceField> RenderSession::pieceFields() const
   return fields;
 }
 
-// The fields a forwarded walk to the light reads (docs/design.md §8.1), with
-// their pieces' buffers: the cells and the absorption's only in the cells it
-// walks, those of TraceStepLayers + 1 layers beyond the piece where a walk
-// starts behind it (walkLayerHeld), SurfaceDistance as the march reads it.
-// The light fields it writes stay whole: a walk ends in any piece and stores
-// at its own voxel.
-std::vector<RenderSession::PieceField> RenderSession::lightPieceFields() const
+// The fields a piece's dispatch of a light pass reads and writes, with
+// their pieces' buffers and the halos its reads take: the cells and the
+// absorption's `cellsHalo`, SurfaceDistance `distanceHalo`, the light fields
+// (and the absorption's, the Bragg shadows) `lightHalo`, which it writes
+// at its voxels (copied back after each dispatch, recordWrittenBack).
+std::vector<RenderSession::PieceField> RenderSession::lightPassPieceFields(
+  int cellsHalo, int distanceHalo, int lightHalo) const
 {
   const DeviceVolume& v = *this->Volume;
   std::vector<PieceField> fields;
   for (PieceField field : this->pieceFields())
   {
-    if (field.Whole == v.Cells.get() || field.Whole == v.AbsorptionCells.get())
-    {
-      field.Halo = LightCellsHalo;
-      fields.push_back(field);
-    }
-    else if (field.Whole == v.SurfaceDistance.get())
+    const bool cells = field.Whole == v.Cells.get() || field.Whole == v.AbsorptionCells.get();
+    field.Written = field.Whole == v.LightField.get() || field.Whole == v.LightAbsorption.get() ||
+      field.Whole == v.LightShadow.get();
+    field.Halo = cells ? cellsHalo : field.Written ? lightHalo : distanceHalo;
+    if (cells || field.Written || field.Whole == v.SurfaceDistance.get())
     {
       fields.push_back(field);
     }
   }
   return fields;
+}
+
+// A forwarded walk to the light's (docs/design.md §8.1): the cells only
+// where it walks, and those of TraceStepLayers + 1 layers beyond the piece
+// where a walk starts behind it (walkLayerHeld); SurfaceDistance as the
+// march reads it; its light at its own voxel, in its voxel's piece.
+std::vector<RenderSession::PieceField> RenderSession::lightPieceFields() const
+{
+  return this->lightPassPieceFields(LightCellsHalo, gpu::TraceStepLayers + 2, 0);
+}
+
+// The sweep from above's: the halo of the ranks' shared sweep
+// (SweepHaloRows) for the 3 x 3 read of the layer above, the rows about it
+// and the segment to it.
+std::vector<RenderSession::PieceField> RenderSession::sweepPieceFields() const
+{
+  return this->lightPassPieceFields(SweepHaloRows, SweepHaloRows, SweepHaloRows);
 }
 
 // Records: each field's piece layers and halo copied into its piece buffer,
@@ -200,6 +249,23 @@ void RenderSession::recordPieceFields(
   {
     const gpu::VolumeAddresses table = this->volumeAddresses(addresses);
     this->Volume->Addresses->recordWrite(commands, &table, sizeof(table));
+  }
+}
+
+// Records: each written field's piece layers (its halo left out) copied back
+// from its piece buffer into the whole field, where the passes after read them.
+void RenderSession::recordWrittenBack(
+  VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const
+{
+  for (const PieceField& field : fields)
+  {
+    PieceField own = field;
+    own.Halo = 0;
+    const auto [begin, end] = this->pieceBytes(own, layers);
+    if (field.Written && begin < end)
+    {
+      field.Whole->recordCopyFrom(commands, *field.Piece, begin - this->pieceBytes(field, layers).first, begin, end - begin);
+    }
   }
 }
 
@@ -242,7 +308,7 @@ std::uint64_t RenderSession::frameRayStateBytes(const FrameSetup& setup) const
 // its march's or its light pass's.
 std::uint64_t RenderSession::frameStateBytes(const FrameSetup& setup) const
 {
-  return std::max(this->frameRayStateBytes(setup), this->lightStateBytes());
+  return std::max(this->frameRayStateBytes(setup), this->frameLightStateBytes(setup));
 }
 
 // The voxels a submit of the forwarded light pass takes: ForwardedLightVoxels,
@@ -255,18 +321,25 @@ std::int64_t RenderSession::forwardedLightVoxels() const
 }
 
 // The forwarded light pass's kept walks, LightStateWords per voxel of a
-// submit of the per-voxel walks or of a layer y's queued walks (all its
+// submit of the per-voxel walks, or (`queued`) of a layer y's queue (all its
 // voxels at most); none unforwarded.
-std::uint64_t RenderSession::lightStateBytes() const
+std::uint64_t RenderSession::lightStateBytes(bool queued) const
 {
   if (this->MarchPieces <= 1)
   {
     return 0;
   }
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
-  const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * dims[2];
-  return static_cast<std::uint64_t>(std::max(this->forwardedLightVoxels(), layerVoxels)) * gpu::LightStateWords *
-    sizeof(std::uint32_t);
+  const std::int64_t voxels = queued ? static_cast<std::int64_t>(dims[0]) * dims[2] : this->forwardedLightVoxels();
+  return static_cast<std::uint64_t>(voxels) * gpu::LightStateWords * sizeof(std::uint32_t);
+}
+
+// The frame's light pass's kept walks: none where the light field it needs
+// is held (no light pass runs), the queues' with the light above the grid.
+std::uint64_t RenderSession::frameLightStateBytes(const FrameSetup& setup) const
+{
+  const bool held = this->LightField && *this->LightField == lightFieldKey(setup);
+  return held ? 0 : this->lightStateBytes(this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light));
 }
 
 // The buffer of a forwarded pass's states (the march's rays, the light's

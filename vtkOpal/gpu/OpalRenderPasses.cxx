@@ -48,17 +48,17 @@ bool RenderSession::sweepLightLayers(
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
   const int layers = dims[1];
   const std::int64_t layerVoxels = static_cast<std::int64_t>(dims[0]) * (rows.second - rows.first);
-  const auto groups = static_cast<std::uint32_t>((layerVoxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
   const ComputePipeline& sweep = this->lightPass(gpu::LightPassSweepFromAbove, braggShadow);
   // With MarchPieces the queued walks are forwarded between the pieces (docs/design.md §8.1).
   const bool forwarded = this->MarchPieces > 1;
   const ComputePipeline& enter = this->lightPass(gpu::LightPassMarchQueued, braggShadow, forwarded);
   if (forwarded)
   {
-    this->prepareRayStates(this->lightStateBytes());
+    this->prepareRayStates(this->lightStateBytes(true));
     this->preparePieceFields();
   }
   const std::vector<PieceField> fields = this->lightPieceFields();
+  const std::vector<PieceField> swept = this->sweepPieceFields();
   for (int top = layers - 1; top >= 0;)
   {
     const int layersPerSubmit = afterLayer
@@ -72,9 +72,9 @@ bool RenderSession::sweepLightLayers(
       }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
+        this->recordSweepLayer(commands, sweep, swept, rows, layer);
         gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0) };
-        sweep.dispatch(commands, work, groups);
-        this->recordPiecePasses(commands, fields, [&](std::pair<int, int> layers, bool resumed) {
+        this->recordPiecePasses(commands, fields, LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
           work.piece = gpu::ivec2(layers.first, layers.second);
           work.resumed = resumed ? 1 : 0;
           enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
@@ -100,7 +100,7 @@ bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
   const bool forwarded = this->MarchPieces > 1;
   if (forwarded)
   {
-    this->prepareRayStates(this->lightStateBytes());
+    this->prepareRayStates(this->lightStateBytes(false));
     this->preparePieceFields();
   }
   return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow, forwarded),
@@ -128,7 +128,7 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
         pass.dispatch(commands, work, groups);
         return;
       }
-      this->recordPiecePasses(commands, this->lightPieceFields(), [&](std::pair<int, int> layers, bool resumed) {
+      this->recordPiecePasses(commands, this->lightPieceFields(), LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
         work.piece = gpu::ivec2(layers.first, layers.second);
         work.resumed = resumed ? 1 : 0;
         pass.dispatch(commands, work, groups);

@@ -750,9 +750,10 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   {
     throw storageRangeError("the march" + forwarded, rays, "buffer of ray states", range, "; use fewer pixels");
   }
-  if (this->lightStateBytes() > range)
+  const std::uint64_t walks = this->frameLightStateBytes(setup);
+  if (walks > range)
   {
-    throw storageRangeError("the light pass" + forwarded, this->lightStateBytes(), "buffer of walk states", range,
+    throw storageRangeError("the light pass" + forwarded, walks, "buffer of walk states", range,
       "; use fewer voxels in x and z");
   }
   const std::uint64_t hostBytes = setup.Pixels * (3 + 12 + 12 + 4 + 4) + setup.spectrumBytes();

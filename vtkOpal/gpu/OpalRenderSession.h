@@ -311,32 +311,41 @@ private:
     std::uint32_t groupsY = 1) const;
   struct PieceField;
   // Records `dispatch` (a piece's layers z, whether a later pass) once per
-  // pass of a pass forwarded through MarchPieces pieces, each reading `fields`' piece alone.
-  void recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields,
+  // pass of `sweeps` sweeps through MarchPieces pieces, each with `fields`' piece alone.
+  void recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields, int sweeps,
     const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const;
+  void recordSweepLayer(VkCommandBuffer commands, const ComputePipeline& sweep, const std::vector<PieceField>& fields,
+    std::pair<int, int> rows, int layer) const;
+  void recordWholeFields(VkCommandBuffer commands, const std::vector<PieceField>& fields) const;
   static int marchNodes(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   std::uint64_t frameRayStateBytes(const FrameSetup& setup) const;
   std::uint64_t frameStateBytes(const FrameSetup& setup) const;
   std::int64_t forwardedLightVoxels() const;
-  std::uint64_t lightStateBytes() const;
+  std::uint64_t lightStateBytes(bool queued) const;
+  std::uint64_t frameLightStateBytes(const FrameSetup& setup) const;
   void prepareRayStates(std::uint64_t bytes);
   // A field the march reads per voxel, its bytes per voxel, the layers
-  // beyond a piece its reads take, and the buffer that holds a piece's
-  // (VulkanOptions::MarchPieceFieldsOnly).
+  // beyond a piece its reads take, the buffer that holds a piece's
+  // (VulkanOptions::MarchPieceFieldsOnly), and whether a pass writes it
+  // (its piece's layers then copied back after each dispatch).
   struct PieceField
   {
-    const VulkanBuffer* Whole;
+    VulkanBuffer* Whole;
     std::uint64_t VoxelBytes;
     int Halo;
     VulkanBuffer* Piece;
+    bool Written;
   };
   std::vector<PieceField> marchFields() const;
   std::pair<std::uint64_t, std::uint64_t> pieceBytes(const PieceField& field, std::pair<int, int> layers) const;
   void preparePieceFields();
   std::vector<PieceField> pieceFields() const;
+  std::vector<PieceField> lightPassPieceFields(int cellsHalo, int distanceHalo, int lightHalo) const;
   std::vector<PieceField> lightPieceFields() const;
+  std::vector<PieceField> sweepPieceFields() const;
   void recordPieceFields(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
+  void recordWrittenBack(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);
   void recordHighlightSelect(VkCommandBuffer commands, const std::array<int, 4>& rect);
   bool shadeHighlight(Progress& progress, double at);

@@ -28,6 +28,18 @@ constexpr std::uint32_t PushConstantBytes = 48;   // the largest push-constant s
 // Voxels a submit of the light pass's walks takes when forwarded (docs/design.md
 // §8.1): their kept walks, LightStateWords each, 10 MB.
 constexpr std::int64_t ForwardedLightVoxels = std::int64_t(1) << 16;
+// The sweeps through the pieces that take every forwarded ray of the march,
+// and every walk to the light to its end and its store at its own voxel
+// (RenderSession::recordPiecePasses, docs/design.md §8.1).
+constexpr int MarchSweeps = 4;
+constexpr int LightWalkSweeps = 5;
+// The rows z beyond its own the light's sweep from above reads (docs/design.md
+// §8.1): lightAboveGrid bounds a path's sideways move per layer below half a
+// voxel, so the node nearest to where a voxel's path crosses the layer above
+// is in the voxel's own row z, and its 3 x 3 read spans rows z - 1 to z + 1;
+// a second row keeps a margin for the shader's rounding. The ranks' shared
+// sweep exchanges them after each layer.
+constexpr int SweepHaloRows = 2;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // On the device per voxel: its VoxelCell (8), SurfaceDistance and the light
 // field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with

@@ -43,14 +43,7 @@ Runs slabOf(const std::array<int, 3>& dims, std::pair<int, int> rows)
   return { { slab * static_cast<std::size_t>(rows.first), slab * static_cast<std::size_t>(rows.second) } };
 }
 
-// The sweep's halo (docs/design.md §8.1): lightAboveGrid bounds a path's
-// sideways move per layer below half a voxel, so the node nearest to where a
-// voxel's path crosses the layer above is in the voxel's own row z, and its
-// 3 x 3 read spans rows z - 1 to z + 1; a second row keeps a margin for the
-// shader's rounding.
-constexpr int HaloRows = 2;
-
-// Layer `layer`'s first and last HaloRows rows of `rows` (all of them where
+// Layer `layer`'s first and last SweepHaloRows rows of `rows` (all of them where
 // fewer), one range each: what the shares beside read of it.
 Runs haloOf(const std::array<int, 3>& dims, std::pair<int, int> rows, int layer)
 {
@@ -58,7 +51,7 @@ Runs haloOf(const std::array<int, 3>& dims, std::pair<int, int> rows, int layer)
   Runs runs;
   for (int z = rows.first; z < rows.second; ++z)
   {
-    if (z < rows.first + HaloRows || z >= rows.second - HaloRows)
+    if (z < rows.first + SweepHaloRows || z >= rows.second - SweepHaloRows)
     {
       const std::size_t first = nx * (static_cast<std::size_t>(layer) + static_cast<std::size_t>(dims[1]) * z);
       runs.emplace_back(first, first + nx);
@@ -71,7 +64,7 @@ Runs haloOf(const std::array<int, 3>& dims, std::pair<int, int> rows, int layer)
 bool readsRow(const std::array<int, 3>& dims, std::pair<int, int> rows, std::size_t voxel)
 {
   const auto z = static_cast<int>(voxel / (static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1])));
-  return (z >= rows.first - HaloRows && z < rows.first) || (z >= rows.second && z < rows.second + HaloRows);
+  return (z >= rows.first - SweepHaloRows && z < rows.first) || (z >= rows.second && z < rows.second + SweepHaloRows);
 }
 
 using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;

@@ -43,12 +43,13 @@ struct VulkanOptions
   // process: 1, none.
   int MarchPieces = 1;
   // With MarchPieces, each piece's dispatch reads the fields the march and
-  // the walks to the light read per voxel from buffers holding only its
-  // layers and their halo (the march one layer, the walks five;
-  // SurfaceDistance TraceStepLayers + 2), addressed from the first layer
-  // they hold, as a rank holding only its piece will: a test that they read
-  // no further (docs/design.md §8.1). The volume's fields are then read by
-  // address; a device that cannot address buffers is refused.
+  // the walks to the light read per voxel (and the walks write their light)
+  // in buffers holding only its layers and their halo (the march one layer,
+  // the walks five, none for their light; SurfaceDistance TraceStepLayers +
+  // 2), addressed from the first layer they hold, as a rank holding only its
+  // piece will: a test that they reach no further (docs/design.md §8.1). The
+  // volume's fields are then read by address; a device that cannot address
+  // buffers is refused.
   bool MarchPieceFieldsOnly = false;
   // Limits smaller than the device's to plan with (0: the device's own), so
   // that the tests run on lavapipe the paths a GPU's limits take.
