@@ -57,8 +57,8 @@ bool RenderSession::sweepLightLayers(
     this->prepareRayStates(this->lightStateBytes(true));
     this->preparePieceFields();
   }
-  const std::vector<PieceField> fields = this->lightPieceFields();
-  const std::vector<PieceField> swept = this->sweepPieceFields();
+  const std::vector<PieceField> walkFields = this->lightPieceFields();
+  const std::vector<PieceField> sweepFields = this->sweepPieceFields();
   for (int top = layers - 1; top >= 0;)
   {
     const int layersPerSubmit = afterLayer
@@ -72,9 +72,9 @@ bool RenderSession::sweepLightLayers(
       }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
-        this->recordSweepLayer(commands, sweep, swept, rows, layer);
+        this->recordSweepLayer(commands, sweep, sweepFields, rows, layer);
         gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0) };
-        this->recordPiecePasses(commands, fields, LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
+        this->recordPiecePasses(commands, walkFields, LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
           work.piece = gpu::ivec2(layers.first, layers.second);
           work.resumed = resumed ? 1 : 0;
           enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
