@@ -529,11 +529,12 @@ LightWalk startLightWalk(int index, vec3 p, vec3 direction, float d)
 
 // Saves (`saving`) or restores the walk of invocation `slot` of a forwarded
 // light pass: everything its steps read again, bit for bit (LightStateWords
-// with the layer word).
+// with the layer word); its phase alone where it has not started.
 void keepLightWalk(int slot, bool saving, inout LightWalk w)
 {
   beginKeeping(slot, LightStateWords, saving);
   keepInt(w.phase);
+  if (w.phase == LightWalkUnstarted) return; // its start sets the rest
   keepFloat(w.t);
   keepFloat(w.lightEntry);
   keepInt(w.stretch);
@@ -676,9 +677,8 @@ bool takeUpWalk(int slot, ivec3 c, out LightWalk w, out bool started)
     if (layerHeld(c.z)) return true;
     // Not started: its voxel's own reads wait for its piece.
     keepLayer(slot, LightStateWords, uint(neededLayer));
-    beginKeeping(slot, LightStateWords, true);
-    int phase = LightWalkUnstarted;
-    keepInt(phase);
+    w.phase = LightWalkUnstarted;
+    keepLightWalk(slot, true, w);
     return false;
   }
   uint layer = keptLayer(slot, LightStateWords);
@@ -707,7 +707,11 @@ void main()
   int slot = passItem(LightPassGroupSize);
   LightWalk w;
   bool started = false;
-  if (FORWARDED && !takeUpWalk(slot, c, w, started)) return;
+  if (FORWARDED && !takeUpWalk(slot, c, w, started))
+  {
+    countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
+    return;
+  }
   float d = 0.0;
   if (!started)
   {
@@ -736,6 +740,7 @@ void main()
   {
     keepLayer(slot, LightStateWords, uint(neededLayer));
     keepLightWalk(slot, true, w);
+    countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
     return;
   }
   storeLight(index, LightSample(w.tau, w.geometry), w.shadow);

@@ -5,6 +5,7 @@
 // each value written and read back bit for bit by the same keep* calls (one
 // layout both ways). Needs opal_volume_fields.glsl (SurfaceTrace).
 layout(std430, set = 0, binding = RayStatesBinding) buffer KeptStates { uint keptStates[]; };
+layout(std430, set = 0, binding = ForwardedLeftBinding) buffer ForwardedLeft { uint forwardedLeft; };
 
 const uint KEPT_FINISHED = 0xffffffffu;
 bool keptSaving; // the keep* calls' way: into keptStates, or out of them
@@ -27,6 +28,14 @@ uint keptLayer(int slot, int words)
 void keepLayer(int slot, int words, uint layer)
 {
   keptStates[slot * words] = layer;
+}
+
+// In a forwarded pass's last dispatch (`last`), slot `slot`'s state counted
+// where it is still kept: a path longer than the sweeps' schedule, which the
+// host refuses (docs/design.md §8.1) rather than give its partial result.
+void countUnfinished(int slot, int words, bool last)
+{
+  if (last && keptLayer(slot, words) != KEPT_FINISHED) atomicAdd(forwardedLeft, 1u);
 }
 
 void keepFloat(inout float v)

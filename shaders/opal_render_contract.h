@@ -86,7 +86,10 @@ OPAL_CONSTANT int ScatteredLightGridBinding = 25; // ScatteredLightNode per node
 // The view march's rays between the dispatches of a forwarded march (§8.1):
 // RAY_STATE_WORDS uints per invocation of a dispatch; a placeholder otherwise.
 OPAL_CONSTANT int RayStatesBinding = 26;
-OPAL_CONSTANT int BindingCount = 27;
+// A forwarded pass's count of the states its last dispatch left unfinished
+// (§8.1): one uint, which the host requires to stay 0; a placeholder otherwise.
+OPAL_CONSTANT int ForwardedLeftBinding = 27;
+OPAL_CONSTANT int BindingCount = 28;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -309,7 +312,8 @@ struct VolumeAddresses
 // z = first to first + count - 1 (a share of the layer, docs/design.md §8.1).
 // A forwarded walk to the light (§8.1) walks only within layers z in
 // [piece.x, piece.y), each walk kept where it needs another piece and taken
-// up again by a later dispatch of the same voxels (`resumed` 1).
+// up again by a later dispatch of the same voxels (`resumed` 1); the last
+// (`last` 1) counts the walks still kept (ForwardedLeftBinding).
 struct LightPassWork
 {
   int first;
@@ -317,6 +321,7 @@ struct LightPassWork
   int layer;
   int resumed;
   ivec2 piece;
+  int last;
 };
 
 // Invocations per workgroup of the light pass.
@@ -338,7 +343,8 @@ OPAL_CONSTANT int MarchRefineEdges = 3; // the queued pixels: the mean of PixelS
 // `subRay` (of PixelSamples^2, row by row). A forwarded march (§8.1)
 // marches only within layers z in [piece.x, piece.y) of the volume, each ray
 // saved where it leaves them and taken up again by a later dispatch of the
-// same work (`resumed` 1) for the piece it enters.
+// same work (`resumed` 1) for the piece it enters; the last (`last` 1)
+// counts the rays still kept (ForwardedLeftBinding).
 struct MarchWork
 {
   ivec2 origin;
@@ -348,6 +354,7 @@ struct MarchWork
   int subRay;
   ivec2 piece;
   int resumed;
+  int last;
 };
 // The most layers z a step of the view march's and the light pass's surface
 // traces passes; a forwarded pass's piece reads SurfaceDistance

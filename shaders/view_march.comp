@@ -1255,9 +1255,14 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
 {
   int slot = marchItem();
   bool resumed = FORWARDED && marchWork.resumed != 0;
+  bool last = FORWARDED && marchWork.last != 0;
   if (resumed)
   {
-    if (!resumeRay(slot, sum, tHit, transmitted)) return false;
+    if (!resumeRay(slot, sum, tHit, transmitted))
+    {
+      countUnfinished(slot, RAY_WORDS, last);
+      return false;
+    }
   }
   else
   {
@@ -1274,6 +1279,7 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   {
     keepLayer(slot, RAY_WORDS, uint(rayLayer()));
     keepRay(slot, true, sum, tHit, transmitted);
+    countUnfinished(slot, RAY_WORDS, last);
     return false;
   }
   if (FORWARDED) keepLayer(slot, RAY_WORDS, KEPT_FINISHED);

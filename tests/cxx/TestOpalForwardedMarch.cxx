@@ -25,15 +25,18 @@
 // carries the most) in 2, 3 and 7 pieces, also with its fields read by
 // address and through staging buffers, and whole and bound (paired); more
 // pieces than layers (pieces of none); ray states beyond the storage-buffer
-// range, refused; and pieces' fields alone on a device that cannot address
-// buffers, refused.
+// range, refused; pieces' fields alone on a device that cannot address
+// buffers, refused; and a schedule of too few sweeps, whose states left
+// unfinished refuse the frame rather than give a partial image.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
 
+#include <array>
 #include <initializer_list>
+#include <stdexcept>
 #include <string>
 
 namespace
@@ -72,6 +75,33 @@ void checkForwarded(const opal::ModelParameters& model, const opal::RenderParame
     OPAL_CHECK(opaltest::identical(forwarded(stone, p, *pieceCounts.begin(), {}, false), expected),
       scene + ": forwarded with its fields whole and bound, the unforwarded image");
   }
+}
+
+// The messages of two frames `p` of `stone` through 3 pieces, one after the
+// other in one session, its march in `marchSweeps` sweeps and its walks to
+// the light in `lightSweeps` (0: their own); "" for a frame that completes.
+std::array<std::string, 2> shortSchedule(
+  const opal::RenderVolume& stone, const opal::RenderParameters& p, int marchSweeps, int lightSweeps)
+{
+  opal::VulkanOptions options;
+  options.MarchPieces = 3;
+  options.ForwardedMarchSweeps = marchSweeps;
+  options.ForwardedLightSweeps = lightSweeps;
+  opaltest::SceneRenderer renderer(options);
+  renderer.Session.setVolume(stone);
+  std::array<std::string, 2> messages;
+  for (std::string& message : messages)
+  {
+    try
+    {
+      renderer.Session.render(p);
+    }
+    catch (const std::runtime_error& e)
+    {
+      message = e.what();
+    }
+  }
+  return messages;
 }
 
 opal::RenderParameters withHints(opal::RenderParameters p, const char* preset, double refractiveIndex)
@@ -151,6 +181,22 @@ int TestOpalForwardedMarch(int, char*[])
   OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
     "fire-opal, its fields by address and through staging: forwarded through 3 pieces, each "
     "reading its fields alone, gives the unforwarded image");
+
+  // Too few sweeps for the paths (two of fig12's march's or walks' to the
+  // light, where three suffice): the states left unfinished after the last
+  // pass refuse the frame, naming the pass, where an image would lack them;
+  // the light field of a refused pass is not kept for the next frame.
+  paper.Dimensions = { 40, 20, 50 };
+  const auto paperVolume = opal::buildVolume(paper);
+  const opal::RenderVolume paperStone = paperVolume->renderVolume();
+  const auto marchLeft = shortSchedule(paperStone, p, 2, 0);
+  OPAL_CHECK(marchLeft[0].find("The view march forwarded through 3 pieces left ") == 0 &&
+      marchLeft[0].find("states unfinished") != std::string::npos,
+    "the march in two sweeps: the frame refused, naming the march (got: " + marchLeft[0] + ")");
+  const auto lightLeft = shortSchedule(paperStone, p, 0, 2);
+  OPAL_CHECK(lightLeft[0].find("The light pass forwarded through 3 pieces left ") == 0 && lightLeft[1] == lightLeft[0],
+    "the walks to the light in two sweeps: each frame refused, naming the light pass, no field kept "
+    "from the first (got: " + lightLeft[0] + " | " + lightLeft[1] + ")");
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
   paper.Dimensions = { 40, 20, 3 };

@@ -10,9 +10,12 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -37,12 +40,8 @@ constexpr int LightCellsHalo = gpu::TraceStepLayers + 1;
 void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work,
   std::uint32_t groupsX, std::uint32_t groupsY) const
 {
-  gpu::MarchWork pieceWork = work;
-  this->recordPiecePasses(commands, this->pieceFields(), MarchSweeps, [&](std::pair<int, int> layers, bool resumed) {
-    pieceWork.piece = gpu::ivec2(layers.first, layers.second);
-    pieceWork.resumed = resumed ? 1 : 0;
-    march.dispatch(commands, pieceWork, groupsX, groupsY);
-  });
+  this->recordPiecePasses(commands, this->pieceFields(), this->Sweeps.March,
+    [&](const PiecePass& pass) { march.dispatch(commands, pass.of(work), groupsX, groupsY); });
 }
 
 // The passes of a pass forwarded through MarchPieces pieces of layers z: the
@@ -51,20 +50,52 @@ void RenderSession::recordMarch(VkCommandBuffer commands, const ComputePipeline&
 // each pass reads and writes its piece's `fields` alone (recordPieceFields,
 // recordWrittenBack), the whole fields' addresses back after the last.
 void RenderSession::recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields, int sweeps,
-  const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const
+  const std::function<void(const PiecePass& pass)>& dispatch) const
 {
   const int pieces = this->MarchPieces;
   const int period = 2 * pieces - 2;
-  for (int pass = 0; pass < sweeps * (pieces - 1) + 1; ++pass)
+  const int passes = sweeps * (pieces - 1) + 1;
+  for (int pass = 0; pass < passes; ++pass)
   {
     const int at = period > 0 ? pass % period : 0;
     const int piece = at < pieces ? at : period - at;
     const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], piece, pieces);
     this->recordPieceFields(commands, fields, layers);
-    dispatch(layers, pass > 0);
+    dispatch(PiecePass{ layers, pass > 0, pass + 1 == passes });
     this->recordWrittenBack(commands, fields, layers);
   }
   this->recordWholeFields(commands, fields);
+}
+
+// With MarchPieces, the count of states the forwarded passes' last
+// dispatches leave unfinished set to 0, before a pass's first submit (its
+// dispatches add to it: countUnfinished in opal_kept_state.glsl).
+void RenderSession::resetForwardedLeft()
+{
+  if (this->MarchPieces > 1)
+  {
+    const std::uint32_t none = 0;
+    this->Buffers->ForwardedLeft->write(0, sizeof(none), &none);
+  }
+}
+
+// With MarchPieces, throws naming `pass` where its forwarded passes left a
+// state unfinished since resetForwardedLeft: a path the sweeps' schedule does
+// not bound, whose partial result no frame gives (docs/design.md §8.1).
+void RenderSession::requireForwardedFinished(const std::string& pass) const
+{
+  if (this->MarchPieces <= 1)
+  {
+    return;
+  }
+  std::uint32_t left = 0;
+  this->Buffers->ForwardedLeft->read(sizeof(left),
+    [&](std::uint64_t, std::uint64_t count, const void* from) { std::memcpy(&left, from, count); });
+  if (left > 0)
+  {
+    throw std::runtime_error("The " + pass + " forwarded through " + std::to_string(this->MarchPieces) +
+      " pieces left " + std::to_string(left) + " of its states unfinished after its last pass; no image is given.");
+  }
 }
 
 // Records the sweep from above of layer y = `layer`'s rows z `rows`: one
@@ -85,7 +116,7 @@ void RenderSession::recordSweepLayer(VkCommandBuffer commands, const ComputePipe
     }
     this->recordPieceFields(commands, fields, layers);
     const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * (end - first);
-    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0) },
+    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0), 0 },
       static_cast<std::uint32_t>((voxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     this->recordWrittenBack(commands, fields, layers);
   }

@@ -31,11 +31,13 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
   {
     this->prepareShadowField();
   }
+  this->resetForwardedLeft();
   const bool completed = this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light)
     ? this->sweepLightLayers(braggShadow, progress, { 0, this->Volume->Shape.Dimensions[2] })
     : this->marchLightPerVoxel(braggShadow, progress);
   if (completed)
   {
+    this->requireForwardedFinished("light pass");
     this->LightField = lightFieldKey(setup);
   }
   return completed;
@@ -73,11 +75,9 @@ bool RenderSession::sweepLightLayers(
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
         this->recordSweepLayer(commands, sweep, sweepFields, rows, layer);
-        gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0) };
-        this->recordPiecePasses(commands, walkFields, LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
-          work.piece = gpu::ivec2(layers.first, layers.second);
-          work.resumed = resumed ? 1 : 0;
-          enter.dispatchIndirect(commands, work, *this->Volume->EntryQueues,
+        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0), 0 };
+        this->recordPiecePasses(commands, walkFields, this->Sweeps.LightWalks, [&](const PiecePass& pass) {
+          enter.dispatchIndirect(commands, pass.of(work), *this->Volume->EntryQueues,
             static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
         });
       }
@@ -119,7 +119,7 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
   {
     const auto count = static_cast<std::int32_t>(
       std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), most)), end - first));
-    gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0) };
+    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0), 0 };
     const auto groups = static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -128,11 +128,8 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
         pass.dispatch(commands, work, groups);
         return;
       }
-      this->recordPiecePasses(commands, this->lightPieceFields(), LightWalkSweeps, [&](std::pair<int, int> layers, bool resumed) {
-        work.piece = gpu::ivec2(layers.first, layers.second);
-        work.resumed = resumed ? 1 : 0;
-        pass.dispatch(commands, work, groups);
-      });
+      this->recordPiecePasses(commands, this->lightPieceFields(), this->Sweeps.LightWalks,
+        [&](const PiecePass& piecePass) { pass.dispatch(commands, piecePass.of(work), groups); });
     });
     pacer.measured(count, secondsSince(start));
     first += static_cast<std::size_t>(count);
@@ -548,7 +545,7 @@ void RenderSession::recordMarchRows(
   const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
   for (int column = 0; column < groupsX; column += maxGroupsX)
   {
-    const gpu::MarchWork work{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0, gpu::ivec2(0, 0), 0 };
+    const gpu::MarchWork work{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0, gpu::ivec2(0, 0), 0, 0 };
     const auto groups = static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column));
     if (mode == gpu::MarchSelectEdges)
     {
@@ -568,7 +565,7 @@ void RenderSession::recordMarchRing(
 {
   constexpr int groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
-  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0 },
+  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0, 0 },
     static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
 }
 
@@ -588,7 +585,7 @@ bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, 
         {
           this->recordMarch(commands, march,
             gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
-              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0 },
+              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0, 0 },
             static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
         }
       });

@@ -261,6 +261,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
   , Buffers(std::make_unique<FrameBuffers>())
   , MarchPieces(std::max(options.MarchPieces, 1))
   , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly && this->MarchPieces > 1)
+  , Sweeps{ options.ForwardedMarchSweeps > 0 ? options.ForwardedMarchSweeps : MarchSweeps,
+      options.ForwardedLightSweeps > 0 ? options.ForwardedLightSweeps : LightWalkSweeps }
 {
   checkWorkgroupSizes(this->Context->limits());
   if (this->MarchPieceFieldsOnly && !this->Context->bufferDeviceAddresses())
@@ -301,6 +303,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
     *this->Context, 2 * sizeof(gpu::DispatchQueue), "edge queue headers", BufferPlacement::DeviceLocal);
   this->Buffers->RayStates =
     std::make_unique<VulkanBuffer>(*this->Context, 16, "forwarded rays", BufferPlacement::DeviceLocal);
+  this->Buffers->ForwardedLeft =
+    std::make_unique<VulkanBuffer>(*this->Context, 16, "forwarded states left", BufferPlacement::DeviceLocal);
   sessionregistry::add(this); // ended at exit before the Vulkan libraries
 }
 
@@ -509,6 +513,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   timings.ScatteredLight += std::max(0.0, sharedFieldSeconds); // the field's writing, where the processes shared it
 
   const auto marchStart = Clock::now();
+  this->resetForwardedLeft();
   double exposure = setup.Parameters.Exposure;
   frame.Ran.Exposure = exposure <= 0;
   if (frame.Ran.Exposure && !this->measureExposure(setup, progress, exposure))
@@ -522,6 +527,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   {
     return frame;
   }
+  this->requireForwardedFinished("view march");
   timings.March = secondsSince(marchStart);
 
   const auto colourStart = Clock::now();
@@ -890,6 +896,7 @@ void RenderSession::bindBuffers()
   buffers[gpu::EdgePixelsBinding] = b.EdgePixels.get();
   buffers[gpu::PixelSumsBinding] = b.PixelSums.get();
   buffers[gpu::RayStatesBinding] = b.RayStates.get();
+  buffers[gpu::ForwardedLeftBinding] = b.ForwardedLeft.get();
   buffers[gpu::PixelSpectrumBinding] = b.PixelSpectrum.get();
   buffers[gpu::PixelRadianceBinding] = b.PixelRadiance.get();
   buffers[gpu::PixelRGB8Binding] = b.PixelRGB8.get();

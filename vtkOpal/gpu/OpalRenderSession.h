@@ -310,10 +310,13 @@ private:
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY = 1) const;
   struct PieceField;
-  // Records `dispatch` (a piece's layers z, whether a later pass) once per
-  // pass of `sweeps` sweeps through MarchPieces pieces, each with `fields`' piece alone.
+  struct PiecePass;
+  // Records `dispatch` once per pass of `sweeps` sweeps through MarchPieces
+  // pieces, each with `fields`' piece alone.
   void recordPiecePasses(VkCommandBuffer commands, const std::vector<PieceField>& fields, int sweeps,
-    const std::function<void(std::pair<int, int> layers, bool resumed)>& dispatch) const;
+    const std::function<void(const PiecePass& pass)>& dispatch) const;
+  void resetForwardedLeft();
+  void requireForwardedFinished(const std::string& pass) const;
   void recordSweepLayer(VkCommandBuffer commands, const ComputePipeline& sweep, const std::vector<PieceField>& fields,
     std::pair<int, int> rows, int layer) const;
   void recordWholeFields(VkCommandBuffer commands, const std::vector<PieceField>& fields) const;
@@ -380,6 +383,12 @@ private:
   std::unique_ptr<FrameBuffers> Buffers;
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
+  // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps
+  // unless VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps set fewer.
+  struct
+  {
+    int March, LightWalks;
+  } Sweeps;
   std::vector<std::unique_ptr<VulkanBuffer>> PieceFieldBuffers; // preparePieceFields
   std::optional<LightFieldKey> LightField;                     // what the light buffers hold
   std::optional<ScatteredLightKey> ScatteredLight;             // what the scattered light buffer holds

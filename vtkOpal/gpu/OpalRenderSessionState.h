@@ -163,12 +163,33 @@ struct RenderSession::FrameBuffers
   std::unique_ptr<VulkanBuffer> EdgeQueue, EdgePixels;           // the pixels an edge crosses
   std::unique_ptr<VulkanBuffer> PixelSums;                       // and their sub-rays' sums
   std::unique_ptr<VulkanBuffer> RayStates; // a forwarded march's rays (a placeholder without MarchPieces)
+  std::unique_ptr<VulkanBuffer> ForwardedLeft; // the states a forwarded pass left unfinished (one uint)
   // What each domain passes of the light (the Bragg shadow table, docs/design.md
   // §7.2), device-local; one float where no frame conserved energy yet.
   std::unique_ptr<VulkanBuffer> ShadowTable;
   std::size_t PixelCapacity = 0;
   std::size_t SpectrumFloats = 0;
   std::size_t ShadowTableFloats = 0;
+};
+
+// A pass of RenderSession::recordPiecePasses (docs/design.md §8.1): its
+// piece's layers z, whether it takes up kept states (every pass but the
+// first) and whether it is the last, whose dispatches count those still kept.
+struct RenderSession::PiecePass
+{
+  std::pair<int, int> Layers;
+  bool Resumed;
+  bool Last;
+
+  // `work` (a MarchWork or LightPassWork) for this pass.
+  template <typename Work>
+  Work of(Work work) const
+  {
+    work.piece = gpu::ivec2(this->Layers.first, this->Layers.second);
+    work.resumed = this->Resumed ? 1 : 0;
+    work.last = this->Last ? 1 : 0;
+    return work;
+  }
 };
 
 // Everything a frame derives from its parameters before touching the device.
