@@ -370,15 +370,6 @@ struct LightWalk
   float back;
 };
 
-// Where the light enters (`entry`, along `along`) is known: its geometry
-// factor. Forwarded as each walk ends, whose piece holds the point;
-// unforwarded once for the last (lightWalkOn: lavapipe would run two calls
-// under a mask).
-void lightEnters(inout LightWalk w, vec3 p, vec3 entry, vec3 along, bool last)
-{
-  if (FORWARDED != last) w.geometry = entryGeometry(p, entry, along);
-}
-
 // The exact light at p (eq. 6, 7): the path to the light
 // crossed cell by cell through every stretch inside the opal; the light
 // enters where the stretch nearest the light leaves it (L_in). An outside
@@ -399,7 +390,9 @@ bool walkStretches(inout LightWalk w, vec3 p, vec3 direction, float tEnd)
     float exit;
     if (!walkInside(w.inside, p, direction, w.t, tEnd, w.tau, w.shadow, exit)) return false;
     w.lightEntry = exit;
-    lightEnters(w, p, p + exit * direction, direction, false);
+    // Where the light enters: forwarded, its geometry as each walk ends, in
+    // the piece that holds the point; unforwarded once, at the end (lightWalkOn).
+    if (FORWARDED) w.geometry = entryGeometry(p, p + exit * direction, direction);
     if (BRAGG_SHADOW) followShadow(w.shadow, -1, 0.0); // outside between stretches
     w.t = w.lightEntry + 0.5 * P.smallestSpacing;
     w.trace = surfaceTrace(w.t);
@@ -482,8 +475,8 @@ bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEn
     w.tau = -mediumIn(cell) * w.back;
     w.phase = LightWalkDone;
   }
-  // One entryGeometry for either way the light enters (a normal: six
-  // SurfaceDistance reads): lavapipe would run two calls under a mask.
+  // Unforwarded, one entryGeometry for either way the light enters (a normal:
+  // six SurfaceDistance reads), at the end: lavapipe would run two calls under a mask.
   bool entered = w.lightEntry >= 0.0;
   vec3 entry = p + w.lightEntry * direction, along = direction;
   if (FORWARDED && w.phase == LightWalkNearestInside)
@@ -500,10 +493,10 @@ bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEn
     entered = true;
     entry = w.point + exit * towardLight;
     along = towardLight;
-    lightEnters(w, p, entry, along, false);
+    if (FORWARDED) w.geometry = entryGeometry(p, entry, along);
     w.phase = LightWalkDone;
   }
-  if (entered) lightEnters(w, p, entry, along, true);
+  if (!FORWARDED && entered) w.geometry = entryGeometry(p, entry, along);
   return true;
 }
 
@@ -528,9 +521,10 @@ LightWalk startLightWalk(int index, vec3 p, vec3 direction, float d)
 }
 
 // Saves (`saving`) or restores the walk of invocation `slot` of a forwarded
-// light pass: everything its steps read again, bit for bit (LightStateWords
-// with the layer word); its phase alone where it has not started.
-void keepLightWalk(int slot, bool saving, inout LightWalk w)
+// light pass (from p along `direction`): everything its steps read again,
+// bit for bit (LightStateWords with the layer word); its phase alone where
+// it has not started.
+void keepLightWalk(int slot, bool saving, inout LightWalk w, vec3 direction)
 {
   beginKeeping(slot, LightStateWords, saving);
   keepInt(w.phase);
@@ -540,7 +534,6 @@ void keepLightWalk(int slot, bool saving, inout LightWalk w)
   keepInt(w.stretch);
   keepBool(w.tracing);
   keepTrace(w.trace);
-  keepVoxelWalk(w.inside.walk);
   keepFloat(w.inside.s);
   keepFloat(w.inside.safe);
   keepInt(w.inside.steps);
@@ -551,6 +544,8 @@ void keepLightWalk(int slot, bool saving, inout LightWalk w)
   keepInt(w.shadow.phase);
   keepVec3(w.point);
   keepFloat(w.back);
+  // Its walk inside goes from p to the light, or from the point just inside (startFromInside).
+  keepVoxelWalk(w.inside.walk, w.phase == LightWalkFromInside ? normalize(P.light - w.point) : direction);
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
@@ -669,7 +664,7 @@ int voxelOfInvocation()
 // another piece's kept untouched for it (false); in a later one, its walk
 // taken up again where this piece holds the layer it goes on in (false
 // where done or elsewhere: one word read); `started` once begun.
-bool takeUpWalk(int slot, ivec3 c, out LightWalk w, out bool started)
+bool takeUpWalk(int slot, ivec3 c, vec3 direction, out LightWalk w, out bool started)
 {
   started = false;
   if (work.resumed == 0)
@@ -678,12 +673,12 @@ bool takeUpWalk(int slot, ivec3 c, out LightWalk w, out bool started)
     // Not started: its voxel's own reads wait for its piece.
     keepLayer(slot, LightStateWords, uint(neededLayer));
     w.phase = LightWalkUnstarted;
-    keepLightWalk(slot, true, w);
+    keepLightWalk(slot, true, w, direction);
     return false;
   }
   uint layer = keptLayer(slot, LightStateWords);
   if (layer == KEPT_FINISHED || !layerHeld(int(layer))) return false;
-  keepLightWalk(slot, false, w);
+  keepLightWalk(slot, false, w, direction);
   started = w.phase != LightWalkUnstarted;
   return true;
 }
@@ -707,7 +702,7 @@ void main()
   int slot = passItem(LightPassGroupSize);
   LightWalk w;
   bool started = false;
-  if (FORWARDED && !takeUpWalk(slot, c, w, started))
+  if (FORWARDED && !takeUpWalk(slot, c, direction, w, started))
   {
     countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
     return;
@@ -739,7 +734,7 @@ void main()
   if (!done || (FORWARDED && !layerHeld(c.z)))
   {
     keepLayer(slot, LightStateWords, uint(neededLayer));
-    keepLightWalk(slot, true, w);
+    keepLightWalk(slot, true, w, direction);
     countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
     return;
   }

@@ -3,7 +3,8 @@
 // owns `words` uints from slot * words: the first the layer z its piece must
 // hold to take it up (KEPT_FINISHED once done), then what its pass keeps,
 // each value written and read back bit for bit by the same keep* calls (one
-// layout both ways). Needs opal_volume_fields.glsl (SurfaceTrace).
+// layout both ways). Needs opal_volume_fields.glsl (SurfaceTrace) and
+// opal_voxel_walk.glsl.
 layout(std430, set = 0, binding = RayStatesBinding) buffer KeptStates { uint keptStates[]; };
 layout(std430, set = 0, binding = ForwardedLeftBinding) buffer ForwardedLeft { uint forwardedLeft; };
 
@@ -88,10 +89,10 @@ void keepTrace(inout SurfaceTrace trace)
   keepBool(trace.done);
 }
 
-void keepVoxelWalk(inout VoxelWalk walk)
+// A cell walk along `direction`: its steps set again from it (setWalkSteps).
+void keepVoxelWalk(inout VoxelWalk walk, vec3 direction)
 {
   keepIvec3(walk.cell);
-  keepIvec3(walk.stepDir);
   keepVec3(walk.tMax);
-  keepVec3(walk.tDelta);
+  if (!keptSaving) setWalkSteps(walk, direction);
 }

@@ -362,13 +362,13 @@ struct MarchWork
 OPAL_CONSTANT int TraceStepLayers = 4;
 // The words a forwarded walk to the light keeps per voxel, exactly
 // (light_optical_depth.comp's keepLightWalk and its layer word).
-OPAL_CONSTANT int LightStateWords = 38;
+OPAL_CONSTANT int LightStateWords = 32;
 // The words a forwarded march keeps per ray, exactly (view_march.comp's
 // keepRay and its layer word): its place, its entry and exit traces, walk and
 // round, its recorded crossings, its sums and, with energy conservation, the
 // last Bragg shadow it met (41 bins and 16 nodes: 1.5 KB), and its pixel's sums so far.
 #define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
-  (182 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
+  (174 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 
 // Push constants of the highlight's shade pass: the queued pixels
 // [first, first + count) this dispatch shades.

@@ -3,7 +3,8 @@
 // piecewise-constant fields cell by cell, with each cell's exact length.
 // Needs opal_volume_fields.glsl (voxelOf).
 
-// The current cell and the ray distances to its next boundary along each axis.
+// The current cell and the ray distances to its next boundary along each
+// axis; the steps (setWalkSteps) follow from the direction alone.
 struct VoxelWalk
 {
   ivec3 cell;
@@ -24,6 +25,17 @@ VoxelWalk startWalk(vec3 origin, vec3 direction)
   walk.tMax = mix(walk.tMax, vec3(1e30), equal(walk.stepDir, ivec3(0)));
   walk.tDelta = P.gridSpacing * inverse;
   return walk;
+}
+
+// The steps of a walk along `direction`, as startWalk sets them, bit for
+// bit: a forwarded walk keeps only its cell and tMax (keepVoxelWalk) and
+// sets these again as it is taken up. (startWalk does not call this: the
+// light pass took ~4% longer on lavapipe where it did, its code otherwise
+// the same.)
+void setWalkSteps(inout VoxelWalk walk, vec3 direction)
+{
+  walk.stepDir = ivec3(sign(direction));
+  walk.tDelta = P.gridSpacing * (1.0 / max(abs(direction), vec3(1e-20)));
 }
 
 // The distance along the ray to the current cell's exit.

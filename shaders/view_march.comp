@@ -890,7 +890,7 @@ const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
 
 void keepWalk()
 {
-  keepVoxelWalk(walkState.walk);
+  keepVoxelWalk(walkState.walk, rayInward);
   keepFloat(walkState.t);
   keepVec3(walkState.tauView);
   keepInt(walkState.lastDomain);
@@ -944,16 +944,17 @@ void keepShadowedSums()
 // (one layout both ways), the last Bragg shadow evaluated included (its
 // value follows the path length it was first met with, not its domain
 // alone). The absorption's node factors are evaluated again. A ray still
-// tracing its entry keeps only that trace and its pixel's sums (16 words):
-// entering sets the rest.
+// tracing its entry keeps only that trace and its pixel's sums (15 words):
+// entering sets the rest. A ray kept has entered once its entry trace is
+// done (one that missed finished), at the trace's distance.
 void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout float transmitted)
 {
   beginKeeping(slot, RAY_WORDS, saving);
   keepTrace(entryTrace);
   keepSum(sum);
-  keepBool(rayEntered);
+  rayEntered = entryTrace.done;
   if (!rayEntered) return;
-  keepFloat(tHit);
+  tHit = entryTrace.t;
   keepFloat(transmitted);
   keepVec3(rayOrigin);
   keepVec3(rayInward);
