@@ -13,11 +13,14 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace
 {
@@ -270,6 +273,30 @@ void checkOneVoxelWidePaired(const opal::RenderVolume& volume, const opal::Rende
   }
 }
 
+// A frame whose Exposure is set measures none, so it holds no pixels for
+// the automatic exposure's thumbnail (96 x 72 of a 400 x 300 image, 40 x 30
+// of a 40 x 30 one): a region of 2 x 2 pixels takes the same device memory
+// whatever the whole image's size.
+void checkFixedExposureHoldsNoThumbnail(const opal::RenderVolume& volume, const opal::RenderParameters& view)
+{
+  std::vector<std::uint64_t> peaks;
+  for (const std::array<int, 2> size : { std::array<int, 2>{ 400, 300 }, std::array<int, 2>{ 40, 30 } })
+  {
+    opal::RenderParameters p = view;
+    p.Exposure = 1.0;
+    p.ImageSize = size;
+    p.ImageRegion = { 10, 10, 2, 2 };
+    opaltest::SceneRenderer renderer(opal::VulkanOptions{});
+    renderer.Session.setVolume(volume);
+    const opal::RenderFrame frame = renderer.Session.render(p);
+    OPAL_CHECK(frame.Status == opal::FrameStatus::Completed && !frame.Ran.Exposure,
+      "a frame of fixed exposure completes without measuring one");
+    peaks.push_back(renderer.Session.context().memoryPeak());
+  }
+  OPAL_CHECK(peaks[0] == peaks[1], "a 2 x 2 region of fixed exposure holds no thumbnail's pixels: device peak " +
+      std::to_string(peaks[0]) + " bytes in a 400 x 300 image, " + std::to_string(peaks[1]) + " in a 40 x 30 one");
+}
+
 // The frame ticket (RenderSession::startFrame, what opal-render and the
 // filter's background frames use): a frame taken from the session's worker
 // equals the frame render() gives on the caller's thread, pixel for pixel; a
@@ -389,6 +416,7 @@ int TestOpalRenderSession(int, char*[])
   checkScatteredLightFromGrid(volume->renderVolume(), moved);
   checkKeptShadowsCounted(volume->renderVolume(), moved);
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
+  checkFixedExposureHoldsNoThumbnail(volume->renderVolume(), moved);
   checkFrameTicket(session, moved, b.Image);
   // After the frame ticket (which renders the session's volume): fields of
   // 8.5 M voxels (68 MB of ScatteringCoefficient and DomainId, as of

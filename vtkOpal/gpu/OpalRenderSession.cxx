@@ -616,7 +616,8 @@ RenderSession::FrameSetup RenderSession::setUpFrame(const ResolvedFrame& frame) 
     throw std::invalid_argument("EyePosition is inside the opal; place the eye outside it.");
   }
   setup.Region = renderedRegion(p);
-  setup.Thumbnail = exposureThumbnailSize(p);
+  // Only a frame that measures its exposure marches the thumbnail and holds its pixels.
+  setup.Thumbnail = p.Exposure <= 0 ? exposureThumbnailSize(p) : std::array<int, 2>{ 0, 0 };
   setup.Pixels = static_cast<std::size_t>(setup.Region[2]) * static_cast<std::size_t>(setup.Region[3]);
   // The image's pixels and the ring around them the edge select reads
   // (docs/design.md §3.4), or the exposure thumbnail's, whichever is more.

@@ -198,7 +198,7 @@ struct RenderSession::FrameSetup
   RenderParameters Parameters;
   RenderCamera Camera;
   std::array<int, 4> Region{};
-  std::array<int, 2> Thumbnail{};
+  std::array<int, 2> Thumbnail{}; // the automatic exposure's (0 x 0 where Exposure is set)
   std::size_t Pixels = 0;
   std::size_t PixelCapacity = 0; // the image rectangle or the exposure thumbnail, whichever is larger
   std::vector<WavelengthBin> Bins;
