@@ -103,7 +103,7 @@ using Wanted = std::function<bool(std::size_t firstVoxel)>;
 void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, std::uint64_t first, std::uint64_t count,
   const char* bytes)
 {
-  std::vector<BufferRun> written;
+  std::vector<WrittenRun> written;
   std::vector<const char*> from;
   std::uint64_t runStart = 0;
   for (const auto& [buffer, record] : fields)

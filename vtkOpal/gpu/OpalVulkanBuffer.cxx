@@ -310,10 +310,10 @@ void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into
   }
 }
 
-void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*>& from)
+void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from)
 {
   std::uint64_t total = 0;
-  for (const BufferRun& run : runs)
+  for (const WrittenRun& run : runs)
   {
     total += run.Buffer->as<char>() ? 0 : stagedSize(run.Bytes);
   }

@@ -139,15 +139,19 @@ private:
 // rows of each field, for which a staging buffer and a wait each cost more
 // than the rows (docs/design.md §8.1). The staging buffer holds all the runs'
 // bytes at once: for runs of a few MB.
-struct BufferRun
+// Bytes [Begin, Begin + Bytes) of a buffer read (BufferRun) or written (WrittenRun).
+template <typename BufferType>
+struct RunOf
 {
-  const VulkanBuffer* Buffer;
+  BufferType* Buffer;
   std::uint64_t Begin;
   std::uint64_t Bytes;
 };
+using BufferRun = RunOf<const VulkanBuffer>;
+using WrittenRun = RunOf<VulkanBuffer>;
 // Each run's bytes into into[i].
 void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into);
 // Each run's bytes from from[i].
-void writeRuns(const std::vector<BufferRun>& runs, const std::vector<const char*>& from);
+void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from);
 
 } // namespace opal
