@@ -1246,20 +1246,40 @@ bool queuedPixel(int stage, out ivec2 local, out int item, out bool outline)
   return true;
 }
 
-// Sub-ray `subRay` of the n x n of the pixel `local` (n = 1: its centre ray),
-// started and marched (its pixel's sums so far in `sum`), or in a forwarded
-// march's later dispatch taken up again: false where it finished before or
-// traces or walks on in another piece (saved for it); else whether it met the opal,
-// where, and the share 1 - F it carries out.
-bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, bool spectrum, inout PixelSum sum,
-  out bool hit, out float tHit, out float transmitted)
+// Sub-ray `index` of the n x n of the pixel `local` (n = 1: its centre ray):
+// the pixel's index among those stored, whether the outline crosses it and
+// whether it keeps a spectrum.
+struct SubRay
+{
+  ivec2 local;
+  int pixelIndex;
+  int n;
+  int index;
+  bool outline;
+  bool spectrum;
+};
+
+// Whether a marched sub-ray met the opal, where (its distance from the eye),
+// and the share 1 - F it carries out.
+struct RayHit
+{
+  bool hit;
+  float tHit;
+  float transmitted;
+};
+
+// `ray` started and marched (its pixel's sums so far in `sum`), or in a
+// forwarded march's later dispatch taken up again: false where it finished
+// before or traces or walks on in another piece (saved for it); else where
+// it met the opal (`met`).
+bool marchSubRay(SubRay ray, inout PixelSum sum, out RayHit met)
 {
   int slot = marchItem();
   bool resumed = FORWARDED && marchWork.resumed != 0;
   bool last = FORWARDED && marchWork.last != 0;
   if (resumed)
   {
-    if (!resumeRay(slot, sum, tHit, transmitted))
+    if (!resumeRay(slot, sum, met.tHit, met.transmitted))
     {
       countUnfinished(slot, RAY_WORDS, last);
       return false;
@@ -1267,19 +1287,20 @@ bool marchSubRay(ivec2 local, int pixelIndex, int n, int subRay, bool outline, b
   }
   else
   {
-    if (outline) sum.alike = 0;
-    if (subRay == n) reweighFirstStage(pixelIndex, spectrum, n, sum);
+    if (ray.outline) sum.alike = 0;
+    if (ray.index == ray.n) reweighFirstStage(ray.pixelIndex, ray.spectrum, ray.n, sum);
     rayEntered = false;
   }
-  vec2 at = vec2(P.rectOrigin + local) + (vec2(subRayCell(subRay, n)) + 0.5) / float(n);
-  int entry = rayEntered ? RAY_ENTERED : enterRay(at, n == 1 ? pixelIndex : -1, !resumed, tHit, transmitted);
-  hit = entry == RAY_ENTERED;
+  vec2 at = vec2(P.rectOrigin + ray.local) + (vec2(subRayCell(ray.index, ray.n)) + 0.5) / float(ray.n);
+  int entry =
+    rayEntered ? RAY_ENTERED : enterRay(at, ray.n == 1 ? ray.pixelIndex : -1, !resumed, met.tHit, met.transmitted);
+  met.hit = entry == RAY_ENTERED;
   // Unforwarded, marchOn always finishes: the constant folds the keeping away.
-  bool paused = hit ? !marchOn() : entry == RAY_PAUSED;
+  bool paused = met.hit ? !marchOn() : entry == RAY_PAUSED;
   if (FORWARDED && paused)
   {
     keepLayer(slot, RAY_WORDS, uint(rayLayer()));
-    keepRay(slot, true, sum, tHit, transmitted);
+    keepRay(slot, true, sum, met.tHit, met.transmitted);
     countUnfinished(slot, RAY_WORDS, last);
     return false;
   }
@@ -1325,11 +1346,10 @@ void main()
   bool centre = n == 1, spectrum = P.writeSpectrum != 0 && pixelIndex < P.rectSize.x * P.rectSize.y;
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
-  bool hit;
-  float tHit, transmitted;
-  if (!marchSubRay(local, pixelIndex, n, subRay, outline, spectrum, sum, hit, tHit, transmitted)) return;
-  if (hit) addRay(pixelIndex, spectrum, transmitted, 1.0 / float(subRay < n ? n : n * n), tHit, sum);
-  if (!centre && subRay < n) noteFirstStage(sum, hit, subRay);
+  RayHit met;
+  if (!marchSubRay(SubRay(local, pixelIndex, n, subRay, outline, spectrum), sum, met)) return;
+  if (met.hit) addRay(pixelIndex, spectrum, met.transmitted, 1.0 / float(subRay < n ? n : n * n), met.tHit, sum);
+  if (!centre && subRay < n) noteFirstStage(sum, met.hit, subRay);
   bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);
   if (!centre) pixelSums[item] = sum;
   if (!settled && subRay + 1 == n)
@@ -1337,5 +1357,5 @@ void main()
     edgePixels[P.rectSize.x * P.rectSize.y + int(atomicAdd(edgeQueue[1].count, 1u))] = uint(item);
   }
   if (!settled) return;
-  writePixel(pixelIndex, spectrum, sum, subRay + 1, centre, centre ? (hit ? firstCrossedDomain : -1) : -2);
+  writePixel(pixelIndex, spectrum, sum, subRay + 1, centre, centre ? (met.hit ? firstCrossedDomain : -1) : -2);
 }
