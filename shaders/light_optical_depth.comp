@@ -370,6 +370,14 @@ struct LightWalk
   float back;
 };
 
+// The way from the point just inside (`point`) to the light: one expression
+// where its walk starts, walks and is taken up (keepLightWalk sets its steps
+// again from it, bit for bit).
+vec3 fromInsideToLight(LightWalk w)
+{
+  return normalize(P.light - w.point);
+}
+
 // The exact light at p (eq. 6, 7): the path to the light
 // crossed cell by cell through every stretch inside the opal; the light
 // enters where the stretch nearest the light leaves it (L_in). An outside
@@ -414,7 +422,7 @@ void startFromInside(inout LightWalk w, vec3 p)
     w.phase = LightWalkDone;
     return;
   }
-  w.inside = startInside(w.point, normalize(P.light - w.point), 0.0);
+  w.inside = startInside(w.point, fromInsideToLight(w), 0.0);
   w.phase = LightWalkFromInside;
 }
 
@@ -486,7 +494,7 @@ bool lightWalkOn(inout LightWalk w, int index, vec3 p, vec3 direction, float tEn
   }
   if (w.phase == LightWalkFromInside)
   {
-    vec3 towardLight = normalize(P.light - w.point);
+    vec3 towardLight = fromInsideToLight(w);
     float tEndInside = min(gridBoxHits(w.point, towardLight).y, distance(P.light, w.point));
     float exit;
     if (!walkInside(w.inside, w.point, towardLight, 0.0, tEndInside, w.tau, w.shadow, exit)) return false;
@@ -545,7 +553,7 @@ void keepLightWalk(int slot, bool saving, inout LightWalk w, vec3 direction)
   keepVec3(w.point);
   keepFloat(w.back);
   // Its walk inside goes from p to the light, or from the point just inside (startFromInside).
-  keepVoxelWalk(w.inside.walk, w.phase == LightWalkFromInside ? normalize(P.light - w.point) : direction);
+  keepVoxelWalk(w.inside.walk, w.phase == LightWalkFromInside ? fromInsideToLight(w) : direction);
 }
 
 // Queues a voxel of layer y for LightPassMarchQueued (an append list and the
@@ -702,9 +710,10 @@ void main()
   int slot = passItem(LightPassGroupSize);
   LightWalk w;
   bool started = false;
+  bool last = FORWARDED && work.last != 0;
   if (FORWARDED && !takeUpWalk(slot, c, direction, w, started))
   {
-    countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
+    countUnfinished(slot, LightStateWords, last);
     return;
   }
   float d = 0.0;
@@ -735,7 +744,7 @@ void main()
   {
     keepLayer(slot, LightStateWords, uint(neededLayer));
     keepLightWalk(slot, true, w, direction);
-    countUnfinished(slot, LightStateWords, FORWARDED && work.last != 0);
+    countUnfinished(slot, LightStateWords, last);
     return;
   }
   storeLight(index, LightSample(w.tau, w.geometry), w.shadow);

@@ -13,6 +13,8 @@ struct VoxelWalk
   vec3 tDelta;
 };
 
+// A walk from `origin` along `direction`. Its steps as setWalkSteps sets
+// them, written out (below): the two must stay the same, bit for bit.
 VoxelWalk startWalk(vec3 origin, vec3 direction)
 {
   VoxelWalk walk;
@@ -29,9 +31,9 @@ VoxelWalk startWalk(vec3 origin, vec3 direction)
 
 // The steps of a walk along `direction`, as startWalk sets them, bit for
 // bit: a forwarded walk keeps only its cell and tMax (keepVoxelWalk) and
-// sets these again as it is taken up. (startWalk does not call this: the
-// light pass took ~4% longer on lavapipe where it did, its code otherwise
-// the same.)
+// sets these again as it is taken up (TestOpalForwardedMarch: its images
+// would differ). startWalk does not call this: the light pass took ~4%
+// longer on lavapipe where it did, its code otherwise the same.
 void setWalkSteps(inout VoxelWalk walk, vec3 direction)
 {
   walk.stepDir = ivec3(sign(direction));

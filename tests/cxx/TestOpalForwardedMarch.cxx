@@ -183,9 +183,10 @@ int TestOpalForwardedMarch(int, char*[])
     "reading its fields alone, gives the unforwarded image");
 
   // Too few sweeps for the paths (two of fig12's march's or walks' to the
-  // light, where three suffice): the states left unfinished after the last
-  // pass refuse the frame, naming the pass, where an image would lack them;
-  // the light field of a refused pass is not kept for the next frame.
+  // light, lit from above or from the side, where three suffice): the states
+  // left unfinished after the last pass refuse the frame, naming the pass,
+  // where an image would lack them; the light field of a refused pass is not
+  // kept for the next frame. Three sweeps of each leave none.
   paper.Dimensions = { 40, 20, 50 };
   const auto paperVolume = opal::buildVolume(paper);
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
@@ -197,6 +198,14 @@ int TestOpalForwardedMarch(int, char*[])
   OPAL_CHECK(lightLeft[0].find("The light pass forwarded through 3 pieces left ") == 0 && lightLeft[1] == lightLeft[0],
     "the walks to the light in two sweeps: each frame refused, naming the light pass, no field kept "
     "from the first (got: " + lightLeft[0] + " | " + lightLeft[1] + ")");
+  opal::RenderParameters sideLit = p;
+  sideLit.LightPosition = { 30.0, 6.0, 4.0 }; // every voxel walks to the light
+  const auto sideLeft = shortSchedule(paperStone, sideLit, 0, 2);
+  OPAL_CHECK(sideLeft[0].find("The light pass forwarded through 3 pieces left ") == 0,
+    "every voxel's walk to the light in two sweeps: the frame refused (got: " + sideLeft[0] + ")");
+  const auto enough = shortSchedule(paperStone, p, 3, 3);
+  OPAL_CHECK(enough[0].empty() && enough[1].empty(),
+    "three sweeps of each: no state left, both frames complete (got: " + enough[0] + " | " + enough[1] + ")");
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
   paper.Dimensions = { 40, 20, 3 };

@@ -261,8 +261,8 @@ RenderSession::RenderSession(const VulkanOptions& options)
   , Buffers(std::make_unique<FrameBuffers>())
   , MarchPieces(std::max(options.MarchPieces, 1))
   , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly && this->MarchPieces > 1)
-  , Sweeps{ options.ForwardedMarchSweeps > 0 ? options.ForwardedMarchSweeps : MarchSweeps,
-      options.ForwardedLightSweeps > 0 ? options.ForwardedLightSweeps : LightWalkSweeps }
+  , Sweeps{ options.ForwardedMarchSweeps > 0 ? std::min(options.ForwardedMarchSweeps, MarchSweeps) : MarchSweeps,
+      options.ForwardedLightSweeps > 0 ? std::min(options.ForwardedLightSweeps, LightWalkSweeps) : LightWalkSweeps }
 {
   checkWorkgroupSizes(this->Context->limits());
   if (this->MarchPieceFieldsOnly && !this->Context->bufferDeviceAddresses())
@@ -515,7 +515,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   const auto marchStart = Clock::now();
   this->resetForwardedLeft();
   double exposure = setup.Parameters.Exposure;
-  frame.Ran.Exposure = exposure <= 0;
+  frame.Ran.Exposure = setup.measuresExposure();
   if (frame.Ran.Exposure && !this->measureExposure(setup, progress, exposure))
   {
     return frame;

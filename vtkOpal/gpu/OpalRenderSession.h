@@ -383,8 +383,8 @@ private:
   std::unique_ptr<FrameBuffers> Buffers;
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
-  // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps
-  // unless VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps set fewer.
+  // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps, or
+  // fewer where VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps ask.
   struct
   {
     int March, LightWalks;

@@ -26,7 +26,7 @@ namespace sessiondetail
 {
 constexpr std::uint32_t PushConstantBytes = 48;   // the largest push-constant struct of the contract (MarchWork)
 // Voxels a submit of the light pass's walks takes when forwarded (docs/design.md
-// §8.1): their kept walks, LightStateWords each, 10 MB.
+// §8.1): their kept walks, LightStateWords each, 8 MB.
 constexpr std::int64_t ForwardedLightVoxels = std::int64_t(1) << 16;
 // The sweeps through the pieces that take every forwarded ray of the march,
 // and every walk to the light to its end and its store at its own voxel
@@ -208,6 +208,8 @@ struct RenderSession::FrameSetup
   // the march evaluates the tally grid instead (docs/design.md §3.10).
   bool ScatteredLightFromGrid = false;
   // The spectrum image's bytes (WriteSpectrum), on the device and the host.
+  // Whether the frame measures its exposure (Exposure 0) on its thumbnail.
+  bool measuresExposure() const { return this->Thumbnail[0] > 0; }
   std::uint64_t spectrumBytes() const
   {
     return this->Parameters.WriteSpectrum ? std::uint64_t{ this->Pixels } * this->Bins.size() * 4 : 0;

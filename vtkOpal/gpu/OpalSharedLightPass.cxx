@@ -73,7 +73,7 @@ using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;
 // read together (readRuns: one submit on a device with dedicated memory).
 std::vector<char> readShare(const Fields& fields, const Runs& runs)
 {
-  std::vector<BufferRun> read;
+  std::vector<ReadRun> read;
   std::uint64_t bytes = 0;
   for (const auto& [buffer, record] : fields)
   {
@@ -86,7 +86,7 @@ std::vector<char> readShare(const Fields& fields, const Runs& runs)
   std::vector<char> share(bytes);
   std::vector<char*> into;
   std::uint64_t at = 0;
-  for (const BufferRun& run : read)
+  for (const ReadRun& run : read)
   {
     into.push_back(share.data() + at);
     at += run.Bytes;
@@ -315,6 +315,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
       setup = this->setUpSharedStep(frame);
       this->LightField.reset();
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
+      this->resetForwardedLeft();
       const bool braggShadow = conservesEnergy(setup->Parameters);
       if (braggShadow)
       {
@@ -346,6 +347,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
   {
     return false;
   }
+  this->requireForwardedFinished("light pass");
   this->LightField = lightFieldKey(*setup);
   this->PendingLightSeconds = secondsSince(start);
   return true;

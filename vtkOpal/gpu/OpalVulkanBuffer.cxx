@@ -129,10 +129,10 @@ std::uint64_t stagedSize(std::uint64_t bytes)
 // else copied, all in one submit, into one staging buffer (returned; null
 // where every run is mapped).
 std::unique_ptr<VulkanBuffer> stageOut(
-  VulkanContext& context, const std::vector<BufferRun>& runs, std::vector<const char*>& views)
+  VulkanContext& context, const std::vector<ReadRun>& runs, std::vector<const char*>& views)
 {
   std::uint64_t total = 0;
-  for (const BufferRun& run : runs)
+  for (const ReadRun& run : runs)
   {
     const char* mapped = run.Buffer->as<const char>();
     views.push_back(mapped ? mapped + run.Begin : nullptr);
@@ -169,7 +169,7 @@ std::unique_ptr<VulkanBuffer> stageOut(
 HostReadback::HostReadback(
   VulkanContext& context, const std::vector<std::pair<const VulkanBuffer*, std::uint64_t>>& parts)
 {
-  std::vector<BufferRun> runs;
+  std::vector<ReadRun> runs;
   for (const auto& [buffer, bytes] : parts)
   {
     runs.push_back({ buffer, 0, bytes });
@@ -296,7 +296,7 @@ void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const Con
     });
 }
 
-void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into)
+void readRuns(const std::vector<ReadRun>& runs, const std::vector<char*>& into)
 {
   if (runs.empty())
   {

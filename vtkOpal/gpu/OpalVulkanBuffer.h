@@ -139,7 +139,7 @@ private:
 // rows of each field, for which a staging buffer and a wait each cost more
 // than the rows (docs/design.md §8.1). The staging buffer holds all the runs'
 // bytes at once: for runs of a few MB.
-// Bytes [Begin, Begin + Bytes) of a buffer read (BufferRun) or written (WrittenRun).
+// Bytes [Begin, Begin + Bytes) of a buffer read (ReadRun) or written (WrittenRun).
 template <typename BufferType>
 struct RunOf
 {
@@ -147,10 +147,10 @@ struct RunOf
   std::uint64_t Begin;
   std::uint64_t Bytes;
 };
-using BufferRun = RunOf<const VulkanBuffer>;
+using ReadRun = RunOf<const VulkanBuffer>;
 using WrittenRun = RunOf<VulkanBuffer>;
 // Each run's bytes into into[i].
-void readRuns(const std::vector<BufferRun>& runs, const std::vector<char*>& into);
+void readRuns(const std::vector<ReadRun>& runs, const std::vector<char*>& into);
 // Each run's bytes from from[i].
 void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from);
 

@@ -51,10 +51,10 @@ struct VulkanOptions
   // volume's fields are then read by address; a device that cannot address
   // buffers is refused.
   bool MarchPieceFieldsOnly = false;
-  // With MarchPieces, the sweeps through the pieces of the march's and of the
-  // walks to the light's forwarded passes (0: their own, 4 and 5, which take
-  // every state to its end): fewer leave states unfinished, and the frame is
-  // refused naming the pass (a test that it is, docs/design.md §8.1).
+  // With MarchPieces, fewer sweeps through the pieces than the march's and
+  // the walks to the light's forwarded passes take (4 and 5, which take every
+  // state to its end; 0 or more: those): states left unfinished refuse the
+  // frame, naming the pass (a test that they do, docs/design.md §8.1).
   int ForwardedMarchSweeps = 0;
   int ForwardedLightSweeps = 0;
   // Limits smaller than the device's to plan with (0: the device's own), so
