@@ -685,7 +685,7 @@ bool takeUpWalk(int slot, ivec3 c, vec3 direction, out LightWalk w, out bool sta
     return false;
   }
   uint layer = keptLayer(slot, LightStateWords);
-  if (layer == KEPT_FINISHED || !layerHeld(int(layer))) return false;
+  if (!keptGoesOn(layer) || !layerHeld(int(layer))) return false;
   keepLightWalk(slot, false, w, direction);
   started = w.phase != LightWalkUnstarted;
   return true;
@@ -726,7 +726,7 @@ void main()
       // Outside beyond the skin: nothing inside reads it; unattenuated light.
       storeLight(index, LightSample(vec3(0.0), P.apexDistanceSquared / (distanceToLight * distanceToLight)),
         startShadow(-1));
-      if (FORWARDED) keepLayer(slot, LightStateWords, KEPT_FINISHED);
+      if (FORWARDED) keepLayer(slot, LightStateWords, KeptDone);
       return;
     }
     if (LIGHT_PASS_MODE == LightPassSweepFromAbove)
@@ -748,5 +748,5 @@ void main()
     return;
   }
   storeLight(index, LightSample(w.tau, w.geometry), w.shadow);
-  if (FORWARDED) keepLayer(slot, LightStateWords, KEPT_FINISHED);
+  if (FORWARDED) keepLayer(slot, LightStateWords, KeptDone);
 }

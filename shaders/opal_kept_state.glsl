@@ -1,14 +1,14 @@
 // A forwarded pass's states between its dispatches (docs/design.md §8.1): the
 // view march's rays, the light pass's walks to the light. Each invocation
 // owns `words` uints from slot * words: the first the layer z its piece must
-// hold to take it up (KEPT_FINISHED once done), then what its pass keeps,
+// hold to take it up (KeptDone once done, KeptUnwritten for a shared
+// march's ray finished), then what its pass keeps,
 // each value written and read back bit for bit by the same keep* calls (one
 // layout both ways). Needs opal_volume_fields.glsl (SurfaceTrace) and
 // opal_voxel_walk.glsl.
 layout(std430, set = 0, binding = RayStatesBinding) buffer KeptStates { uint keptStates[]; };
 layout(std430, set = 0, binding = ForwardedLeftBinding) buffer ForwardedLeft { uint forwardedLeft; };
 
-const uint KEPT_FINISHED = 0xffffffffu;
 bool keptSaving; // the keep* calls' way: into keptStates, or out of them
 int keptWord;    // their next word
 
@@ -20,7 +20,7 @@ void beginKeeping(int slot, int words, bool saving)
   keptWord = slot * words + 1;
 }
 
-// The layer word of slot `slot`: where it goes on, or KEPT_FINISHED.
+// The layer word of slot `slot`: where it goes on, or KeptDone, KeptUnwritten.
 uint keptLayer(int slot, int words)
 {
   return keptStates[slot * words];
@@ -31,12 +31,18 @@ void keepLayer(int slot, int words, uint layer)
   keptStates[slot * words] = layer;
 }
 
+// Whether a state with layer word `layer` goes on in a piece.
+bool keptGoesOn(uint layer)
+{
+  return layer < KeptUnwritten;
+}
+
 // In a forwarded pass's last dispatch (`last`), slot `slot`'s state counted
 // where it is still kept: a path longer than the sweeps' schedule, which the
 // host refuses (docs/design.md §8.1) rather than give its partial result.
 void countUnfinished(int slot, int words, bool last)
 {
-  if (last && keptLayer(slot, words) != KEPT_FINISHED) atomicAdd(forwardedLeft, 1u);
+  if (last && keptGoesOn(keptLayer(slot, words))) atomicAdd(forwardedLeft, 1u);
 }
 
 void keepFloat(inout float v)

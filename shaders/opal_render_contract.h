@@ -343,8 +343,11 @@ OPAL_CONSTANT int MarchRefineEdges = 3; // the queued pixels: the mean of PixelS
 // `subRay` (of PixelSamples^2, row by row). A forwarded march (§8.1)
 // marches only within layers z in [piece.x, piece.y) of the volume, each ray
 // saved where it leaves them and taken up again by a later dispatch of the
-// same work (`resumed` 1) for the piece it enters; the last (`last` 1)
-// counts the rays still kept (ForwardedLeftBinding).
+// same work (`resumed` MarchResumesRays) for the piece it enters; the last
+// (`last` 1) counts the rays still kept (ForwardedLeftBinding). A march
+// shared by processes (`sharesRays` 1) keeps a ray that finishes too
+// (KeptUnwritten), whose pixel a dispatch of the same work writes
+// (`resumed` MarchWritesFinished) once every ray has finished.
 struct MarchWork
 {
   ivec2 origin;
@@ -355,7 +358,18 @@ struct MarchWork
   ivec2 piece;
   int resumed;
   int last;
+  int sharesRays;
 };
+// MarchWork.resumed: the rays started, taken up where kept, or their pixels written.
+OPAL_CONSTANT int MarchStartsRays = 0;
+OPAL_CONSTANT int MarchResumesRays = 1;
+OPAL_CONSTANT int MarchWritesFinished = 2;
+// The layer word of a forwarded pass's state (opal_kept_state.glsl) once
+// it needs no piece: done with (KeptDone), or a shared march's ray finished
+// and kept until its pixel is written (KeptUnwritten); below both, the
+// layer z whose piece takes it up.
+OPAL_CONSTANT uint KeptDone = 0xffffffffu;
+OPAL_CONSTANT uint KeptUnwritten = 0xfffffffeu;
 // The most layers z a step of the view march's and the light pass's surface
 // traces passes; a forwarded pass's piece reads SurfaceDistance
 // TraceStepLayers + 2 layers beyond its own (docs/design.md §8.1).
@@ -366,9 +380,10 @@ OPAL_CONSTANT int LightStateWords = 32;
 // The words a forwarded march keeps per ray, exactly (view_march.comp's
 // keepRay and its layer word): its place, its entry and exit traces, walk and
 // round, its recorded crossings, its sums and, with energy conservation, the
-// last Bragg shadow it met (41 bins and 16 nodes: 1.5 KB), and its pixel's sums so far.
+// last Bragg shadow it met (41 bins and 16 nodes: 1.5 KB), its mirror
+// point (PixelMirror), and its pixel's sums so far.
 #define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
-  (174 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
+  (179 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 
 // Push constants of the highlight's shade pass: the queued pixels
 // [first, first + count) this dispatch shades.

@@ -674,6 +674,7 @@ vec3 rayInward;
 SurfaceTrace entryTrace;
 SurfaceTrace exitTrace;
 bool rayEntered;
+PixelMirror rayMirror; // a forwarded centre ray's, written with its pixel (enterRay)
 WalkState walkState;
 int walkRound;
 int walkCount;
@@ -885,7 +886,8 @@ void resetRay()
 
 // A forwarded ray's words in keptStates (opal_kept_state.glsl): the layer its
 // walk stands in, or its entry trace's next point (the piece that takes it
-// up), or KEPT_FINISHED once its pixel has it; then what keepRay keeps.
+// up), KeptDone once its pixel has it, KeptUnwritten once it finished in a
+// shared march; then what keepRay keeps.
 const int RAY_WORDS = RAY_STATE_WORDS(WAVELENGTHS, SPECTRAL_NODES);
 
 void keepWalk()
@@ -956,6 +958,8 @@ void keepRay(int slot, bool saving, inout PixelSum sum, inout float tHit, inout 
   if (!rayEntered) return;
   tHit = entryTrace.t;
   keepFloat(transmitted);
+  keepVec3(rayMirror.nearLight);
+  keepInt(rayMirror.valid);
   keepVec3(rayOrigin);
   keepVec3(rayInward);
   keepTrace(exitTrace);
@@ -981,8 +985,36 @@ bool resumeRay(int slot, inout PixelSum sum, out float tHit, out float transmitt
   tHit = 0.0;
   transmitted = 0.0;
   uint layer = keptLayer(slot, RAY_WORDS);
-  if (layer == KEPT_FINISHED || !inMarchPiece(ivec3(0, 0, int(layer)))) return false;
+  if (!keptGoesOn(layer) || !inMarchPiece(ivec3(0, 0, int(layer)))) return false;
   keepRay(slot, false, sum, tHit, transmitted);
+  return true;
+}
+
+// Whether a marched sub-ray met the opal, where (its distance from the eye),
+// and the share 1 - F it carries out.
+struct RayHit
+{
+  bool hit;
+  float tHit;
+  float transmitted;
+};
+
+// A shared march's ray that finished, kept (`saving`) until the dispatch
+// that writes the finished rays' pixels restores it (docs/design.md §8.1):
+// all keepRay keeps and whether it met the opal.
+void keepFinishedRay(int slot, bool saving, inout PixelSum sum, inout RayHit met)
+{
+  keepRay(slot, saving, sum, met.tHit, met.transmitted);
+  keepBool(met.hit);
+}
+
+// In the dispatch that writes a shared march's finished rays' pixels, the
+// ray of `slot` restored where it finished (KeptUnwritten); false for any other.
+bool takeUpFinished(int slot, inout PixelSum sum, out RayHit met)
+{
+  met = RayHit(false, 0.0, 0.0);
+  if (keptLayer(slot, RAY_WORDS) != KeptUnwritten) return false;
+  keepFinishedRay(slot, false, sum, met);
   return true;
 }
 
@@ -1022,8 +1054,11 @@ const int RAY_ENTERED = 1, RAY_MISSED = 0, RAY_PAUSED = -1;
 // Traces the primary ray through `pixel` (image coordinates) to the opal,
 // from the grid's box (`fresh`) or on from entryTrace. Entered: its distance to the surface (tHit) and the
 // share 1 - F of the light it carries out (transmitted), its refracted ray
-// ready to march (marchOn). With `mirror` >= 0 it records at that pixel where
-// its mirror image passes the light (for the highlight pass).
+// ready to march (marchOn). With `mirror` >= 0 it records where its mirror
+// image passes the light (for the highlight pass): at that pixel, or
+// forwarded in rayMirror, written with the pixel (unforwarded the value
+// is not held through the march: holding it, fig12's march at 320 x 240
+// took ~3.5% longer on lavapipe, docs/design.md §8.1).
 int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float transmitted)
 {
   vec3 eye = P.eye;
@@ -1031,8 +1066,8 @@ int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float trans
   vec2 box = gridBoxHits(eye, direction);
   tHit = -1.0;
   transmitted = 0.0;
+  if (fresh) entryTrace = surfaceTrace(box.x); // not done where the box is missed (a shared march keeps it)
   if (box.x > box.y) return RAY_MISSED;
-  if (fresh) entryTrace = surfaceTrace(box.x);
   if (!traceSurfaceOn(entryTrace, eye, direction, box.y, viewTrace(true), 1e30)) return RAY_PAUSED;
   tHit = entryTrace.t;
   if (tHit < 0.0) return RAY_MISSED;
@@ -1047,7 +1082,8 @@ int enterRay(vec2 pixel, int mirror, bool fresh, out float tHit, out float trans
   {
     float cosMirror;
     vec4 near = mirrorPointNearLight(entry, direction, normal, cosMirror);
-    pixelMirror[mirror] = PixelMirror(near.xyz, int(near.w));
+    rayMirror = PixelMirror(near.xyz, int(near.w));
+    if (!FORWARDED) pixelMirror[mirror] = rayMirror;
   }
   vec3 inward = refract(direction, normal, 1.0 / mu);
   rayOrigin = entry - 1e-4 * P.smallestSpacing * normal;
@@ -1259,24 +1295,18 @@ struct SubRay
   bool spectrum;
 };
 
-// Whether a marched sub-ray met the opal, where (its distance from the eye),
-// and the share 1 - F it carries out.
-struct RayHit
-{
-  bool hit;
-  float tHit;
-  float transmitted;
-};
-
 // `ray` started and marched (its pixel's sums so far in `sum`), or in a
 // forwarded march's later dispatch taken up again: false where it finished
-// before or traces or walks on in another piece (saved for it); else where
-// it met the opal (`met`).
+// before or traces or walks on in another piece (saved for it), or in a
+// shared march finishes (kept until its pixel is written, takeUpFinished);
+// else where it met the opal (`met`).
 bool marchSubRay(SubRay ray, inout PixelSum sum, out RayHit met)
 {
   int slot = marchItem();
-  bool resumed = FORWARDED && marchWork.resumed != 0;
+  int started = FORWARDED ? marchWork.resumed : MarchStartsRays;
+  bool resumed = started == MarchResumesRays;
   bool last = FORWARDED && marchWork.last != 0;
+  if (started == MarchWritesFinished) return takeUpFinished(slot, sum, met);
   if (resumed)
   {
     if (!resumeRay(slot, sum, met.tHit, met.transmitted))
@@ -1304,7 +1334,13 @@ bool marchSubRay(SubRay ray, inout PixelSum sum, out RayHit met)
     countUnfinished(slot, RAY_WORDS, last);
     return false;
   }
-  if (FORWARDED) keepLayer(slot, RAY_WORDS, KEPT_FINISHED);
+  if (FORWARDED && marchWork.sharesRays != 0)
+  {
+    keepLayer(slot, RAY_WORDS, KeptUnwritten);
+    keepFinishedRay(slot, true, sum, met);
+    return false;
+  }
+  if (FORWARDED) keepLayer(slot, RAY_WORDS, KeptDone);
   return true;
 }
 
@@ -1349,6 +1385,7 @@ void main()
   RayHit met;
   if (!marchSubRay(SubRay(local, pixelIndex, n, subRay, outline, spectrum), sum, met)) return;
   if (met.hit) addRay(pixelIndex, spectrum, met.transmitted, 1.0 / float(subRay < n ? n : n * n), met.tHit, sum);
+  if (FORWARDED && met.hit && centre) pixelMirror[pixelIndex] = rayMirror;
   if (!centre && subRay < n) noteFirstStage(sum, met.hit, subRay);
   bool settled = subRay + 1 == n * n || (subRay + 1 == n && sum.alike != 0);
   if (!centre) pixelSums[item] = sum;

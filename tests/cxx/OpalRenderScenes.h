@@ -7,6 +7,8 @@
 #include "OpalDomainLayout.h"
 #include "OpalGrid.h"
 #include "OpalLatticePlanes.h"
+#include "OpalPresets.h"
+#include "OpalRenderFrame.h"
 #include "OpalRenderSession.h"
 #include "OpalVulkanError.h"
 
@@ -96,6 +98,16 @@ inline bool identical(const opal::RenderImage& a, const opal::RenderImage& b)
 {
   return a.RGB == b.RGB && a.XYZ == b.XYZ && a.Radiance == b.Radiance && a.Spectrum == b.Spectrum &&
     a.DominantBraggWavelength == b.DominantBraggWavelength && a.Depth == b.Depth && a.Exposure == b.Exposure;
+}
+
+// `p` with the Bragg model and lattice planes preset `preset` (of refractive
+// index `refractiveIndex`) renders with, as the VTK filter takes them.
+inline opal::RenderParameters withPresetHints(opal::RenderParameters p, const char* preset, double refractiveIndex)
+{
+  const opal::VolumeRenderHints hints = opal::renderHints(opal::presetIndexByName(preset), refractiveIndex);
+  p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
+  p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
+  return p;
 }
 
 // The renderer with the validation layer on, or nullptr (and a message) if

@@ -104,13 +104,6 @@ std::array<std::string, 2> shortSchedule(
   return messages;
 }
 
-opal::RenderParameters withHints(opal::RenderParameters p, const char* preset, double refractiveIndex)
-{
-  const opal::VolumeRenderHints hints = opal::renderHints(opal::presetIndexByName(preset), refractiveIndex);
-  p.BraggModel = hints.BraggModel.value_or(p.BraggModel);
-  p.LatticePlanes = hints.LatticePlanes.value_or(p.LatticePlanes);
-  return p;
-}
 } // namespace
 
 int TestOpalForwardedMarch(int, char*[])
@@ -131,12 +124,12 @@ int TestOpalForwardedMarch(int, char*[])
   opal::ModelParameters grains;
   OPAL_CHECK(grains.applyPreset(opal::presetIndexByName("pinfire")), "pinfire is a preset");
   grains.Dimensions = { 40, 20, 50 };
-  checkForwarded(grains, withHints(p, "pinfire", grains.RefractiveIndex), "pinfire", { 2 });
+  checkForwarded(grains, opaltest::withPresetHints(p, "pinfire", grains.RefractiveIndex), "pinfire", { 2 });
 
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
   fire.Dimensions = { 40, 20, 50 };
-  opal::RenderParameters side = withHints(p, "fire-opal", fire.RefractiveIndex);
+  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
   side.LightPosition = { 30.0, 12.0, 4.0 };
   side.ScatteringOrders = opal::ScatteringOrdersKind::All;
   side.ScatteringPhotons = 2000;

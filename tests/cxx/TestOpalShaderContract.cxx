@@ -114,6 +114,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("marchWork.", MarchWork, piece),
     OPAL_FIELD("marchWork.", MarchWork, resumed),
     OPAL_FIELD("marchWork.", MarchWork, last),
+    OPAL_FIELD("marchWork.", MarchWork, sharesRays),
     OPAL_FIELD("pixelSums[0].", PixelSum, xyz),
     OPAL_FIELD("pixelSums[0].", PixelSum, depth),
     OPAL_FIELD("pixelSums[0].", PixelSum, dominantLambda),

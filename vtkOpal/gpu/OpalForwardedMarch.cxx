@@ -174,14 +174,15 @@ std::pair<std::uint64_t, std::uint64_t> RenderSession::pieceBytes(const PieceFie
   return { first * layerBytes, last == dims[2] ? field.Whole->size() : std::max(first, last) * layerBytes };
 }
 
-// With MarchPieceFieldsOnly (and MarchPieces above 1), a buffer per field of
+// With MarchPieceFieldsOnly (and marchPieces above 1), a buffer per field of
 // the march (marchFields) for the largest piece's layers and halo (the
 // march's or the walks to the light's, the larger), made for
 // each march region (a test's option, so kept simple); none otherwise.
 void RenderSession::preparePieceFields()
 {
   this->PieceFieldBuffers.clear();
-  if (!this->MarchPieceFieldsOnly)
+  const int pieces = this->marchPieces();
+  if (!this->MarchPieceFieldsOnly || pieces <= 1)
   {
     return;
   }
@@ -190,9 +191,9 @@ void RenderSession::preparePieceFields()
   {
     field.Halo = std::max(field.Halo, LightCellsHalo); // the walks to the light's too (lightPieceFields)
     std::uint64_t bytes = 0;
-    for (int piece = 0; piece < this->MarchPieces; ++piece)
+    for (int piece = 0; piece < pieces; ++piece)
     {
-      const auto [begin, end] = this->pieceBytes(field, evenShare(layers, piece, this->MarchPieces));
+      const auto [begin, end] = this->pieceBytes(field, evenShare(layers, piece, pieces));
       bytes = std::max(bytes, end - begin);
     }
     this->PieceFieldBuffers.push_back(
@@ -313,7 +314,7 @@ int RenderSession::marchNodes(const FrameSetup& setup)
 // bands' pixels, its ring's or its queued pixels'; none unforwarded.
 std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const
 {
-  if (this->MarchPieces <= 1)
+  if (this->marchPieces() <= 1)
   {
     return 0;
   }
@@ -323,9 +324,15 @@ std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::a
     std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rect[3])) * groupPixels,
       roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))),
       roundUp(static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])) });
+  return slots * rayStateWords(setup) * sizeof(std::uint32_t);
+}
+
+// The words a forwarded march keeps per ray for the frame's wavelengths and nodes.
+std::uint64_t RenderSession::rayStateWords(const FrameSetup& setup)
+{
   const int wavelengths = static_cast<int>(setup.Bins.size());
   const int nodes = marchNodes(setup) == 0 ? 4 : marchNodes(setup);
-  return slots * RAY_STATE_WORDS(wavelengths, nodes) * sizeof(std::uint32_t);
+  return RAY_STATE_WORDS(wavelengths, nodes);
 }
 
 // The frame's largest march (over its region or the exposure's thumbnail).

@@ -452,7 +452,7 @@ ComputePipeline& RenderSession::marchPipeline(const FrameSetup& setup)
                                                                       : gpu::MarchScatteredLightPerVoxel;
   const bool addressed = this->Volume->addressed();
   const int paired = this->Volume->PairedFields ? 1 : 0;
-  const int forwarded = this->MarchPieces > 1 ? 1 : 0;
+  const int forwarded = this->marchPieces() > 1 ? 1 : 0;
   std::unique_ptr<ComputePipeline>& march = this->MarchPasses[{ wavelengths, exact ? 0 : nodes, absorbs, coupled,
     energy, first, step, nearestLight, scattered, addressed ? 1 : 0, paired, forwarded }];
   if (!march)
@@ -488,15 +488,15 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   this->prepareRayStates(this->rayStateBytes(setup, rect));
   this->preparePieceFields();
   const ComputePipeline& march = this->marchPipeline(setup);
+  if (this->SharedMarch)
+  {
+    return this->marchRegionShared(setup, march, target, progress, from, to);
+  }
   const bool refine = target.PixelSamples > 1;
-  // Bands of whole rows of MarchTileSize, one dispatch each (the pixels are
-  // independent: no barrier between them), as many rows per submit as the
-  // pacer's pixels allow.
   const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
   for (int firstRow = 0; firstRow < rect[3];)
   {
-    const int rows = static_cast<int>(std::min<std::int64_t>(
-      std::max<std::int64_t>(1, this->MarchPacer.items() / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
+    const int rows = this->marchBandRows(rect, firstRow);
     const bool last = firstRow + rows == rect[3];
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -528,25 +528,42 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
     progress.report(to);
 }
 
+// The rows of the rectangle's band from `firstRow`: bands of whole rows of
+// MarchTileSize, one dispatch each (the pixels are independent: no barrier
+// between them), as many rows per submit as the pacer's pixels allow.
+int RenderSession::marchBandRows(const std::array<int, 4>& rect, int firstRow) const
+{
+  const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
+  return static_cast<int>(std::min<std::int64_t>(
+    std::max<std::int64_t>(1, this->MarchPacer.items() / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
+}
+
 // The march's workgroups across `width` pixels.
 int RenderSession::marchGroups(int width)
 {
   return (width + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide;
 }
 
-// Records the march in `mode` over `rows` rows of the rectangle from
-// `firstRow`, its whole width: one dispatch, in columns only beyond the
-// device's group count.
-void RenderSession::recordMarchRows(
-  VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const
+// The march's work in `mode` over `rows` rows of the rectangle from
+// `firstRow`, its whole width, handed to `dispatch`: one dispatch, in
+// columns only beyond the device's group count.
+void RenderSession::forMarchColumns(int mode, int width, int firstRow, int rows, const MarchDispatch& dispatch) const
 {
   const int groupsX = marchGroups(width);
   const auto groupsY = static_cast<std::uint32_t>((rows + gpu::MarchGroupSide - 1) / gpu::MarchGroupSide);
   const auto maxGroupsX = static_cast<int>(std::min<std::uint32_t>(this->Context->limits().maxComputeWorkGroupCount[0], 1u << 30));
   for (int column = 0; column < groupsX; column += maxGroupsX)
   {
-    const gpu::MarchWork work{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0, gpu::ivec2(0, 0), 0, 0 };
-    const auto groups = static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column));
+    const gpu::MarchWork work{ gpu::ivec2(column * gpu::MarchGroupSide, firstRow), mode, 0, 0, 0, gpu::ivec2(0, 0), 0, 0, 0 };
+    dispatch(work, static_cast<std::uint32_t>(std::min(maxGroupsX, groupsX - column)), groupsY);
+  }
+}
+
+// Records the march in `mode` over `rows` rows of the rectangle from `firstRow` (forMarchColumns).
+void RenderSession::recordMarchRows(
+  VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const
+{
+  this->forMarchColumns(mode, width, firstRow, rows, [&](const gpu::MarchWork& work, std::uint32_t groups, std::uint32_t groupsY) {
     if (mode == gpu::MarchSelectEdges)
     {
       march.dispatch(commands, work, groups, groupsY); // marches no ray
@@ -555,7 +572,7 @@ void RenderSession::recordMarchRows(
     {
       this->recordMarch(commands, march, work, groups, groupsY);
     }
-  }
+  });
 }
 
 // The march's centre rays of the ring of pixels around the rectangle (the
@@ -565,7 +582,7 @@ void RenderSession::recordMarchRing(
 {
   constexpr int groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
-  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0, 0 },
+  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0, 0, 0 },
     static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
 }
 
@@ -585,7 +602,7 @@ bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, 
         {
           this->recordMarch(commands, march,
             gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
-              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0, 0 },
+              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0, 0, 0 },
             static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
         }
       });

@@ -260,7 +260,7 @@ RenderSession::RenderSession(const VulkanOptions& options)
   : Context(std::make_unique<VulkanContext>(options))
   , Buffers(std::make_unique<FrameBuffers>())
   , MarchPieces(std::max(options.MarchPieces, 1))
-  , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly && this->MarchPieces > 1)
+  , MarchPieceFieldsOnly(options.MarchPieceFieldsOnly)
   , Sweeps{ options.ForwardedMarchSweeps > 0 ? std::min(options.ForwardedMarchSweeps, MarchSweeps) : MarchSweeps,
       options.ForwardedLightSweeps > 0 ? std::min(options.ForwardedLightSweeps, LightWalkSweeps) : LightWalkSweeps }
 {

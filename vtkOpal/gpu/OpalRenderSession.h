@@ -172,6 +172,26 @@ public:
   bool shareScatteredField(
     const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const LayerExchange& round);
 
+  // The view march of the frames that follow shared by `Shares` processes,
+  // each holding share `Share` of the volume's layers z (docs/design.md
+  // §8.1): share 0 starts every ray of a dispatch; each share then marches
+  // the rays in its layers, round after round, passing those it took up to
+  // every share through `Round` (as shareLightPass's rounds: its bytes, the
+  // others' handed to the sink), until no ray goes on; every share then
+  // writes every finished ray's pixel and holds the whole image. Each
+  // round's bytes begin with whether the share goes on: one that fails or is
+  // aborted says so in its next round, and every share's frame stops (the
+  // failing share's rethrows). A round after each band of rows carries the
+  // shares' progress. Refuses (std::invalid_argument) more shares than one
+  // with VulkanOptions::MarchPieces; nullopt: the march alone again.
+  struct MarchShare
+  {
+    int Share = 0;
+    int Shares = 1;
+    LayerExchange Round;
+  };
+  void shareMarch(std::optional<MarchShare> share);
+
   // Whether the frame's eye is inside the opal (which render refuses); false
   // without a volume. It reads only the host copy of the volume's surface,
   // so it may run beside a background frame.
@@ -306,6 +326,17 @@ private:
   static int marchGroups(int width);
   void recordMarchRows(
     VkCommandBuffer commands, const ComputePipeline& march, int mode, int width, int firstRow, int rows) const;
+  using MarchDispatch = std::function<void(const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY)>;
+  void forMarchColumns(int mode, int width, int firstRow, int rows, const MarchDispatch& dispatch) const;
+  class MarchRounds;
+  bool marchRegionShared(const FrameSetup& setup, const ComputePipeline& march, const MarchTarget& target,
+    Progress& progress, double from, double to);
+  int marchBandRows(const std::array<int, 4>& rect, int firstRow) const;
+  bool marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX, std::uint32_t groupsY,
+    MarchRounds& rounds);
+  void submitSharedDispatch(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
+    std::uint32_t groupsY);
+  int marchPieces() const;
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY = 1) const;
@@ -321,6 +352,7 @@ private:
     std::pair<int, int> rows, int layer) const;
   void recordWholeFields(VkCommandBuffer commands, const std::vector<PieceField>& fields) const;
   static int marchNodes(const FrameSetup& setup);
+  static std::uint64_t rayStateWords(const FrameSetup& setup);
   std::uint64_t rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const;
   std::uint64_t frameRayStateBytes(const FrameSetup& setup) const;
   std::uint64_t frameStateBytes(const FrameSetup& setup) const;
@@ -383,6 +415,7 @@ private:
   std::unique_ptr<FrameBuffers> Buffers;
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
+  std::optional<MarchShare> SharedMarch; // shareMarch
   // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps, or
   // fewer where VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps ask.
   struct

@@ -42,8 +42,9 @@ struct VulkanOptions
   // data-parallel render would between ranks (docs/design.md §8.1), in one
   // process: 1, none.
   int MarchPieces = 1;
-  // With MarchPieces, each piece's dispatch reads the fields the march and
-  // the walks to the light read per voxel (and the walks write their light)
+  // With MarchPieces (or a march shared by processes, RenderSession::
+  // shareMarch: each share's piece), each piece's dispatch reads the fields
+  // the march and the walks to the light read per voxel (and the walks write their light)
   // in buffers holding only its layers and their halo (the march one layer,
   // the walks five, none for their light; SurfaceDistance TraceStepLayers +
   // 2), addressed from the first layer they hold, as a rank holding only its

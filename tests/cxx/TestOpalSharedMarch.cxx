@@ -1,0 +1,175 @@
+// The view march shared by processes, each holding a piece of the volume's
+// layers z (docs/design.md §8.1), played by sessions on threads: share 0
+// starts every ray; each share marches the rays in its piece, reading the
+// fields it reads per voxel from buffers of its layers and their halo
+// alone, and passes the rays it took up to every share after each round,
+// until none goes on; every share then writes every finished ray's pixel.
+// Each share's image must be the lone session's, value for value: a ray's
+// state crosses between shares bit for bit, as between one process's
+// pieces, and no read reaches beyond a share's halo. fig12 lit from above,
+// with the spectrum and the exposure's thumbnail (marched shared too);
+// fire-opal (an absorbing body, coupled-wave fcc planes, energy
+// conservation's rounds and Bragg shadows, every order) lit from the side,
+// on 2 and 3 shares. A share aborting midway stops every share's frame (no
+// hang, no image); the edge pixels' sub-rays, not yet shared, are refused
+// by every share alike; bad shares are refused.
+#include "OpalPresets.h"
+#include "OpalRenderFrame.h"
+#include "OpalRenderScenes.h"
+#include "OpalShareMeeting.h"
+#include "OpalTestHarness.h"
+#include "OpalVolumeBuild.h"
+
+#include <exception>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace
+{
+// What a share's frame gave: the frame, or the message it threw.
+struct ShareResult
+{
+  opal::RenderFrame Frame;
+  std::string Failure;
+  std::string Validation; // the validation layer's first message, if any
+};
+
+// `shares` sessions, each reading its piece's fields alone, render `p` of
+// `stone` on as many threads, their march shared; share 1 stops its frame
+// once its progress passes `share1StopsAt` (above 1: never).
+std::vector<ShareResult> sharedFrames(
+  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, double share1StopsAt = 2.0)
+{
+  opaltest::Meeting meeting(shares);
+  opal::VulkanOptions options;
+  options.Validation = true;
+  options.MarchPieceFieldsOnly = true;
+  std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
+  for (int share = 0; share < shares; ++share)
+  {
+    sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
+    sessions.back()->Session.setVolume(stone);
+    sessions.back()->Session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
+      [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+        return meeting.meet(share, false, mine, sink);
+      } });
+  }
+  std::vector<ShareResult> results(static_cast<std::size_t>(shares));
+  std::vector<std::thread> threads;
+  for (int share = 0; share < shares; ++share)
+  {
+    threads.emplace_back([&, share] {
+      ShareResult& result = results[static_cast<std::size_t>(share)];
+      opal::RenderSession& session = sessions[static_cast<std::size_t>(share)]->Session;
+      try
+      {
+        result.Frame = session.render(p, [&](double done) { return share != 1 || done < share1StopsAt; });
+      }
+      catch (const std::exception& e)
+      {
+        result.Failure = e.what();
+      }
+      const auto messages = session.context().validationMessages();
+      result.Validation = messages.empty() ? "" : messages.front();
+    });
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  return results;
+}
+
+// Every share of `shares` renders the lone session's image, value for value.
+void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const std::string& scene)
+{
+  opaltest::SceneRenderer alone({});
+  const opal::RenderImage lone = alone.render(stone, p);
+  const std::vector<ShareResult> results = sharedFrames(stone, p, shares);
+  for (std::size_t share = 0; share < results.size(); ++share)
+  {
+    const ShareResult& result = results[share];
+    const std::string what = scene + ", share " + std::to_string(share) + " of " + std::to_string(shares);
+    OPAL_CHECK(result.Failure.empty() && result.Frame.Status == opal::FrameStatus::Completed,
+      what + ": the frame completes" + (result.Failure.empty() ? "" : " (threw: " + result.Failure + ")"));
+    OPAL_CHECK(result.Validation.empty(), what + ": the validation layer is silent " + result.Validation);
+    OPAL_CHECK(opaltest::identical(result.Frame.Image, lone), what + ": the lone session's image, value for value");
+  }
+}
+
+// The message shareMarch throws for `share` of `shares` (with MarchPieces
+// `pieces`); "" where it accepts it.
+std::string refusal(int share, int shares, int pieces)
+{
+  opal::VulkanOptions options;
+  options.MarchPieces = pieces;
+  opal::RenderSession session(options);
+  try
+  {
+    session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
+      [](const std::vector<char>&, const opal::RenderSession::ShareSink&) { return true; } });
+  }
+  catch (const std::invalid_argument& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
+int TestOpalSharedMarch(int, char*[])
+{
+  if (!opaltest::makeRenderer())
+  {
+    return opaltest::noDeviceReturnCode();
+  }
+  opal::RenderParameters p;
+  p.ImageSize = { 40, 30 };
+  p.PixelSamples = 1;
+  p.WriteSpectrum = true;
+
+  opal::ModelParameters paper; // fig12's optics, lit from above
+  paper.Dimensions = { 40, 20, 50 };
+  const auto paperVolume = opal::buildVolume(paper);
+  const opal::RenderVolume paperStone = paperVolume->renderVolume();
+  OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
+  checkShared(paperStone, p, 3, "fig12");
+
+  opal::ModelParameters fire;
+  OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
+  fire.Dimensions = { 40, 20, 50 };
+  const auto fireVolume = opal::buildVolume(fire);
+  const opal::RenderVolume fireStone = fireVolume->renderVolume();
+  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+  side.LightPosition = { 30.0, 12.0, 4.0 };
+  side.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  side.ScatteringPhotons = 2000;
+  const opal::ResolvedFrame frame = opal::resolveFrame(side);
+  OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
+    "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
+  checkShared(fireStone, side, 2, "fire-opal, lit from the side, every order");
+  checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order");
+
+  // Share 1 aborting midway through its march: every share's frame stops, none hangs or throws.
+  for (const ShareResult& result : sharedFrames(paperStone, p, 3, 0.5))
+  {
+    OPAL_CHECK(result.Failure.empty() && result.Frame.Status == opal::FrameStatus::Aborted && result.Frame.Image.RGB.empty(),
+      "a share aborting: every share's frame stops without an image" + (result.Failure.empty() ? "" : " (threw: " + result.Failure + ")"));
+  }
+
+  // The edge pixels' sub-rays: refused alike by every share, none hangs.
+  opal::RenderParameters refined = p;
+  refined.PixelSamples = 3;
+  for (const ShareResult& result : sharedFrames(paperStone, refined, 3))
+  {
+    OPAL_CHECK(result.Failure.find("PixelSamples 3") == 0, "PixelSamples 3: every share refuses it (got: " + result.Failure + ")");
+  }
+
+  OPAL_CHECK(refusal(3, 3, 1).find("Share 3 is not one of the 3 shares") != std::string::npos, "share 3 of 3: refused");
+  OPAL_CHECK(refusal(0, 2, 3).find("MarchPieces") != std::string::npos, "a shared march with MarchPieces 3: refused");
+  OPAL_CHECK(refusal(0, 1, 3).empty(), "one share of one with MarchPieces 3: the march alone, accepted");
+  return opaltest::finish("TestOpalSharedMarch");
+}
