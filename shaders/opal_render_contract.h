@@ -381,7 +381,8 @@ OPAL_CONSTANT int LightStateWords = 32;
 // keepRay and its layer word): its place, its entry and exit traces, walk and
 // round, its recorded crossings, its sums and, with energy conservation, the
 // last Bragg shadow it met (41 bins and 16 nodes: 1.5 KB), its mirror
-// point (PixelMirror), and its pixel's sums so far.
+// point (PixelMirror), its pixel's sums so far, and in a shared march once
+// finished whether it met the opal.
 #define RAY_STATE_WORDS(wavelengthCount, nodeCount) \
   (179 + 3 * (wavelengthCount) + 4 * SHADOW_TABLE_ROW_VEC4S(wavelengthCount) + 2 * (nodeCount))
 

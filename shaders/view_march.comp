@@ -1200,10 +1200,17 @@ void noteFirstStage(inout PixelSum sum, bool hit, int t)
   sum.alike = sum.alike != 0 && first == sum.firstDomainSeen && brightest == sum.brightestDomainSeen ? 1 : 0;
 }
 
-// The first stage's n sub-rays, weighted 1/n, become n of n x n: 1/n^2.
-void reweighFirstStage(int pixelIndex, bool spectrum, int n, inout PixelSum sum)
+// The first stage's n sub-rays, weighted 1/n, become n of n x n: 1/n^2,
+// their sums as the second stage's first sub-ray starts, and the pixel's
+// spectrum as that sub-ray's is added (where its pixel is written: in a
+// shared march on every share, docs/design.md §8.1).
+void reweighFirstStage(int n, inout PixelSum sum)
 {
   sum.xyz /= float(n);
+}
+
+void reweighFirstSpectrum(int pixelIndex, bool spectrum, int n, PixelSum sum)
+{
   if (!spectrum || sum.hits == 0) return;
   for (int l = 0; l < WAVELENGTHS; ++l) pixelSpectrum[pixelIndex * WAVELENGTHS + l] /= float(n);
 }
@@ -1283,8 +1290,7 @@ bool queuedPixel(int stage, out ivec2 local, out int item, out bool outline)
 }
 
 // Sub-ray `index` of the n x n of the pixel `local` (n = 1: its centre ray):
-// the pixel's index among those stored, whether the outline crosses it and
-// whether it keeps a spectrum.
+// the pixel's index among those stored and whether the outline crosses it.
 struct SubRay
 {
   ivec2 local;
@@ -1292,7 +1298,6 @@ struct SubRay
   int n;
   int index;
   bool outline;
-  bool spectrum;
 };
 
 // `ray` started and marched (its pixel's sums so far in `sum`), or in a
@@ -1318,7 +1323,7 @@ bool marchSubRay(SubRay ray, inout PixelSum sum, out RayHit met)
   else
   {
     if (ray.outline) sum.alike = 0;
-    if (ray.index == ray.n) reweighFirstStage(ray.pixelIndex, ray.spectrum, ray.n, sum);
+    if (ray.index == ray.n) reweighFirstStage(ray.n, sum);
     rayEntered = false;
   }
   vec2 at = vec2(P.rectOrigin + ray.local) + (vec2(subRayCell(ray.index, ray.n)) + 0.5) / float(ray.n);
@@ -1383,7 +1388,8 @@ void main()
   PixelSum sum = PixelSum(vec3(0.0), 0.0, 0.0, 0.0, -1, 0, -2, -2, 1);
   if (subRay > 0) sum = pixelSums[item]; // not a ?:, whose mixed struct types glslang stores invalidly
   RayHit met;
-  if (!marchSubRay(SubRay(local, pixelIndex, n, subRay, outline, spectrum), sum, met)) return;
+  if (!marchSubRay(SubRay(local, pixelIndex, n, subRay, outline), sum, met)) return;
+  if (subRay == n) reweighFirstSpectrum(pixelIndex, spectrum, n, sum);
   if (met.hit) addRay(pixelIndex, spectrum, met.transmitted, 1.0 / float(subRay < n ? n : n * n), met.tHit, sum);
   if (FORWARDED && met.hit && centre) pixelMirror[pixelIndex] = rayMirror;
   if (!centre && subRay < n) noteFirstStage(sum, met.hit, subRay);

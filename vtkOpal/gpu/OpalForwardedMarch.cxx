@@ -220,12 +220,17 @@ std::vector<RenderSession::PieceField> RenderSession::pieceFields() const
 // their pieces' buffers and the halos its reads take: the cells and the
 // absorption's `cellsHalo`, SurfaceDistance `distanceHalo`, the light fields
 // (and the absorption's, the Bragg shadows) `lightHalo`, which it writes
-// at its voxels (copied back after each dispatch, recordWrittenBack).
+// at its voxels (copied back after each dispatch, recordWrittenBack). None
+// without MarchPieces: a shared march's pieces (its share's) split no light pass.
 std::vector<RenderSession::PieceField> RenderSession::lightPassPieceFields(
   int cellsHalo, int distanceHalo, int lightHalo) const
 {
   const DeviceVolume& v = *this->Volume;
   std::vector<PieceField> fields;
+  if (this->MarchPieces <= 1)
+  {
+    return fields;
+  }
   for (PieceField field : this->pieceFields())
   {
     const bool cells = field.Whole == v.Cells.get() || field.Whole == v.AbsorptionCells.get();

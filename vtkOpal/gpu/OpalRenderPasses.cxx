@@ -496,7 +496,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
   for (int firstRow = 0; firstRow < rect[3];)
   {
-    const int rows = this->marchBandRows(rect, firstRow);
+    const int rows = this->marchBandRows(rect, firstRow, this->MarchPacer.items());
     const bool last = firstRow + rows == rect[3];
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -530,12 +530,12 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
 
 // The rows of the rectangle's band from `firstRow`: bands of whole rows of
 // MarchTileSize, one dispatch each (the pixels are independent: no barrier
-// between them), as many rows per submit as the pacer's pixels allow.
-int RenderSession::marchBandRows(const std::array<int, 4>& rect, int firstRow) const
+// between them), as many rows per submit as `pixels` allow (the pacer's).
+int RenderSession::marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels)
 {
   const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
   return static_cast<int>(std::min<std::int64_t>(
-    std::max<std::int64_t>(1, this->MarchPacer.items() / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
+    std::max<std::int64_t>(1, pixels / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
 }
 
 // The march's workgroups across `width` pixels.
@@ -580,10 +580,28 @@ void RenderSession::recordMarchRows(
 void RenderSession::recordMarchRing(
   VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const
 {
-  constexpr int groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
-  this->recordMarch(commands, march, gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0, 0, 0 },
-    static_cast<std::uint32_t>((ring + groupPixels - 1) / groupPixels));
+  this->recordMarch(commands, march, ringWork(ring), queuedGroups(ring));
+}
+
+// The march's work over the `ring` pixels around the rectangle.
+gpu::MarchWork RenderSession::ringWork(int ring)
+{
+  return gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRing, 0, ring, 0, gpu::ivec2(0, 0), 0, 0, 0 };
+}
+
+// The march's work over queued edge pixels [first, first + count), their sub-ray `subRay`.
+gpu::MarchWork RenderSession::refineWork(std::int64_t first, std::int64_t count, int subRay)
+{
+  return gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
+    static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0, 0, 0 };
+}
+
+// The march's workgroups over `count` queued items (ring or edge pixels).
+std::uint32_t RenderSession::queuedGroups(std::int64_t count)
+{
+  constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
+  return static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels);
 }
 
 // The pixels the edge select queued, each the mean of PixelSamples^2
@@ -597,13 +615,9 @@ bool RenderSession::refineEdges(const ComputePipeline& march, int pixelSamples, 
     const std::int64_t queued = queuedCount(*this->Buffers->EdgeQueue, queue);
     return this->drainQueue(queued, pacer, progress, at,
       [&](VkCommandBuffer commands, std::int64_t first, std::int64_t count) {
-        constexpr std::int64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
         for (int subRay = fromRay; subRay < toRay; ++subRay)
         {
-          this->recordMarch(commands, march,
-            gpu::MarchWork{ gpu::ivec2(0, 0), gpu::MarchRefineEdges, static_cast<std::int32_t>(first),
-              static_cast<std::int32_t>(count), subRay, gpu::ivec2(0, 0), 0, 0, 0 },
-            static_cast<std::uint32_t>((count + groupPixels - 1) / groupPixels));
+          this->recordMarch(commands, march, refineWork(first, count, subRay), queuedGroups(count));
         }
       });
   };

@@ -471,6 +471,7 @@ RenderSession::FrameSetup RenderSession::setUpSharedStep(const ResolvedFrame& fr
 
 RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const RenderProgress& callback)
 {
+  const FrameRounds rounds(*this); // a shared march's (shareMarch)
   this->requireVolume();
   RenderFrame frame;
   RenderTimings& timings = frame.Image.Timings;
@@ -526,6 +527,10 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   if (!this->marchRegion(setup, image, progress, 0.25, 0.95))
   {
     return frame;
+  }
+  if (this->Rounds)
+  {
+    this->Rounds->finish(); // the rest of the frame is this share's alone
   }
   this->requireForwardedFinished("view march");
   timings.March = secondsSince(marchStart);

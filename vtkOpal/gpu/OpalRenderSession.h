@@ -179,11 +179,15 @@ public:
   // every share through `Round` (as shareLightPass's rounds: its bytes, the
   // others' handed to the sink), until no ray goes on; every share then
   // writes every finished ray's pixel and holds the whole image. Each
-  // round's bytes begin with whether the share goes on: one that fails or is
-  // aborted says so in its next round, and every share's frame stops (the
-  // failing share's rethrows). A round after each band of rows carries the
-  // shares' progress. Refuses (std::invalid_argument) more shares than one
-  // with VulkanOptions::MarchPieces; nullopt: the march alone again.
+  // round's bytes begin with whether the share goes on, and each share's
+  // Round must say alike whether all went on: a round after each band of
+  // rows carries the shares' progress, and a frame that leaves before its
+  // march's last round (a failure or an abort anywhere, the light pass
+  // included) posts one saying it stopped, so every share's frame stops
+  // there (Aborted; the failing share's rethrows). The shares' works, bands
+  // and queues of edge pixels are alike (share 0's queues go to all).
+  // Refuses (std::invalid_argument) more shares than one with
+  // VulkanOptions::MarchPieces; nullopt: the march alone again.
   struct MarchShare
   {
     int Share = 0;
@@ -329,13 +333,19 @@ private:
   using MarchDispatch = std::function<void(const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY)>;
   void forMarchColumns(int mode, int width, int firstRow, int rows, const MarchDispatch& dispatch) const;
   class MarchRounds;
+  class FrameRounds;
   bool marchRegionShared(const FrameSetup& setup, const ComputePipeline& march, const MarchTarget& target,
     Progress& progress, double from, double to);
-  int marchBandRows(const std::array<int, 4>& rect, int firstRow) const;
+  static int marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels);
+  bool refineEdgesShared(const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect, MarchRounds& rounds);
+  bool shareEdgeQueues(MarchRounds& rounds);
+  static gpu::MarchWork ringWork(int ring);
+  static gpu::MarchWork refineWork(std::int64_t first, std::int64_t count, int subRay);
+  static std::uint32_t queuedGroups(std::int64_t count);
   bool marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX, std::uint32_t groupsY,
     MarchRounds& rounds);
-  void submitSharedDispatch(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
-    std::uint32_t groupsY);
+  std::vector<std::uint32_t> marchRound(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
+    std::uint32_t groupsY, const std::vector<std::uint32_t>& held, bool readBack);
   int marchPieces() const;
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
@@ -416,6 +426,7 @@ private:
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
   std::optional<MarchShare> SharedMarch; // shareMarch
+  std::unique_ptr<MarchRounds> Rounds;   // a shared march's, while a frame runs (FrameRounds)
   // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps, or
   // fewer where VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps ask.
   struct

@@ -172,6 +172,56 @@ struct RenderSession::FrameBuffers
   std::size_t ShadowTableFloats = 0;
 };
 
+// The rounds of a frame's shared march (RenderSession::shareMarch, docs/
+// design.md §8.1): each round every share's post goes to every share, its
+// first word whether the share goes on; a ray round's then carry each ray
+// the share took up, its slot and its state's words. Held, the rays of the
+// dispatch being marched, is alike on every share after each round. Once a
+// share stopped, or the exchange ended, there is no round more.
+class RenderSession::MarchRounds
+{
+public:
+  explicit MarchRounds(const MarchShare& share);
+
+  std::uint64_t Words = 0;         // per ray: RAY_STATE_WORDS of the frame
+  std::vector<std::uint32_t> Held; // Words per slot; KeptDone where no ray is
+
+  // What another share posted after its first word: false where it is not
+  // what this round's posts hold (which stops the rounds as a stop does).
+  using Received = std::function<bool(int share, const std::vector<std::uint32_t>& words)>;
+  // Sends `post`; hands each other share's to `received`. Whether every
+  // share goes on. Each share's Round must say alike whether all go on.
+  bool exchange(const std::vector<std::uint32_t>& post, const Received& received = nullptr);
+  // A round of the rays each share took up, written into Held.
+  bool exchangeRays(const std::vector<std::uint32_t>& post);
+  // A round saying this share stops, unless the rounds are over.
+  void stop();
+  // The frame's last round is over: the rest of it is each share's alone.
+  void finish() { this->Ended = true; }
+
+private:
+  bool takeRays(const std::vector<std::uint32_t>& rays);
+
+  const MarchShare& Share;
+  bool Ended = false;
+};
+
+// A frame's shared march's rounds, held by the session (Rounds) while the
+// frame runs: where the frame leaves before its last round (a failure or an
+// abort anywhere, in the light pass, between the exposure's thumbnail and
+// the image), a round saying it stopped ends the other shares' rounds.
+class RenderSession::FrameRounds
+{
+public:
+  explicit FrameRounds(RenderSession& session);
+  ~FrameRounds();
+  FrameRounds(const FrameRounds&) = delete;
+  FrameRounds& operator=(const FrameRounds&) = delete;
+
+private:
+  RenderSession& Session;
+};
+
 // A pass of RenderSession::recordPiecePasses (docs/design.md §8.1): its
 // piece's layers z, whether it takes up kept states (every pass but the
 // first) and whether it is the last, whose dispatches count those still kept.

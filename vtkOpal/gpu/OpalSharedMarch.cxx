@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,92 +22,108 @@ namespace opal
 
 using namespace sessiondetail;
 
-// The rounds of a shared march (shareMarch): each round every share's post
-// goes to every share: whether it goes on, then each ray it took up, its
-// slot and its state's words. Held, the rays of the dispatch being marched,
-// is alike on every share after each round. Once a share stopped, or the
-// exchange ended, there is no round more.
-class RenderSession::MarchRounds
+namespace
 {
-public:
-  MarchRounds(const MarchShare& share, std::uint64_t words)
-    : Share(share)
-    , Words(words)
-  {
-  }
+// The works of a shared march are alike on every share, so its bands and
+// refined pixels per dispatch are fixed (the pacers follow each device's
+// own time): the pacers' first sizes.
+constexpr int SharedBandPixels = 1 << 17;
+constexpr std::int64_t SharedRefinePixels = 1 << 12;
+} // namespace
 
-  std::vector<std::uint32_t> Held; // RAY_STATE_WORDS per slot; KeptDone where no ray is
+RenderSession::MarchRounds::MarchRounds(const MarchShare& share)
+  : Share(share)
+{
+}
 
-  std::uint64_t words() const { return this->Words; }
-
-  // Sends `post`; each other share's rays written into Held. Whether every share goes on.
-  bool exchange(const std::vector<std::uint32_t>& post)
-  {
-    std::vector<char> bytes(post.size() * sizeof(std::uint32_t));
-    std::memcpy(bytes.data(), post.data(), bytes.size());
-    std::vector<std::vector<char>> received(static_cast<std::size_t>(this->Share.Shares));
-    const auto sink = [&](int share, std::uint64_t first, std::uint64_t count, const char* from) {
-      if (share >= 0 && share < this->Share.Shares)
-      {
-        std::vector<char>& into = received[static_cast<std::size_t>(share)];
-        into.resize(std::max<std::size_t>(into.size(), first + count));
-        std::memcpy(into.data() + first, from, count);
-      }
-    };
-    this->Ended = true; // a throw ends it too
-    bool goesOn = this->Share.Round(bytes, sink) && post.at(0) != 0;
-    for (int share = 0; share < this->Share.Shares; ++share)
+bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post, const Received& received)
+{
+  std::vector<char> bytes(post.size() * sizeof(std::uint32_t));
+  std::memcpy(bytes.data(), post.data(), bytes.size());
+  std::vector<std::vector<char>> posts(static_cast<std::size_t>(this->Share.Shares));
+  const auto sink = [&](int share, std::uint64_t first, std::uint64_t count, const char* from) {
+    if (share >= 0 && share < this->Share.Shares)
     {
-      goesOn = (share == this->Share.Share || this->take(received[static_cast<std::size_t>(share)])) && goesOn;
+      std::vector<char>& into = posts[static_cast<std::size_t>(share)];
+      into.resize(std::max<std::size_t>(into.size(), first + count));
+      std::memcpy(into.data() + first, from, count);
     }
-    this->Ended = !goesOn;
-    return goesOn;
-  }
-
-  // A round saying this share stops, unless the rounds are over.
-  void stop()
+  };
+  this->Ended = true; // a throw ends it too
+  bool goesOn = this->Share.Round(bytes, sink) && post.at(0) != 0;
+  for (int share = 0; share < this->Share.Shares && goesOn; ++share)
   {
-    if (!this->Ended)
+    const std::vector<char>& got = posts[static_cast<std::size_t>(share)];
+    if (share == this->Share.Share)
     {
-      try
-      {
-        this->exchange({ 0 });
-      }
-      catch (...)
-      {
-        // The failure being rethrown is the one to report.
-      }
+      continue;
+    }
+    std::vector<std::uint32_t> words(got.size() / sizeof(std::uint32_t));
+    std::memcpy(words.data(), got.data(), words.size() * sizeof(std::uint32_t));
+    goesOn = got.size() % sizeof(std::uint32_t) == 0 && !words.empty() && words[0] != 0 &&
+      (!received || received(share, { words.begin() + 1, words.end() }));
+  }
+  this->Ended = !goesOn;
+  return goesOn;
+}
+
+bool RenderSession::MarchRounds::exchangeRays(const std::vector<std::uint32_t>& post)
+{
+  return this->exchange(post, [this](int, const std::vector<std::uint32_t>& rays) { return this->takeRays(rays); });
+}
+
+void RenderSession::MarchRounds::stop()
+{
+  if (!this->Ended)
+  {
+    try
+    {
+      this->exchange({ 0 });
+    }
+    catch (...)
+    {
+      // The failure that left the rounds is the one to report.
     }
   }
+}
 
-private:
-  // Another share's post written into Held: false where it stopped (or
-  // sent what no share posts).
-  bool take(const std::vector<char>& bytes)
+// Another share's rays (each its slot and state) written into Held.
+bool RenderSession::MarchRounds::takeRays(const std::vector<std::uint32_t>& rays)
+{
+  const std::uint64_t record = 1 + this->Words, slots = this->Held.size() / this->Words;
+  if (rays.size() % record != 0)
   {
-    const std::uint64_t record = (1 + this->Words) * sizeof(std::uint32_t);
-    if (bytes.size() < sizeof(std::uint32_t) || (bytes.size() - sizeof(std::uint32_t)) % record != 0 || bytes[0] == 0)
+    return false;
+  }
+  for (std::uint64_t at = 0; at < rays.size(); at += record)
+  {
+    if (rays[at] >= slots)
     {
       return false;
     }
-    const std::uint64_t slots = this->Held.size() / this->Words;
-    for (std::uint64_t at = sizeof(std::uint32_t); at < bytes.size(); at += record)
-    {
-      std::uint32_t slot = 0;
-      std::memcpy(&slot, bytes.data() + at, sizeof(slot));
-      if (slot >= slots)
-      {
-        return false;
-      }
-      std::memcpy(this->Held.data() + slot * this->Words, bytes.data() + at + sizeof(slot), record - sizeof(slot));
-    }
-    return true;
+    std::copy_n(rays.begin() + static_cast<std::ptrdiff_t>(at + 1), this->Words,
+      this->Held.begin() + static_cast<std::ptrdiff_t>(rays[at] * this->Words));
   }
+  return true;
+}
 
-  const MarchShare& Share;
-  std::uint64_t Words;
-  bool Ended = false;
-};
+RenderSession::FrameRounds::FrameRounds(RenderSession& session)
+  : Session(session)
+{
+  if (session.SharedMarch)
+  {
+    session.Rounds = std::make_unique<MarchRounds>(*session.SharedMarch);
+  }
+}
+
+RenderSession::FrameRounds::~FrameRounds()
+{
+  if (this->Session.Rounds)
+  {
+    this->Session.Rounds->stop();
+    this->Session.Rounds.reset();
+  }
+}
 
 void RenderSession::shareMarch(std::optional<MarchShare> share)
 {
@@ -139,55 +156,124 @@ int RenderSession::marchPieces() const
 }
 
 // marchRegion's march shared by processes (shareMarch): each band's centre
-// rays in rounds between the shares, then a round carrying whether every
-// share goes on; then the highlight, on each share alone (every share holds
-// every pixel). A failure before the rounds are over tells the others.
+// rays, then with PixelSamples above 1 the edge pixels' (refineEdgesShared),
+// in rounds between the shares, a round after each band carrying whether
+// every share goes on; then the highlight, on each share alone (every share
+// holds every pixel), and a last round saying whether all completed, so
+// that nothing after it that one share does keeps another waiting. A
+// failure within the rounds tells the others.
 bool RenderSession::marchRegionShared(const FrameSetup& setup, const ComputePipeline& march, const MarchTarget& target,
   Progress& progress, double from, double to)
 {
-  if (target.PixelSamples > 1)
-  {
-    throw std::invalid_argument("PixelSamples " + std::to_string(target.PixelSamples) +
-      ": the edge pixels' sub-rays are not yet marched by processes sharing the volume; render with PixelSamples 1.");
-  }
   const std::array<int, 4>& rect = target.Rect;
-  MarchRounds rounds(*this->SharedMarch, rayStateWords(setup));
+  MarchRounds& rounds = *this->Rounds;
+  rounds.Words = rayStateWords(setup);
+  const double refined = from + (to - from) * 0.9;
   try
   {
     for (int firstRow = 0; firstRow < rect[3];)
     {
-      const int rows = this->marchBandRows(rect, firstRow);
-      const auto start = Clock::now();
+      const int rows = this->marchBandRows(rect, firstRow, SharedBandPixels);
       bool goesOn = true;
       this->forMarchColumns(gpu::MarchPixels, rect[2], firstRow, rows,
         [&](const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY) {
           goesOn = goesOn && this->marchShared(march, work, groupsX, groupsY, rounds);
         });
-      if (!goesOn)
-      {
-        return false;
-      }
-      this->MarchPacer.measured(static_cast<std::int64_t>(rows) * marchGroups(rect[2]) * gpu::MarchGroupSide, secondsSince(start));
       firstRow += rows;
-      const bool going = progress.report(from + (to - from) * 0.8 * firstRow / rect[3]);
-      if (!rounds.exchange({ going ? 1u : 0u }))
+      if (!goesOn || !rounds.exchange({ progress.report(from + (to - from) * 0.8 * firstRow / rect[3]) ? 1u : 0u }))
       {
         return false;
       }
     }
+    if (target.PixelSamples > 1 && !this->refineEdgesShared(march, target.PixelSamples, rect, rounds))
+    {
+      return false;
+    }
+    this->Context->submitAndWait([&](VkCommandBuffer commands) { this->recordHighlightSelect(commands, rect); });
+    const bool completed = this->shadeHighlight(progress, refined) && progress.report(to);
+    return rounds.exchange({ completed ? 1u : 0u });
   }
   catch (...)
   {
     rounds.stop();
     throw;
   }
-  this->Context->submitAndWait([&](VkCommandBuffer commands) { this->recordHighlightSelect(commands, rect); });
-  return this->shadeHighlight(progress, from + (to - from) * 0.9) && progress.report(to);
+}
+
+// refineEdges for a shared march: the ring's centre rays and the select,
+// then each stage's sub-rays, SharedRefinePixels queued pixels a dispatch,
+// after share 0's queues went to every share (the select and the first
+// stage queue pixels in each device's own order, and a ray's slot is its
+// pixel's place in the queue). False where a share stopped.
+bool RenderSession::refineEdgesShared(
+  const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect, MarchRounds& rounds)
+{
+  const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
+  if (!this->marchShared(march, ringWork(ring), queuedGroups(ring), 1, rounds))
+  {
+    return false;
+  }
+  this->Context->submitAndWait([&](VkCommandBuffer commands) {
+    this->Buffers->EdgeQueue->recordClear(commands);
+    this->recordMarchRows(commands, march, gpu::MarchSelectEdges, rect[2], 0, rect[3]);
+  });
+  const int n = pixelSamples;
+  const auto stage = [&](int queue, int fromRay, int toRay) {
+    if (!this->shareEdgeQueues(rounds))
+    {
+      return false;
+    }
+    const std::int64_t queued = queuedCount(*this->Buffers->EdgeQueue, queue);
+    for (std::int64_t first = 0; first < queued; first += SharedRefinePixels)
+    {
+      const std::int64_t count = std::min(SharedRefinePixels, queued - first);
+      for (int subRay = fromRay; subRay < toRay; ++subRay)
+      {
+        if (!this->marchShared(march, refineWork(first, count, subRay), queuedGroups(count), 1, rounds))
+        {
+          return false;
+        }
+      }
+    }
+    return true;
+  };
+  return stage(0, 0, n) && stage(1, n, n * n);
+}
+
+// Share 0's edge queues (their counts and pixels) written over every other
+// share's, in a round. False where a share stopped.
+bool RenderSession::shareEdgeQueues(MarchRounds& rounds)
+{
+  const std::array<VulkanBuffer*, 2> queues{ this->Buffers->EdgeQueue.get(), this->Buffers->EdgePixels.get() };
+  std::vector<std::uint32_t> post{ 1 };
+  for (const VulkanBuffer* queue : queues)
+  {
+    if (this->SharedMarch->Share == 0)
+    {
+      const std::size_t at = post.size();
+      post.resize(at + queue->size() / sizeof(std::uint32_t));
+      queue->read(queue->size(), [&](std::uint64_t first, std::uint64_t count, const void* from) {
+        std::memcpy(reinterpret_cast<char*>(post.data() + at) + first, from, count);
+      });
+    }
+  }
+  std::vector<std::uint32_t> first;
+  const bool goesOn = rounds.exchange(post, [&](int share, const std::vector<std::uint32_t>& words) {
+    first = share == 0 ? words : first;
+    return share != 0 || words.size() == (queues[0]->size() + queues[1]->size()) / sizeof(std::uint32_t);
+  });
+  if (goesOn && this->SharedMarch->Share != 0)
+  {
+    queues[0]->write(0, queues[0]->size(), first.data());
+    queues[1]->write(0, queues[1]->size(), first.data() + queues[0]->size() / sizeof(std::uint32_t));
+  }
+  return goesOn;
 }
 
 namespace
 {
-// Whether a ray of `held` (`words` per slot) goes on in a piece.
+// Whether a ray of `held` (`words` per slot) goes on in a piece (as the
+// shader's keptGoesOn reads its layer word).
 bool raysGoOn(const std::vector<std::uint32_t>& held, std::uint64_t words)
 {
   for (std::uint64_t at = 0; at < held.size(); at += words)
@@ -202,7 +288,8 @@ bool raysGoOn(const std::vector<std::uint32_t>& held, std::uint64_t words)
 
 // The post of the rays a share took up in a round, `after` its states read
 // back: in the first (`started`) every ray it started (a slot no ray has
-// keeps KeptDone), later those held in `layers` before; those written into `held`.
+// keeps KeptDone), later those held in `layers` before (the shader's
+// resumeRay: a layer word is within the grid); those written into `held`.
 std::vector<std::uint32_t> takenUp(
   std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& after, std::uint64_t words, bool started,
   std::pair<int, int> layers)
@@ -229,9 +316,10 @@ std::vector<std::uint32_t> takenUp(
 // One dispatch's work of a shared march: share 0 starts every ray in the
 // first round; in each round after, every share takes up the rays held in
 // its layers; each round's rays go to every share (MarchRounds) until none
-// goes on, within MarchSweeps sweeps' worth of rounds (a longer path is
-// refused alike by every share: no partial image); then every share writes
-// every finished ray's pixel. False where a share stopped.
+// goes on, within as many rounds as one process's sweeps have passes and
+// the start (a longer path is refused alike by every share: no partial
+// image); then every share writes every finished ray's pixel. False where
+// a share stopped.
 bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX,
   std::uint32_t groupsY, MarchRounds& rounds)
 {
@@ -239,34 +327,26 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
   const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], share.Share, share.Shares);
   work.piece = gpu::ivec2(layers.first, layers.second);
   work.sharesRays = 1;
-  const std::uint64_t words = rounds.words();
   const std::uint64_t slots = std::uint64_t(groupsX) * groupsY * gpu::MarchGroupSide * gpu::MarchGroupSide;
-  const std::uint64_t bytes = slots * words * sizeof(std::uint32_t);
-  rounds.Held.assign(slots * words, gpu::KeptDone);
-  const int mostRounds = MarchSweeps * share.Shares + 1;
-  for (int round = 0; round == 0 || raysGoOn(rounds.Held, words); ++round)
+  rounds.Held.assign(slots * rounds.Words, gpu::KeptDone);
+  const int mostRounds = MarchSweeps * (share.Shares - 1) + 2;
+  for (int round = 0; round == 0 || raysGoOn(rounds.Held, rounds.Words); ++round)
   {
-    if (round > mostRounds)
+    if (round == mostRounds)
     {
       throw std::runtime_error("The view march shared by " + std::to_string(share.Shares) +
         " processes left rays unfinished after " + std::to_string(mostRounds) + " rounds; no image is given.");
     }
     const bool started = round == 0;
-    std::vector<std::uint32_t> post{ 0 };
+    std::vector<std::uint32_t> post{ 1 };
     std::exception_ptr failure;
     try
     {
-      this->Buffers->RayStates->write(0, bytes, rounds.Held.data());
       work.resumed = started ? gpu::MarchStartsRays : gpu::MarchResumesRays;
-      post = { 1 };
       if (!started || share.Share == 0)
       {
-        this->submitSharedDispatch(march, work, groupsX, groupsY);
-        std::vector<std::uint32_t> after(slots * words);
-        this->Buffers->RayStates->read(bytes, [&](std::uint64_t first, std::uint64_t count, const void* from) {
-          std::memcpy(reinterpret_cast<char*>(after.data()) + first, from, count);
-        });
-        post = takenUp(rounds.Held, after, words, started, layers);
+        post = takenUp(rounds.Held, this->marchRound(march, work, groupsX, groupsY, rounds.Held, true), rounds.Words,
+          started, layers);
       }
     }
     catch (...)
@@ -274,7 +354,7 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
       failure = std::current_exception();
       post = { 0 };
     }
-    const bool goesOn = rounds.exchange(post);
+    const bool goesOn = rounds.exchangeRays(post);
     if (failure)
     {
       std::rethrow_exception(failure);
@@ -284,23 +364,31 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
       return false;
     }
   }
-  this->Buffers->RayStates->write(0, bytes, rounds.Held.data());
   work.resumed = gpu::MarchWritesFinished;
-  this->submitSharedDispatch(march, work, groupsX, groupsY);
+  this->marchRound(march, work, groupsX, groupsY, rounds.Held, false);
   return true;
 }
 
-// A shared march's dispatch of `work`, in one submit, reading its piece's
-// fields alone with VulkanOptions::MarchPieceFieldsOnly (recordPieceFields).
-void RenderSession::submitSharedDispatch(
-  const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY)
+// A round of a shared march on this share: the states `held` written and
+// the dispatch of `work`, reading its piece's fields alone with
+// VulkanOptions::MarchPieceFieldsOnly (recordPieceFields); the states after
+// it read back with `readBack`.
+std::vector<std::uint32_t> RenderSession::marchRound(const ComputePipeline& march, const gpu::MarchWork& work,
+  std::uint32_t groupsX, std::uint32_t groupsY, const std::vector<std::uint32_t>& held, bool readBack)
 {
+  const std::uint64_t bytes = held.size() * sizeof(std::uint32_t);
+  this->Buffers->RayStates->write(0, bytes, held.data());
   const std::vector<PieceField> fields = this->pieceFields();
   this->Context->submitAndWait([&](VkCommandBuffer commands) {
     this->recordPieceFields(commands, fields, { work.piece.x, work.piece.y });
     march.dispatch(commands, work, groupsX, groupsY);
     this->recordWholeFields(commands, fields);
   });
+  std::vector<std::uint32_t> after(readBack ? held.size() : 0);
+  this->Buffers->RayStates->read(readBack ? bytes : 0, [&](std::uint64_t first, std::uint64_t count, const void* from) {
+    std::memcpy(reinterpret_cast<char*>(after.data()) + first, from, count);
+  });
+  return after;
 }
 
 } // namespace opal

@@ -43,14 +43,16 @@ struct VulkanOptions
   // process: 1, none.
   int MarchPieces = 1;
   // With MarchPieces (or a march shared by processes, RenderSession::
-  // shareMarch: each share's piece), each piece's dispatch reads the fields
-  // the march and the walks to the light read per voxel (and the walks write their light)
-  // in buffers holding only its layers and their halo (the march one layer,
-  // the walks five, none for their light; SurfaceDistance TraceStepLayers +
-  // 2), addressed from the first layer they hold, as a rank holding only its
-  // piece will: a test that they reach no further (docs/design.md §8.1). The
-  // volume's fields are then read by address; a device that cannot address
-  // buffers is refused.
+  // shareMarch: each share's piece, its march alone), each piece's dispatch
+  // reads the fields the march and the walks to the light read per voxel
+  // (and the walks write their light) in buffers holding only its layers
+  // and their halo (the march one layer, the walks five, none for their
+  // light; SurfaceDistance TraceStepLayers + 2), addressed from the first
+  // layer they hold, as a rank holding only its piece will: a test that
+  // they reach no further (docs/design.md §8.1). The
+  // volume's fields are then read by address, one value per voxel, also in
+  // a session that forwards nothing; a device that cannot address buffers
+  // is refused.
   bool MarchPieceFieldsOnly = false;
   // With MarchPieces, fewer sweeps through the pieces than the march's and
   // the walks to the light's forwarded passes take (4 and 5, which take every
