@@ -7,6 +7,7 @@
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalRankAgreement.h"
 #include "vtkOpalSharedLightField.h"
+#include "vtkOpalSharedMarch.h"
 #include "vtkOpalSharedScatteredLight.h"
 #include "vtkOpalRenderOutput.h"
 #include "vtkOpalVolumePieces.h"
@@ -243,17 +244,28 @@ int vtkOpalSpectralRender::RequestData(
   this->LastErrorText.clear();
   this->LastScatteredLightShares = 0;
   this->LastLightFieldShares = 0;
+  this->LastMarchShares = 0;
   vtkInformation* inputInformation = inputVector[0]->GetInformationObject(0);
   RenderOutcome outcome =
     this->GatherVolume(input, inputInformation) ? RenderOutcome::Rendered : RenderOutcome::Failed;
-  // This rank's piece of the image, resolved once for the shared solve and the frame; none where it is empty.
+  // This rank's piece of the image (the whole image where the ranks march
+  // together), resolved once for the shared solve and the frame; none where it is empty.
   std::optional<opal::ResolvedFrame> piece;
-  if (extent[1] >= extent[0] && extent[3] >= extent[2])
+  const bool empty = extent[1] < extent[0] || extent[3] < extent[2];
+  if (this->MarchesShared())
+  {
+    piece = this->ResolvePiece(inputInformation, input, outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()));
+  }
+  else if (!empty)
   {
     piece = this->ResolvePiece(inputInformation, input, extent);
   }
   outcome = this->ShareBeforeFrame(outcome, piece ? &*piece : nullptr, input);
-  if (outcome == RenderOutcome::Rendered && !piece)
+  if (this->MarchesShared())
+  {
+    outcome = this->RenderShared(outcome, *piece, extent, output);
+  }
+  else if (outcome == RenderOutcome::Rendered && !piece)
   {
     output->Initialize();
   }
@@ -293,7 +305,8 @@ vtkImageData* vtkOpalSpectralRender::VolumeOf(vtkImageData* input) const
 
 std::string vtkOpalSpectralRender::SettingsText() const
 {
-  std::string text = "PresetPlacement " + std::to_string(this->PresetPlacement ? 1 : 0) + "\n";
+  std::string text = "PresetPlacement " + std::to_string(this->PresetPlacement ? 1 : 0) + "\n" +
+    "ShareMarch " + std::to_string(this->ShareMarch ? 1 : 0) + "\n";
   const opal::RenderParameters p = this->GetRenderParameters();
   for (const auto& row : opal::renderParameterRows())
   {
@@ -482,14 +495,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
       return RenderOutcome::Failed;
     }
     const opal::RenderFrame frame = this->Session().render(piece, this->RequestProgress());
-    if (frame.Ran.ScatteredLight && this->LastScatteredLightShares == 0)
-    {
-      this->LastScatteredLightShares = 1; // solved alone, in the frame
-    }
-    if (frame.Ran.LightPass && this->LastLightFieldShares == 0)
-    {
-      this->LastLightFieldShares = 1; // marched or swept alone, in the frame
-    }
+    this->NoteStepsAlone(frame);
     if (this->Publish(frame, output))
     {
       return RenderOutcome::Rendered;
@@ -497,6 +503,56 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderExtent(
     // An aborted frame was not a failure of its input: asked for again, it renders.
     return frame.Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
   });
+}
+
+void vtkOpalSpectralRender::NoteStepsAlone(const opal::RenderFrame& frame)
+{
+  if (frame.Ran.ScatteredLight && this->LastScatteredLightShares == 0)
+  {
+    this->LastScatteredLightShares = 1; // solved alone, in the frame
+  }
+  if (frame.Ran.LightPass && this->LastLightFieldShares == 0)
+  {
+    this->LastLightFieldShares = 1; // marched or swept alone, in the frame
+  }
+}
+
+bool vtkOpalSpectralRender::MarchesShared() const
+{
+  return this->ShareMarch && vtkOpalRankAgreement::Ranks(this->Controller) >= 2;
+}
+
+vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderShared(
+  RenderOutcome sofar, const opal::ResolvedFrame& whole, const int extent[6], vtkImageData* output)
+{
+  std::optional<opal::RenderFrame> rendered;
+  const RenderOutcome shared = this->Guarded([&] {
+    const bool ready = sofar == RenderOutcome::Rendered;
+    const vtkOpalRankShares::Result result = vtkOpalSharedMarch::Render(this->Controller,
+      ready ? this->RenderSession.get() : nullptr, !ready, whole, this->RequestProgress(),
+      [this] { return this->GetAbortExecute() != 0; }, rendered);
+    this->LastMarchShares = result.Shares;
+    return result.Aborted ? RenderOutcome::Aborted : sofar;
+  });
+  // No frame: a rank failed before (every rank's request then fails, AgreeOnOutcome).
+  if (shared != RenderOutcome::Rendered || !rendered)
+  {
+    return shared;
+  }
+  this->NoteStepsAlone(*rendered);
+  if (!this->Publish(*rendered, output))
+  {
+    return rendered->Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
+  }
+  if (extent[1] < extent[0] || extent[3] < extent[2])
+  {
+    output->Initialize();
+  }
+  else
+  {
+    output->Crop(extent);
+  }
+  return RenderOutcome::Rendered;
 }
 
 bool vtkOpalSpectralRender::Publish(const opal::RenderFrame& frame, vtkImageData* output)
@@ -642,5 +698,6 @@ void vtkOpalSpectralRender::PrintSelf(ostream& os, vtkIndent indent)
   vtkOpalArrayCopy::print(os, indent, "PresetPlacement", this->PresetPlacement);
   vtkOpalArrayCopy::print(os, indent, "DeviceIndex", this->DeviceIndex);
   vtkOpalArrayCopy::print(os, indent, "DeviceMemoryLimit", this->DeviceMemoryLimit);
+  vtkOpalArrayCopy::print(os, indent, "ShareMarch", this->ShareMarch);
   os << indent << "Controller: " << this->Controller << "\n";
 }

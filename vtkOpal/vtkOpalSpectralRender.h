@@ -107,6 +107,14 @@ public:
   /// Limit on device memory in MB (0: none), to test or to protect a small device.
   vtkSetMacro(DeviceMemoryLimit, int);
   vtkGetMacro(DeviceMemoryLimit, int);
+  /// Under MPI, each rank marches the view rays only in its piece of the
+  /// volume's layers z, handing those that leave it to the other ranks
+  /// between rounds (docs/design.md §8.1); every rank renders the whole image
+  /// and outputs its piece. Off (default): each rank renders its piece of the
+  /// image from the whole volume. With one process it changes nothing.
+  vtkSetMacro(ShareMarch, bool);
+  vtkGetMacro(ShareMarch, bool);
+  vtkBooleanMacro(ShareMarch, bool);
   /// The ranks of one render (docs/design.md §8.1), as VTK's parallel filters
   /// take them: each asks for its piece of the volume, they gather what the
   /// render reads and agree before and after it. Default: the global
@@ -128,6 +136,9 @@ public:
   /// alone (a light above is swept by each rank alone); 0 where the request
   /// computed none (a light field held from before served).
   vtkGetMacro(LastLightFieldShares, int);
+  /// How many ranks marched the view rays of this rank's last data request
+  /// together (ShareMarch; docs/design.md §8.1); 0 where it marched alone.
+  vtkGetMacro(LastMarchShares, int);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -186,6 +197,7 @@ protected:
   bool PresetPlacement = true;
   int DeviceIndex;
   int DeviceMemoryLimit;
+  bool ShareMarch = false;
 
 private:
   vtkOpalSpectralRender(const vtkOpalSpectralRender&) = delete;
@@ -231,6 +243,15 @@ private:
   RenderOutcome ShareBeforeFrame(RenderOutcome sofar, const opal::ResolvedFrame* piece, vtkImageData* input);
   // Renders this rank's piece of the image into `output`.
   RenderOutcome RenderExtent(const opal::ResolvedFrame& piece, vtkImageData* input, vtkImageData* output);
+  // Whether the ranks march together (ShareMarch under MPI).
+  bool MarchesShared() const;
+  // Under MPI with ShareMarch, collective: every rank renders `whole` (the
+  // whole image) with the march shared (vtkOpalSharedMarch; so far
+  // `sofar`), and keeps `extent`, its piece, in `output`.
+  RenderOutcome RenderShared(
+    RenderOutcome sofar, const opal::ResolvedFrame& whole, const int extent[6], vtkImageData* output);
+  // What a frame computed alone that the ranks did not share before it.
+  void NoteStepsAlone(const opal::RenderFrame& frame);
 
   // Ends the session (its background frame first), keeping its frame counts.
   void EndSession();
@@ -303,6 +324,7 @@ private:
   double LastGatherSeconds = 0;
   int LastScatteredLightShares = 0;
   int LastLightFieldShares = 0;
+  int LastMarchShares = 0;
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

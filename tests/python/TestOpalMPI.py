@@ -11,12 +11,15 @@ The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too). The grains case renders the pinfire preset's grains; the fire
 case the fire-opal preset (an absorbing body, coupled-wave fcc, every order)
 lit low from the side, its light field's march from every voxel and its
-every-order photon solve shared by the ranks.
+every-order photon solve shared by the ranks. The march and fire-march cases
+render fig12 and fire-opal with ShareMarch: each rank marches the view rays
+only through its piece of the volume's layers, handing them to the others,
+and every rank renders the whole image and keeps its piece: the same image.
 The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
 alone, and the screenshot equals the one-process one.
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|pvti|view"""
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|pvti|view"""
 import os
 import sys
 
@@ -61,7 +64,9 @@ if kind in ("pvti", "view"):
     check(read_by_ranks.count(" read extent ") == 2 * ranks,
           f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
 else:
-    renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": ["--preset", "fire-opal", "--side-light"]}
+    fire = ["--preset", "fire-opal", "--side-light"]
+    renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": fire,
+               "march": ["--share-march"], "fire-march": fire + ["--share-march"]}
     arguments = ["48", "24", "60"] + (["96", "72"] + renders[kind] if kind in renders else []) + \
         (["--voronoi"] if kind == "voronoi" else [])
     writer = os.path.join(here, "opal_write_pipeline.py")
@@ -73,7 +78,12 @@ else:
         check("Voronoi cells assigned by 1 rank(s)" in alone, "one process assigns the cells alone:\n" + alone)
         check(f"Voronoi cells assigned by {ranks} rank(s)" in together,
               f"the {ranks} ranks share the Voronoi cells:\n" + together)
-    if kind == "fire":
+    if kind.endswith("march"):
+        # The ranks march the view rays together (docs/design.md §8.1).
+        check("view march shared by 0 rank(s)" in alone, "one process marches alone:\n" + alone)
+        check(f"view march shared by {ranks} rank(s)" in together,
+              f"the {ranks} ranks march the view rays together:\n" + together)
+    if kind.startswith("fire"):
         # Every order: the ranks share the photon solve (each traces a share,
         # all build the field from every share's scores, docs/design.md §8.1).
         check("every-order field traced by 1 rank(s)" in alone, "one process solves the every-order field alone:\n" + alone)

@@ -33,6 +33,8 @@ PROXIES = {
         "PresetPlacement": "whether the volume's placement comes first (the proxy fills ModelRotation)",
         "DeviceIndex": "the Vulkan device, not the frame",
         "DeviceMemoryLimit": "the device's memory limit, not the frame",
+        "ShareMarch": "how the ranks of an MPI render divide the march, not the frame",
+        "LastMarchShares": "what the last update did (information only), not a setting",
         "LastGatherSeconds": "what the last update measured (information only), not a setting",
         "LastScatteredLightShares": "what the last update did (information only), not a setting",
         "LastLightFieldShares": "what the last update did (information only), not a setting",

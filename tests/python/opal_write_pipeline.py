@@ -3,11 +3,14 @@ result (a .pvti under MPI, one piece per rank). With --voronoi the volume is
 of Voronoi grains with correlated scattering diameters; --preset NAME starts
 from a preset (its grid replaced by the one given; the render takes the
 preset's Bragg model and planes); --side-light puts the light low to the side
-(the per-voxel light march instead of the sweep from above); --again renders
+(the per-voxel light march instead of the sweep from above); --share-march
+has the ranks march the view rays together, each through its piece of the
+volume's layers (ShareMarch); --again renders
 once more with a new device session, which holds no volume (under MPI the
 render gathers the arrays it released after the first upload), into
 OUTPUT-again.pvti.
-Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light] [--again]"""
+Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light]
+       [--share-march] [--again]"""
 import sys
 
 from paraview.simple import LoadPlugin, SaveData
@@ -18,12 +21,13 @@ arguments = list(sys.argv)
 voronoi = "--voronoi" in arguments
 side_light = "--side-light" in arguments
 again = "--again" in arguments
+share_march = "--share-march" in arguments
 preset = {}
 if "--preset" in arguments:
     at = arguments.index("--preset")
     preset = dict(Preset=arguments[at + 1])
     del arguments[at:at + 2]
-arguments = [a for a in arguments if a not in ("--voronoi", "--side-light", "--again")]
+arguments = [a for a in arguments if a not in ("--voronoi", "--side-light", "--share-march", "--again")]
 output, dimensions = arguments[1], [int(v) for v in arguments[2:5]]
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationLength=0.8) if voronoi else {}
@@ -31,7 +35,8 @@ grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationL
 volume = result = OpalVolume(**preset, Dimensions=dimensions, **({} if preset else dict(DomainCount=60)), **grains)  # noqa: F821
 if len(arguments) > 6:
     light = dict(LightPosition=[60, 10, 0]) if side_light else {}
-    result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]], **light)  # noqa: F821
+    result = OpalSpectralRender(Input=result, ImageSize=[int(v) for v in arguments[5:7]], ShareMarch=share_march,  # noqa: F821
+                                **light)
 # Inline binary: Debian's VTK 9.2 with its patched expat cannot read appended XML data.
 SaveData(output, proxy=result, DataMode="Binary")
 volume.UpdatePropertyInformation()
@@ -40,6 +45,7 @@ if len(arguments) > 6:
     result.UpdatePropertyInformation()
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")
     print("light field computed by", result.GetProperty("LastLightFieldShares").GetElement(0), "rank(s)")
+    print("view march shared by", result.GetProperty("LastMarchShares").GetElement(0), "rank(s)")
 if again:
     result.DeviceMemoryLimit = 16000  # MB: a new session
     SaveData(output.replace(".pvti", "-again.pvti"), proxy=result, DataMode="Binary")
