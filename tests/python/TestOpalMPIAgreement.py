@@ -8,7 +8,8 @@ solve (which aborts every rank's request), leaves every rank without an image
 piece, and none hangs. The ranks share the light field: its sweep with the
 light above, its march from every voxel with the light low to the side; an
 abort inside either ends every rank's request alike, as one inside the
-ranks' shared assignment of a Voronoi volume's cells does.
+ranks' shared assignment of a Voronoi volume's cells does, and one inside
+the view march the ranks share (ShareMarch).
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -53,10 +54,10 @@ def expect_refused(case, sentence, rank1_environment=None):
 
 def counts(output, which):
     """Each rank's count of the ranks that shared `which` (shares: the
-    every-order solve; light: the light field; cells: the Voronoi cells), as
-    the ranks printed them (their lines may interleave)."""
-    column = {"shares": 1, "light": 2, "cells": 3}[which]
-    lines = re.findall(r"rank (\d+) image \d+ shares (\d+) light (\d+) cells (\d+)", output)
+    every-order solve; light: the light field; cells: the Voronoi cells;
+    march: the view march), as the ranks printed them (their lines may interleave)."""
+    column = {"shares": 1, "light": 2, "cells": 3, "march": 4}[which]
+    lines = re.findall(r"rank (\d+) image \d+ shares (\d+) light (\d+) cells (\d+) march (\d+)", output)
     return {int(line[0]): int(line[column]) for line in lines}
 
 
@@ -95,4 +96,6 @@ expect_shared("side", "the light to the side", "light")
 expect_abort("side-abort", "light march", "light", "computing the light field")
 expect_shared("voronoi", "Voronoi grains", "cells")
 expect_abort("voronoi-abort", "Voronoi cells", "cells", "assigning the cells")
+expect_shared("march", "the view march shared", "march")
+expect_abort("march-abort", "view march", "march", "marching")
 finish("TestOpalMPIAgreement", f"({ranks} ranks)")

@@ -10,12 +10,16 @@ the side-abort case with rank 1 asking to abort at its first progress above
 0 (inside that march); in the voronoi case the volume's layout is of
 Voronoi grains, and in the voronoi-abort case rank 1's volume then asks to
 abort at its first progress above 0 (inside the ranks' shared assignment of
-the cells). Each rank then prints
-whether it holds an image piece and how many ranks traced its every-order
-field, computed its light field and assigned its volume's cells ("rank R
-image POINTS shares S light L cells C"), so the driver sees that none holds
-part of a failed image.
-Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|above-abort|side|side-abort|voronoi|voronoi-abort"""
+the cells); in the march case the ranks march the view rays together
+(ShareMarch), and in the march-abort case rank 1 then asks to abort at its
+first progress above 0.3 (inside the shared march of the image, past the
+exposure's thumbnail). Each rank then prints whether it holds an image piece
+and how many ranks traced its every-order field, computed its light field,
+assigned its volume's cells and marched its view rays ("rank R image POINTS
+shares S light L cells C march M"), so the driver sees that none holds part
+of a failed image.
+Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|
+       above-abort|side|side-abort|voronoi|voronoi-abort|march|march-abort"""
 import sys
 
 from paraview.simple import LoadPlugin
@@ -37,10 +41,12 @@ if case in ("every-order", "abort"):
     render.ScatteringOrders = "all"
 if case in ("side", "side-abort"):
     render.LightPosition = [60, 10, 0]
-if rank == 1 and case in ("abort", "above-abort", "side-abort"):
+if case in ("march", "march-abort"):
+    render.ShareMarch = 1
+if rank == 1 and case in ("abort", "above-abort", "side-abort", "march-abort"):
     # The request's own start reports 0; with every order, the shared light
-    # field's last progress 0.1 (docs/design.md §8.1).
-    after = 0.1 if case == "abort" else 0.0
+    # field's last progress 0.1; the image's march starts at 0.25 (docs/design.md §8.1).
+    after = {"abort": 0.1, "march-abort": 0.3}.get(case, 0.0)
     render.GetClientSideObject().AddObserver(
         "ProgressEvent", lambda filter, _: filter.GetProgress() > after and filter.SetAbortExecute(1))
 if rank == 1 and case == "settings":
@@ -54,4 +60,6 @@ shares = render.GetProperty("LastScatteredLightShares").GetElement(0)
 light = render.GetProperty("LastLightFieldShares").GetElement(0)
 volume.UpdatePropertyInformation()
 cells = volume.GetProperty("LastVoronoiCellShares").GetElement(0)
-print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares} light {light} cells {cells}", flush=True)
+march = render.GetProperty("LastMarchShares").GetElement(0)
+print(f"rank {rank} image {image.GetNumberOfPoints()} shares {shares} light {light} cells {cells} march {march}",
+      flush=True)
