@@ -13,7 +13,8 @@ vtkOpalRankShares::Result Render(vtkMultiProcessController* controller, opal::Re
     nullptr, aborted, "the view march's rays", [&](int share, int shares, const vtkOpalRankShares::Exchanger& exchange) {
       bool ended = false; // a round that was not complete ended the exchange: no last one then
       const auto round = [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-        ended = ended || !exchange.round(mine, sink).Complete;
+        ended = true; // a throw (MPI failed, alike on every rank) ends it too
+        ended = !exchange.round(mine, sink).Complete;
         return !ended;
       };
       std::exception_ptr failure;

@@ -263,7 +263,7 @@ int vtkOpalSpectralRender::RequestData(
   outcome = this->ShareBeforeFrame(outcome, piece ? &*piece : nullptr, input);
   if (this->MarchesShared())
   {
-    outcome = this->RenderShared(outcome, *piece, extent, output);
+    outcome = this->RenderShared(outcome, *piece, empty ? nullptr : extent, output);
   }
   else if (outcome == RenderOutcome::Rendered && !piece)
   {
@@ -534,7 +534,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderShared(
     this->LastMarchShares = result.Shares;
     return result.Aborted ? RenderOutcome::Aborted : sofar;
   });
-  // No frame: a rank failed before (every rank's request then fails, AgreeOnOutcome).
+  // No frame: a rank failed or aborted before (every rank's request then ends so, AgreeOnOutcome).
   if (shared != RenderOutcome::Rendered || !rendered)
   {
     return shared;
@@ -544,7 +544,7 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderShared(
   {
     return rendered->Status == opal::FrameStatus::Aborted ? RenderOutcome::Aborted : RenderOutcome::Failed;
   }
-  if (extent[1] < extent[0] || extent[3] < extent[2])
+  if (!extent)
   {
     output->Initialize();
   }

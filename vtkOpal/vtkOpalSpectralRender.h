@@ -247,7 +247,7 @@ private:
   bool MarchesShared() const;
   // Under MPI with ShareMarch, collective: every rank renders `whole` (the
   // whole image) with the march shared (vtkOpalSharedMarch; so far
-  // `sofar`), and keeps `extent`, its piece, in `output`.
+  // `sofar`), and keeps `extent`, its piece, in `output` (nullptr: none).
   RenderOutcome RenderShared(
     RenderOutcome sofar, const opal::ResolvedFrame& whole, const int extent[6], vtkImageData* output);
   // What a frame computed alone that the ranks did not share before it.

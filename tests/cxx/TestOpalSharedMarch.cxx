@@ -8,10 +8,11 @@
 // state crosses between shares bit for bit, as between one process's
 // pieces, and no read reaches beyond a share's halo. fig12 lit from above,
 // with the spectrum and the exposure's thumbnail (marched shared too), and
-// with the edge pixels' sub-rays (the ring's rays, share 0's queues, the
-// sub-rays' sums kept between dispatches); fire-opal (an absorbing body,
+// with the edge pixels' sub-rays (the ring's rays, share 0's queues, also
+// to a share whose buffers an earlier frame made larger, the sub-rays' sums
+// kept between dispatches); fire-opal (an absorbing body,
 // coupled-wave fcc planes, energy conservation's rounds and Bragg shadows,
-// every order) lit from the side, on 2 shares and, with the sub-rays, 3. A
+// every order) lit from the side on 3 shares with the sub-rays. A
 // share aborting in its light pass or midway through its march stops every
 // share's frame (no hang, no image); bad shares are refused.
 #include "OpalPresets.h"
@@ -40,9 +41,10 @@ struct ShareResult
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
 // `stone` on as many threads, their march shared; share 1 stops its frame
-// once its progress passes `share1StopsAt` (above 1: never).
-std::vector<ShareResult> sharedFrames(
-  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, double share1StopsAt = 2.0)
+// once its progress passes `share1StopsAt` (above 1: never) and, with
+// `share1Before`, rendered that frame alone first (its buffers then larger).
+std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares,
+  double share1StopsAt = 2.0, const opal::RenderParameters* share1Before = nullptr)
 {
   opaltest::Meeting meeting(shares);
   opal::VulkanOptions options;
@@ -53,6 +55,10 @@ std::vector<ShareResult> sharedFrames(
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
     sessions.back()->Session.setVolume(stone);
+    if (share == 1 && share1Before)
+    {
+      sessions.back()->Session.render(*share1Before);
+    }
     sessions.back()->Session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
       [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
         return meeting.meet(share, false, mine, sink);
@@ -84,12 +90,14 @@ std::vector<ShareResult> sharedFrames(
   return results;
 }
 
-// Every share of `shares` renders the lone session's image, value for value.
-void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const std::string& scene)
+// Every share of `shares` renders the lone session's image, value for value
+// (share 1 having rendered `share1Before` alone first, where given).
+void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const std::string& scene,
+  const opal::RenderParameters* share1Before = nullptr)
 {
   opaltest::SceneRenderer alone({});
   const opal::RenderImage lone = alone.render(stone, p);
-  const std::vector<ShareResult> results = sharedFrames(stone, p, shares);
+  const std::vector<ShareResult> results = sharedFrames(stone, p, shares, 2.0, share1Before);
   for (std::size_t share = 0; share < results.size(); ++share)
   {
     const ShareResult& result = results[share];
@@ -140,7 +148,11 @@ int TestOpalSharedMarch(int, char*[])
   checkShared(paperStone, p, 3, "fig12");
   opal::RenderParameters refined = p;
   refined.PixelSamples = 3;
-  checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays");
+  // Share 1's edge queues' buffers larger than the others' (a larger frame
+  // alone before): share 0's queues still go to it.
+  opal::RenderParameters larger = refined;
+  larger.ImageSize = { 64, 48 };
+  checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", &larger);
 
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
@@ -154,7 +166,6 @@ int TestOpalSharedMarch(int, char*[])
   const opal::ResolvedFrame frame = opal::resolveFrame(side);
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
-  checkShared(fireStone, side, 2, "fire-opal, lit from the side, every order");
   side.PixelSamples = 3;
   checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays");
 

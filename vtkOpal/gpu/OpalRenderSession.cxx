@@ -408,6 +408,11 @@ void RenderSession::startFrame(const ResolvedFrame& frame)
 {
   this->cancelFrame();
   this->context(); // throws once released
+  if (this->SharedMarch)
+  {
+    // Its rounds would run on the worker, beside the processes' exchange.
+    throw std::logic_error("startFrame: a march shared by processes (shareMarch) renders with render() alone.");
+  }
   if (!frame.Error.empty())
   {
     throw std::invalid_argument(frame.Error); // as render() would, before any work

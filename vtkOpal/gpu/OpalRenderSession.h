@@ -187,7 +187,8 @@ public:
   // there (Aborted; the failing share's rethrows). The shares' works, bands
   // and queues of edge pixels are alike (share 0's queues go to all).
   // Refuses (std::invalid_argument) more shares than one with
-  // VulkanOptions::MarchPieces; nullopt: the march alone again.
+  // VulkanOptions::MarchPieces; nullopt: the march alone again. startFrame
+  // refuses (std::logic_error) while the march is shared.
   struct MarchShare
   {
     int Share = 0;
@@ -337,8 +338,10 @@ private:
   bool marchRegionShared(const FrameSetup& setup, const ComputePipeline& march, const MarchTarget& target,
     Progress& progress, double from, double to);
   static int marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels);
-  bool refineEdgesShared(const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect, MarchRounds& rounds);
-  bool shareEdgeQueues(MarchRounds& rounds);
+  bool refineEdgesShared(const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect,
+    Progress& progress, double at, MarchRounds& rounds);
+  bool selectShared(const ComputePipeline& march, const std::array<int, 4>& rect, bool refine, MarchRounds& rounds);
+  bool shareEdgeQueue(MarchRounds& rounds, int queue, std::uint64_t rectPixels);
   static gpu::MarchWork ringWork(int ring);
   static gpu::MarchWork refineWork(std::int64_t first, std::int64_t count, int subRay);
   static std::uint32_t queuedGroups(std::int64_t count);

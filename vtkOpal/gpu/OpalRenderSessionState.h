@@ -187,7 +187,8 @@ public:
   std::vector<std::uint32_t> Held; // Words per slot; KeptDone where no ray is
 
   // What another share posted after its first word: false where it is not
-  // what this round's posts hold (which stops the rounds as a stop does).
+  // what this round's posts hold, for which exchange throws once the round
+  // is over (the share then says it stops in its next round, stop).
   using Received = std::function<bool(int share, const std::vector<std::uint32_t>& words)>;
   // Sends `post`; hands each other share's to `received`. Whether every
   // share goes on. Each share's Round must say alike whether all go on.

@@ -26,7 +26,7 @@ namespace
 {
 // The works of a shared march are alike on every share, so its bands and
 // refined pixels per dispatch are fixed (the pacers follow each device's
-// own time): the pacers' first sizes.
+// own time): the march pacer's first size, and the second stage's.
 constexpr int SharedBandPixels = 1 << 17;
 constexpr std::int64_t SharedRefinePixels = 1 << 12;
 } // namespace
@@ -51,6 +51,7 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
   };
   this->Ended = true; // a throw ends it too
   bool goesOn = this->Share.Round(bytes, sink) && post.at(0) != 0;
+  int malformed = -1;
   for (int share = 0; share < this->Share.Shares && goesOn; ++share)
   {
     const std::vector<char>& got = posts[static_cast<std::size_t>(share)];
@@ -60,10 +61,19 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
     }
     std::vector<std::uint32_t> words(got.size() / sizeof(std::uint32_t));
     std::memcpy(words.data(), got.data(), words.size() * sizeof(std::uint32_t));
-    goesOn = got.size() % sizeof(std::uint32_t) == 0 && !words.empty() && words[0] != 0 &&
-      (!received || received(share, { words.begin() + 1, words.end() }));
+    goesOn = got.size() % sizeof(std::uint32_t) == 0 && !words.empty() && words[0] != 0;
+    if (goesOn && received && !received(share, { words.begin() + 1, words.end() }))
+    {
+      malformed = share;
+    }
   }
+  // The others went on: this share says it stops in its next round (stop).
   this->Ended = !goesOn;
+  if (malformed >= 0)
+  {
+    throw std::runtime_error("Share " + std::to_string(malformed) +
+      " posted to the shared march's round what the round does not hold; no image is given.");
+  }
   return goesOn;
 }
 
@@ -185,11 +195,12 @@ bool RenderSession::marchRegionShared(const FrameSetup& setup, const ComputePipe
         return false;
       }
     }
-    if (target.PixelSamples > 1 && !this->refineEdgesShared(march, target.PixelSamples, rect, rounds))
+    const bool refine = target.PixelSamples > 1;
+    if (!this->selectShared(march, rect, refine, rounds) ||
+      (refine && !this->refineEdgesShared(march, target.PixelSamples, rect, progress, refined, rounds)))
     {
       return false;
     }
-    this->Context->submitAndWait([&](VkCommandBuffer commands) { this->recordHighlightSelect(commands, rect); });
     const bool completed = this->shadeHighlight(progress, refined) && progress.report(to);
     return rounds.exchange({ completed ? 1u : 0u });
   }
@@ -200,26 +211,40 @@ bool RenderSession::marchRegionShared(const FrameSetup& setup, const ComputePipe
   }
 }
 
-// refineEdges for a shared march: the ring's centre rays and the select,
-// then each stage's sub-rays, SharedRefinePixels queued pixels a dispatch,
-// after share 0's queues went to every share (the select and the first
-// stage queue pixels in each device's own order, and a ray's slot is its
-// pixel's place in the queue). False where a share stopped.
-bool RenderSession::refineEdgesShared(
-  const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect, MarchRounds& rounds)
+// After a shared march's bands, as marchRegion's last band records them:
+// with the edge pixels refined (`refine`) the ring's centre rays and the
+// edge select; then the highlight's select (each share holds every pixel).
+// False where a share stopped.
+bool RenderSession::selectShared(
+  const ComputePipeline& march, const std::array<int, 4>& rect, bool refine, MarchRounds& rounds)
 {
   const int ring = MARCH_RING_PIXELS(rect[2], rect[3]);
-  if (!this->marchShared(march, ringWork(ring), queuedGroups(ring), 1, rounds))
+  if (refine && !this->marchShared(march, ringWork(ring), queuedGroups(ring), 1, rounds))
   {
     return false;
   }
   this->Context->submitAndWait([&](VkCommandBuffer commands) {
-    this->Buffers->EdgeQueue->recordClear(commands);
-    this->recordMarchRows(commands, march, gpu::MarchSelectEdges, rect[2], 0, rect[3]);
+    if (refine)
+    {
+      this->Buffers->EdgeQueue->recordClear(commands);
+      this->recordMarchRows(commands, march, gpu::MarchSelectEdges, rect[2], 0, rect[3]);
+    }
+    this->recordHighlightSelect(commands, rect);
   });
+  return true;
+}
+
+// refineEdges for a shared march: each stage's sub-rays, SharedRefinePixels
+// queued pixels a dispatch, after share 0's queue went to every share (the
+// select and the first stage queue pixels in each device's own order, and a
+// ray's slot is its pixel's place in the queue); a round after each
+// dispatch's pixels carries the progress (at `at`). False where a share stopped.
+bool RenderSession::refineEdgesShared(const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect,
+  Progress& progress, double at, MarchRounds& rounds)
+{
   const int n = pixelSamples;
   const auto stage = [&](int queue, int fromRay, int toRay) {
-    if (!this->shareEdgeQueues(rounds))
+    if (!this->shareEdgeQueue(rounds, queue, static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])))
     {
       return false;
     }
@@ -234,38 +259,51 @@ bool RenderSession::refineEdgesShared(
           return false;
         }
       }
+      if (!rounds.exchange({ progress.report(at) ? 1u : 0u }))
+      {
+        return false;
+      }
     }
     return true;
   };
   return stage(0, 0, n) && stage(1, n, n * n);
 }
 
-// Share 0's edge queues (their counts and pixels) written over every other
-// share's, in a round. False where a share stopped.
-bool RenderSession::shareEdgeQueues(MarchRounds& rounds)
+// Share 0's edge queue `queue` written over every other share's, in a
+// round: the queues' counts and the queue's pixels (the first stage's from
+// the first entry, the second's from `rectPixels`), those it holds alone
+// (the buffers' sizes follow each share's frames). False where a share stopped.
+bool RenderSession::shareEdgeQueue(MarchRounds& rounds, int queue, std::uint64_t rectPixels)
 {
-  const std::array<VulkanBuffer*, 2> queues{ this->Buffers->EdgeQueue.get(), this->Buffers->EdgePixels.get() };
+  VulkanBuffer& counts = *this->Buffers->EdgeQueue;
+  VulkanBuffer& pixels = *this->Buffers->EdgePixels;
+  const std::uint64_t countWords = counts.size() / sizeof(std::uint32_t);
+  const std::uint64_t offset = (queue == 0 ? 0 : rectPixels) * sizeof(std::uint32_t);
+  const auto into = [](std::uint32_t* words) {
+    return [words](std::uint64_t first, std::uint64_t count, const void* from) {
+      std::memcpy(reinterpret_cast<char*>(words) + first, from, count);
+    };
+  };
   std::vector<std::uint32_t> post{ 1 };
-  for (const VulkanBuffer* queue : queues)
+  if (this->SharedMarch->Share == 0)
   {
-    if (this->SharedMarch->Share == 0)
-    {
-      const std::size_t at = post.size();
-      post.resize(at + queue->size() / sizeof(std::uint32_t));
-      queue->read(queue->size(), [&](std::uint64_t first, std::uint64_t count, const void* from) {
-        std::memcpy(reinterpret_cast<char*>(post.data() + at) + first, from, count);
-      });
-    }
+    post.resize(1 + countWords + static_cast<std::uint64_t>(queuedCount(counts, queue)));
+    counts.read(counts.size(), into(post.data() + 1));
+    pixels.readRange(offset, (post.size() - 1 - countWords) * sizeof(std::uint32_t), into(post.data() + 1 + countWords));
   }
   std::vector<std::uint32_t> first;
   const bool goesOn = rounds.exchange(post, [&](int share, const std::vector<std::uint32_t>& words) {
     first = share == 0 ? words : first;
-    return share != 0 || words.size() == (queues[0]->size() + queues[1]->size()) / sizeof(std::uint32_t);
+    return share != 0 ||
+      (words.size() >= countWords && offset + (words.size() - countWords) * sizeof(std::uint32_t) <= pixels.size());
   });
   if (goesOn && this->SharedMarch->Share != 0)
   {
-    queues[0]->write(0, queues[0]->size(), first.data());
-    queues[1]->write(0, queues[1]->size(), first.data() + queues[0]->size() / sizeof(std::uint32_t));
+    counts.write(0, counts.size(), first.data());
+    if (first.size() > countWords)
+    {
+      pixels.write(offset, (first.size() - countWords) * sizeof(std::uint32_t), first.data() + countWords);
+    }
   }
   return goesOn;
 }
