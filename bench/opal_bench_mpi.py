@@ -2,9 +2,10 @@
 builds the opal volume (each rank its piece) and renders the 640 x 480 frame
 (each rank its piece of the image, from the whole volume), then again with
 every order of scattering (the ranks sharing its photon solve) and with the
-light low to the side (the ranks sharing its march from every voxel), printing per rank
+light low to the side (the ranks sharing its march from every voxel) and
+with the view march shared by the ranks (ShareMarch), printing per rank
 the wall time of each, the render's stages (gather, upload, light pass,
-every-order solve, march, the rest) and the peak resident memory with the
+every-order solve, march and its rounds of exchange, the rest) and the peak resident memory with the
 render session's peak of device buffers (host memory on lavapipe), and from rank 0's
 figures an estimate for the 10 um stone (16 x 8 x 20 mm, 1600 x 800 x 2000
 voxels). The estimate's bytes per voxel are the peak's beyond the process's
@@ -74,12 +75,14 @@ def report(render, volume_seconds, render_seconds, peak_mb):
     # The frame's stages are the render session's; besides the gather, the
     # rest of the render's time is the Vulkan device's start, the ranks'
     # agreements and the pipeline.
+    rounds = stage.pop("MarchRounds", 0.0)  # a part of the march
     other = render_seconds - gather - sum(stage.values())
+    march = f"march {stage['March']:.3f}" + (f" (its rounds {rounds:.3f})" if rounds > 0 else "")
     for r in range(ranks):
         if r == rank:
             print(f"  {size}, rank {rank} of {ranks}: volume piece {volume_seconds:.3f} s, render "
                   f"{render_seconds:.3f} s (gather {gather:.3f}, upload {stage['Upload']:.3f}, light pass "
-                  f"{stage['LightPass']:.3f}, every order {stage['ScatteredLight']:.3f}, march {stage['March']:.3f}, "
+                  f"{stage['LightPass']:.3f}, every order {stage['ScatteredLight']:.3f}, {march}, "
                   f"other {other:.3f} s), peak memory {peak_mb:.0f} MB (of which device buffers "
                   f"{device_mb:.0f} MB)", flush=True)
         controller.Barrier()
@@ -158,3 +161,8 @@ if fits():
         render.LightPosition = [60, 10, 0]
         shared_stage(render, "the light low to the side (single scattering), its field marched by {} rank(s):",
                      "LastLightFieldShares")
+        # The view rays marched by the ranks together, each through its piece
+        # of the layers (ShareMarch), the light field kept: its stage, "march",
+        # of which the rounds' exchanges and the states' copies.
+        render.ShareMarch = 1
+        shared_stage(render, "the view march shared by {} rank(s):", "LastMarchShares")

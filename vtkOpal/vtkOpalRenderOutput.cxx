@@ -65,10 +65,12 @@ void addFieldData(const opal::RenderImage& image, const std::string& deviceName,
   vtkNew<vtkDoubleArray> timings;
   timings->SetName("RenderTimings");
   const opal::RenderTimings& t = image.Timings;
-  const double values[7] = { t.Setup, t.Upload, t.LightPass, t.ScatteredLight, t.March, t.Colour, t.Readback };
-  const char* names[7] = { "Setup", "Upload", "LightPass", "ScatteredLight", "March", "Colour", "Readback" };
-  timings->SetNumberOfComponents(7);
-  for (int c = 0; c < 7; ++c)
+  const double values[8] = { t.Setup, t.Upload, t.LightPass, t.ScatteredLight, t.March, t.MarchRounds, t.Colour,
+    t.Readback };
+  const char* names[8] = { "Setup", "Upload", "LightPass", "ScatteredLight", "March", "MarchRounds", "Colour",
+    "Readback" };
+  timings->SetNumberOfComponents(8);
+  for (int c = 0; c < 8; ++c)
   {
     timings->SetComponentName(c, names[c]);
   }

@@ -106,6 +106,10 @@ void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& 
       what + ": the frame completes" + (result.Failure.empty() ? "" : " (threw: " + result.Failure + ")"));
     OPAL_CHECK(result.Validation.empty(), what + ": the validation layer is silent " + result.Validation);
     OPAL_CHECK(opaltest::identical(result.Frame.Image, lone), what + ": the lone session's image, value for value");
+    const opal::RenderTimings& t = result.Frame.Image.Timings;
+    OPAL_CHECK(t.MarchRounds > 0 && t.MarchRounds <= t.March && lone.Timings.MarchRounds == 0,
+      what + ": the rounds timed as a part of the march (" + std::to_string(t.MarchRounds) + " of " +
+        std::to_string(t.March) + " s), none alone");
   }
 }
 
@@ -146,6 +150,14 @@ int TestOpalSharedMarch(int, char*[])
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
   checkShared(paperStone, p, 3, "fig12");
+  // Bands: 640 pixels across, a shared band holds two tiles of 64 rows (its
+  // states within the 2^27 bytes every device's storage-buffer range
+  // offers), so 200 rows take two; the whole image's states (~190 MB) would
+  // pass lavapipe's range (2^27 bytes).
+  opal::RenderParameters wide = p;
+  wide.ImageSize = { 640, 200 };
+  wide.WriteSpectrum = false;
+  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in two bands");
   opal::RenderParameters refined = p;
   refined.PixelSamples = 3;
   // Share 1's edge queues' buffers larger than the others' (a larger frame

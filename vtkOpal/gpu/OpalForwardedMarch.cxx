@@ -316,20 +316,24 @@ int RenderSession::marchNodes(const FrameSetup& setup)
 }
 
 // A forwarded march's ray states for the largest dispatch over `rect`: its
-// bands' pixels, its ring's or its queued pixels'; none unforwarded.
+// pixels' (a shared march's first band's, the largest), its ring's or its
+// queued pixels' (a shared march's SharedRefinePixels); none unforwarded.
 std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::array<int, 4>& rect) const
 {
   if (this->marchPieces() <= 1)
   {
     return 0;
   }
+  const std::uint64_t words = rayStateWords(setup);
+  const int rows = this->SharedMarch ? marchBandRows(rect, 0, sharedBandPixels(words)) : rect[3];
+  const std::uint64_t queued = this->SharedMarch ? static_cast<std::uint64_t>(SharedRefinePixels)
+                                                 : static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3]);
   constexpr std::uint64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;
   const auto roundUp = [&](std::uint64_t n) { return (n + groupPixels - 1) / groupPixels * groupPixels; };
   const std::uint64_t slots =
-    std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rect[3])) * groupPixels,
-      roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))),
-      roundUp(static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3])) });
-  return slots * rayStateWords(setup) * sizeof(std::uint32_t);
+    std::max({ static_cast<std::uint64_t>(marchGroups(rect[2])) * static_cast<std::uint64_t>(marchGroups(rows)) * groupPixels,
+      roundUp(static_cast<std::uint64_t>(MARCH_RING_PIXELS(rect[2], rect[3]))), roundUp(queued) });
+  return slots * words * sizeof(std::uint32_t);
 }
 
 // The words a forwarded march keeps per ray for the frame's wavelengths and nodes.

@@ -536,6 +536,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   if (this->Rounds)
   {
     this->Rounds->finish(); // the rest of the frame is this share's alone
+    timings.MarchRounds = this->Rounds->Seconds;
   }
   this->requireForwardedFinished("view march");
   timings.March = secondsSince(marchStart);
@@ -761,7 +762,9 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
   // One buffer holds a forwarded pass's states: refused here, before any
   // pass, not by the buffer's own check between the light pass and the march.
   const std::uint64_t range = this->Context->limits().maxStorageBufferRange;
-  const std::string forwarded = " forwarded through " + std::to_string(this->MarchPieces) + " pieces needs";
+  const std::string forwarded = this->SharedMarch
+    ? " shared by " + std::to_string(this->SharedMarch->Shares) + " processes needs"
+    : " forwarded through " + std::to_string(this->MarchPieces) + " pieces needs";
   const std::uint64_t rays = this->frameRayStateBytes(setup);
   if (rays > range)
   {

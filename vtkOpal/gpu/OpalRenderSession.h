@@ -347,8 +347,9 @@ private:
   static std::uint32_t queuedGroups(std::int64_t count);
   bool marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX, std::uint32_t groupsY,
     MarchRounds& rounds);
-  std::vector<std::uint32_t> marchRound(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
-    std::uint32_t groupsY, const std::vector<std::uint32_t>& held, bool readBack);
+  void dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
+    std::uint32_t groupsY, MarchRounds& rounds);
+  std::vector<std::uint32_t> readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds) const;
   int marchPieces() const;
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,

@@ -12,8 +12,10 @@
 #include "OpalVulkanBuffer.h"
 #include "opal_render_contract.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -41,6 +43,20 @@ constexpr int LightWalkSweeps = 5;
 // sweep exchanges them after each layer.
 constexpr int SweepHaloRows = 2;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
+// The works of a march shared by processes (docs/design.md §8.1) are alike on
+// every share, so its bands and refined pixels per dispatch are fixed (the
+// pacers follow each device's own time): the march pacer's first size, and
+// the second stage's; a band's pixels fewer where their states would pass
+// 2^27 bytes, the storage-buffer range every Vulkan device offers
+// (maxStorageBufferRange's required least), alike on every share.
+constexpr std::int64_t SharedBandPixels = 1 << 17;
+constexpr std::int64_t SharedRefinePixels = 1 << 12;
+constexpr std::uint64_t EveryDeviceStorageRange = std::uint64_t(1) << 27;
+inline std::int64_t sharedBandPixels(std::uint64_t stateWords)
+{
+  const auto fit = static_cast<std::int64_t>(EveryDeviceStorageRange / (stateWords * sizeof(std::uint32_t)));
+  return std::min(SharedBandPixels, fit);
+}
 // On the device per voxel: its VoxelCell (8), SurfaceDistance and the light
 // field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with
 // absorption also its two coefficients (8) and their light field (16 or 8).
@@ -185,11 +201,18 @@ public:
 
   std::uint64_t Words = 0;         // per ray: RAY_STATE_WORDS of the frame
   std::vector<std::uint32_t> Held; // Words per slot; KeptDone where no ray is
+  // The slots whose states in Held the device's ray states lack: those other
+  // shares posted since they were last written (all where DeviceHolds is false).
+  std::vector<std::uint32_t> Fresh;
+  bool DeviceHolds = false;
+  double Seconds = 0; // in the exchanges and the states' copies (RenderTimings::MarchRounds)
 
-  // What another share posted after its first word: false where it is not
-  // what this round's posts hold, for which exchange throws once the round
-  // is over (the share then says it stops in its next round, stop).
-  using Received = std::function<bool(int share, const std::vector<std::uint32_t>& words)>;
+  // Held for a dispatch's `slots` rays, none yet (each KeptDone).
+  void begin(std::uint64_t slots);
+  // What another share posted after its first word (`count` words): false
+  // where it is not what this round's posts hold, for which exchange throws
+  // once the round is over (the share then says it stops in its next round, stop).
+  using Received = std::function<bool(int share, const std::uint32_t* words, std::uint64_t count)>;
   // Sends `post`; hands each other share's to `received`. Whether every
   // share goes on. Each share's Round must say alike whether all go on.
   bool exchange(const std::vector<std::uint32_t>& post, const Received& received = nullptr);
@@ -201,7 +224,7 @@ public:
   void finish() { this->Ended = true; }
 
 private:
-  bool takeRays(const std::vector<std::uint32_t>& rays);
+  bool takeRays(const std::uint32_t* rays, std::uint64_t count);
 
   const MarchShare& Share;
   bool Ended = false;

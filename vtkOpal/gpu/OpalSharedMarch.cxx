@@ -22,31 +22,33 @@ namespace opal
 
 using namespace sessiondetail;
 
-namespace
-{
-// The works of a shared march are alike on every share, so its bands and
-// refined pixels per dispatch are fixed (the pacers follow each device's
-// own time): the march pacer's first size, and the second stage's.
-constexpr int SharedBandPixels = 1 << 17;
-constexpr std::int64_t SharedRefinePixels = 1 << 12;
-} // namespace
-
 RenderSession::MarchRounds::MarchRounds(const MarchShare& share)
   : Share(share)
 {
 }
 
+void RenderSession::MarchRounds::begin(std::uint64_t slots)
+{
+  this->Held.assign(slots * this->Words, gpu::KeptDone);
+  this->Fresh.clear();
+  this->DeviceHolds = false;
+}
+
 bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post, const Received& received)
 {
+  const auto start = Clock::now();
   std::vector<char> bytes(post.size() * sizeof(std::uint32_t));
   std::memcpy(bytes.data(), post.data(), bytes.size());
-  std::vector<std::vector<char>> posts(static_cast<std::size_t>(this->Share.Shares));
+  // Each share's post as words, as it arrives (its bytes counted apart).
+  std::vector<std::vector<std::uint32_t>> posts(static_cast<std::size_t>(this->Share.Shares));
+  std::vector<std::uint64_t> sizes(posts.size(), 0);
   const auto sink = [&](int share, std::uint64_t first, std::uint64_t count, const char* from) {
     if (share >= 0 && share < this->Share.Shares)
     {
-      std::vector<char>& into = posts[static_cast<std::size_t>(share)];
-      into.resize(std::max<std::size_t>(into.size(), first + count));
-      std::memcpy(into.data() + first, from, count);
+      const auto at = static_cast<std::size_t>(share);
+      sizes[at] = std::max(sizes[at], first + count);
+      posts[at].resize(std::max<std::size_t>(posts[at].size(), (sizes[at] + 3) / sizeof(std::uint32_t)));
+      std::memcpy(reinterpret_cast<char*>(posts[at].data()) + first, from, count);
     }
   };
   this->Ended = true; // a throw ends it too
@@ -54,21 +56,21 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
   int malformed = -1;
   for (int share = 0; share < this->Share.Shares && goesOn; ++share)
   {
-    const std::vector<char>& got = posts[static_cast<std::size_t>(share)];
+    const auto at = static_cast<std::size_t>(share);
+    const std::vector<std::uint32_t>& words = posts[at];
     if (share == this->Share.Share)
     {
       continue;
     }
-    std::vector<std::uint32_t> words(got.size() / sizeof(std::uint32_t));
-    std::memcpy(words.data(), got.data(), words.size() * sizeof(std::uint32_t));
-    goesOn = got.size() % sizeof(std::uint32_t) == 0 && !words.empty() && words[0] != 0;
-    if (goesOn && received && !received(share, { words.begin() + 1, words.end() }))
+    goesOn = sizes[at] % sizeof(std::uint32_t) == 0 && !words.empty() && words[0] != 0;
+    if (goesOn && received && !received(share, words.data() + 1, words.size() - 1))
     {
       malformed = share;
     }
   }
   // The others went on: this share says it stops in its next round (stop).
   this->Ended = !goesOn;
+  this->Seconds += secondsSince(start);
   if (malformed >= 0)
   {
     throw std::runtime_error("Share " + std::to_string(malformed) +
@@ -79,7 +81,9 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
 
 bool RenderSession::MarchRounds::exchangeRays(const std::vector<std::uint32_t>& post)
 {
-  return this->exchange(post, [this](int, const std::vector<std::uint32_t>& rays) { return this->takeRays(rays); });
+  return this->exchange(post, [this](int, const std::uint32_t* rays, std::uint64_t count) {
+    return this->takeRays(rays, count);
+  });
 }
 
 void RenderSession::MarchRounds::stop()
@@ -97,22 +101,23 @@ void RenderSession::MarchRounds::stop()
   }
 }
 
-// Another share's rays (each its slot and state) written into Held.
-bool RenderSession::MarchRounds::takeRays(const std::vector<std::uint32_t>& rays)
+// Another share's rays (each its slot and state) written into Held, their
+// slots the device's ray states now lack (Fresh).
+bool RenderSession::MarchRounds::takeRays(const std::uint32_t* rays, std::uint64_t count)
 {
   const std::uint64_t record = 1 + this->Words, slots = this->Held.size() / this->Words;
-  if (rays.size() % record != 0)
+  if (count % record != 0)
   {
     return false;
   }
-  for (std::uint64_t at = 0; at < rays.size(); at += record)
+  for (std::uint64_t at = 0; at < count; at += record)
   {
     if (rays[at] >= slots)
     {
       return false;
     }
-    std::copy_n(rays.begin() + static_cast<std::ptrdiff_t>(at + 1), this->Words,
-      this->Held.begin() + static_cast<std::ptrdiff_t>(rays[at] * this->Words));
+    std::copy_n(rays + at + 1, this->Words, this->Held.begin() + static_cast<std::ptrdiff_t>(rays[at] * this->Words));
+    this->Fresh.push_back(rays[at]);
   }
   return true;
 }
@@ -183,7 +188,7 @@ bool RenderSession::marchRegionShared(const FrameSetup& setup, const ComputePipe
   {
     for (int firstRow = 0; firstRow < rect[3];)
     {
-      const int rows = this->marchBandRows(rect, firstRow, SharedBandPixels);
+      const int rows = this->marchBandRows(rect, firstRow, sharedBandPixels(rounds.Words));
       bool goesOn = true;
       this->forMarchColumns(gpu::MarchPixels, rect[2], firstRow, rows,
         [&](const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY) {
@@ -292,10 +297,12 @@ bool RenderSession::shareEdgeQueue(MarchRounds& rounds, int queue, std::uint64_t
     pixels.readRange(offset, (post.size() - 1 - countWords) * sizeof(std::uint32_t), into(post.data() + 1 + countWords));
   }
   std::vector<std::uint32_t> first;
-  const bool goesOn = rounds.exchange(post, [&](int share, const std::vector<std::uint32_t>& words) {
-    first = share == 0 ? words : first;
-    return share != 0 ||
-      (words.size() >= countWords && offset + (words.size() - countWords) * sizeof(std::uint32_t) <= pixels.size());
+  const bool goesOn = rounds.exchange(post, [&](int share, const std::uint32_t* words, std::uint64_t count) {
+    if (share == 0)
+    {
+      first.assign(words, words + count);
+    }
+    return share != 0 || (count >= countWords && offset + (count - countWords) * sizeof(std::uint32_t) <= pixels.size());
   });
   if (goesOn && this->SharedMarch->Share != 0)
   {
@@ -324,30 +331,62 @@ bool raysGoOn(const std::vector<std::uint32_t>& held, std::uint64_t words)
   return false;
 }
 
-// The post of the rays a share took up in a round, `after` its states read
-// back: in the first (`started`) every ray it started (a slot no ray has
-// keeps KeptDone), later those held in `layers` before (the shader's
-// resumeRay: a layer word is within the grid); those written into `held`.
-std::vector<std::uint32_t> takenUp(
-  std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& after, std::uint64_t words, bool started,
-  std::pair<int, int> layers)
+// The slots a round takes up: in the first (`started`) every slot, later
+// those held in `layers` (the shader's resumeRay: a layer word within them).
+std::vector<std::uint32_t> roundSlots(
+  const std::vector<std::uint32_t>& held, std::uint64_t words, bool started, std::pair<int, int> layers)
 {
-  std::vector<std::uint32_t> post{ 1 };
+  std::vector<std::uint32_t> slots;
   for (std::uint64_t at = 0; at < held.size(); at += words)
   {
-    const std::uint32_t before = held[at];
-    const bool took = started ? after[at] != gpu::KeptDone
-                              : before < gpu::KeptUnwritten && static_cast<int>(before) >= layers.first &&
-        static_cast<int>(before) < layers.second;
-    if (took)
+    const std::uint32_t layer = held[at];
+    if (started || (layer < gpu::KeptUnwritten && static_cast<int>(layer) >= layers.first &&
+                     static_cast<int>(layer) < layers.second))
     {
-      post.push_back(static_cast<std::uint32_t>(at / words));
-      post.insert(post.end(), after.begin() + static_cast<std::ptrdiff_t>(at),
-        after.begin() + static_cast<std::ptrdiff_t>(at + words));
-      std::copy_n(after.begin() + static_cast<std::ptrdiff_t>(at), words, held.begin() + static_cast<std::ptrdiff_t>(at));
+      slots.push_back(static_cast<std::uint32_t>(at / words));
     }
   }
+  return slots;
+}
+
+// The post of the rays a share took up in a round, `after` the states of
+// `slots` read back (in their order): each its slot and state, but in the
+// first round (`started`) a slot no ray has (it keeps KeptDone); those
+// written into `held`.
+std::vector<std::uint32_t> takenUp(std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& slots,
+  const std::vector<std::uint32_t>& after, std::uint64_t words, bool started)
+{
+  std::vector<std::uint32_t> post{ 1 };
+  for (std::size_t i = 0; i < slots.size(); ++i)
+  {
+    const auto state = after.begin() + static_cast<std::ptrdiff_t>(i * words);
+    if (started && *state == gpu::KeptDone)
+    {
+      continue;
+    }
+    post.push_back(slots[i]);
+    post.insert(post.end(), state, state + static_cast<std::ptrdiff_t>(words));
+    std::copy_n(state, words, held.begin() + static_cast<std::ptrdiff_t>(slots[i] * words));
+  }
   return post;
+}
+
+// Each run of consecutive slots of `slots` (sorted): run(its first index in
+// slots, its first slot, its length).
+void forSlotRuns(const std::vector<std::uint32_t>& slots,
+  const std::function<void(std::size_t index, std::uint64_t slot, std::uint64_t count)>& run)
+{
+  std::size_t first = 0;
+  while (first < slots.size())
+  {
+    std::size_t end = first + 1;
+    while (end < slots.size() && slots[end] == slots[end - 1] + 1)
+    {
+      ++end;
+    }
+    run(first, slots[first], end - first);
+    first = end;
+  }
 }
 } // namespace
 
@@ -365,8 +404,7 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
   const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], share.Share, share.Shares);
   work.piece = gpu::ivec2(layers.first, layers.second);
   work.sharesRays = 1;
-  const std::uint64_t slots = std::uint64_t(groupsX) * groupsY * gpu::MarchGroupSide * gpu::MarchGroupSide;
-  rounds.Held.assign(slots * rounds.Words, gpu::KeptDone);
+  rounds.begin(std::uint64_t(groupsX) * groupsY * gpu::MarchGroupSide * gpu::MarchGroupSide);
   const int mostRounds = MarchSweeps * (share.Shares - 1) + 2;
   for (int round = 0; round == 0 || raysGoOn(rounds.Held, rounds.Words); ++round)
   {
@@ -383,8 +421,9 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
       work.resumed = started ? gpu::MarchStartsRays : gpu::MarchResumesRays;
       if (!started || share.Share == 0)
       {
-        post = takenUp(rounds.Held, this->marchRound(march, work, groupsX, groupsY, rounds.Held, true), rounds.Words,
-          started, layers);
+        const std::vector<std::uint32_t> slots = roundSlots(rounds.Held, rounds.Words, started, layers);
+        this->dispatchShared(march, work, groupsX, groupsY, rounds);
+        post = takenUp(rounds.Held, slots, this->readRayStates(slots, rounds), rounds.Words, started);
       }
     }
     catch (...)
@@ -403,29 +442,70 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
     }
   }
   work.resumed = gpu::MarchWritesFinished;
-  this->marchRound(march, work, groupsX, groupsY, rounds.Held, false);
+  this->dispatchShared(march, work, groupsX, groupsY, rounds);
   return true;
 }
 
-// A round of a shared march on this share: the states `held` written and
-// the dispatch of `work`, reading its piece's fields alone with
-// VulkanOptions::MarchPieceFieldsOnly (recordPieceFields); the states after
-// it read back with `readBack`.
-std::vector<std::uint32_t> RenderSession::marchRound(const ComputePipeline& march, const gpu::MarchWork& work,
-  std::uint32_t groupsX, std::uint32_t groupsY, const std::vector<std::uint32_t>& held, bool readBack)
+// A dispatch of `work` in a shared march on this share, after the states the
+// device lacks are written (all of Held the first time, then the slots
+// other shares posted), reading its piece's fields alone with
+// VulkanOptions::MarchPieceFieldsOnly (recordPieceFields).
+void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
+  std::uint32_t groupsY, MarchRounds& rounds)
 {
-  const std::uint64_t bytes = held.size() * sizeof(std::uint32_t);
-  this->Buffers->RayStates->write(0, bytes, held.data());
+  const auto start = Clock::now();
+  VulkanBuffer& states = *this->Buffers->RayStates;
+  const std::uint64_t bytes = rounds.Words * sizeof(std::uint32_t);
+  if (!rounds.DeviceHolds)
+  {
+    states.write(0, rounds.Held.size() * sizeof(std::uint32_t), rounds.Held.data());
+  }
+  else
+  {
+    std::sort(rounds.Fresh.begin(), rounds.Fresh.end());
+    rounds.Fresh.erase(std::unique(rounds.Fresh.begin(), rounds.Fresh.end()), rounds.Fresh.end());
+    std::vector<WrittenRun> runs;
+    std::vector<const char*> from;
+    forSlotRuns(rounds.Fresh, [&](std::size_t, std::uint64_t slot, std::uint64_t count) {
+      runs.push_back({ &states, slot * bytes, count * bytes });
+      from.push_back(reinterpret_cast<const char*>(rounds.Held.data() + slot * rounds.Words));
+    });
+    writeRuns(runs, from);
+  }
+  rounds.Fresh.clear();
+  rounds.DeviceHolds = true;
+  rounds.Seconds += secondsSince(start);
   const std::vector<PieceField> fields = this->pieceFields();
   this->Context->submitAndWait([&](VkCommandBuffer commands) {
     this->recordPieceFields(commands, fields, { work.piece.x, work.piece.y });
     march.dispatch(commands, work, groupsX, groupsY);
     this->recordWholeFields(commands, fields);
   });
-  std::vector<std::uint32_t> after(readBack ? held.size() : 0);
-  this->Buffers->RayStates->read(readBack ? bytes : 0, [&](std::uint64_t first, std::uint64_t count, const void* from) {
-    std::memcpy(reinterpret_cast<char*>(after.data()) + first, from, count);
+}
+
+// The states of `slots` (sorted) after a shared march's dispatch, in their order.
+std::vector<std::uint32_t> RenderSession::readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds) const
+{
+  const auto start = Clock::now();
+  const std::uint64_t bytes = rounds.Words * sizeof(std::uint32_t);
+  std::vector<std::uint32_t> after(slots.size() * rounds.Words);
+  std::vector<ReadRun> runs;
+  std::vector<char*> into;
+  forSlotRuns(slots, [&](std::size_t index, std::uint64_t slot, std::uint64_t count) {
+    runs.push_back({ this->Buffers->RayStates.get(), slot * bytes, count * bytes });
+    into.push_back(reinterpret_cast<char*>(after.data() + index * rounds.Words));
   });
+  if (runs.size() == 1) // the first round's every slot: read in staging rounds, as a whole buffer is
+  {
+    runs[0].Buffer->readRange(runs[0].Begin, runs[0].Bytes, [&](std::uint64_t first, std::uint64_t count, const void* from) {
+      std::memcpy(into[0] + first, from, count);
+    });
+  }
+  else
+  {
+    readRuns(runs, into);
+  }
+  rounds.Seconds += secondsSince(start);
   return after;
 }
 

@@ -18,6 +18,10 @@ struct RenderTimings
   double LightPass = 0;
   double ScatteredLight = 0; // the every-order solve (docs/design.md §3.10)
   double March = 0;    // the exposure thumbnail and the image
+  // Of March, in a march shared by processes (docs/design.md §8.1): its
+  // rounds' exchanges, waits for the other shares included, and the ray
+  // states' copies between the host and the device.
+  double MarchRounds = 0;
   double Colour = 0;
   double Readback = 0;
 };
