@@ -150,10 +150,10 @@ int TestOpalSharedMarch(int, char*[])
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
   checkShared(paperStone, p, 3, "fig12");
-  // Bands: 640 pixels across, a shared band holds two tiles of 64 rows (its
-  // states within the 2^27 bytes every device's storage-buffer range
-  // offers), so 200 rows take two; the whole image's states (~190 MB) would
-  // pass lavapipe's range (2^27 bytes).
+  // Bands: 640 pixels across, a shared band holds 136 rows (its states
+  // within the 2^27 bytes every device's storage-buffer range offers), so
+  // 200 rows take two; the whole image's states (~190 MB) would pass
+  // lavapipe's range (2^27 bytes).
   opal::RenderParameters wide = p;
   wide.ImageSize = { 640, 200 };
   wide.WriteSpectrum = false;

@@ -325,7 +325,7 @@ std::uint64_t RenderSession::rayStateBytes(const FrameSetup& setup, const std::a
     return 0;
   }
   const std::uint64_t words = rayStateWords(setup);
-  const int rows = this->SharedMarch ? marchBandRows(rect, 0, sharedBandPixels(words)) : rect[3];
+  const int rows = this->SharedMarch ? marchBandRows(rect, 0, sharedBandPixels(words), gpu::MarchGroupSide) : rect[3];
   const std::uint64_t queued = this->SharedMarch ? static_cast<std::uint64_t>(SharedRefinePixels)
                                                  : static_cast<std::uint64_t>(rect[2]) * static_cast<std::uint64_t>(rect[3]);
   constexpr std::uint64_t groupPixels = gpu::MarchGroupSide * gpu::MarchGroupSide;

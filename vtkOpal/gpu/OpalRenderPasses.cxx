@@ -496,7 +496,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
   for (int firstRow = 0; firstRow < rect[3];)
   {
-    const int rows = this->marchBandRows(rect, firstRow, this->MarchPacer.items());
+    const int rows = this->marchBandRows(rect, firstRow, this->MarchPacer.items(), MarchTileSize);
     const bool last = firstRow + rows == rect[3];
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -529,13 +529,14 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
 }
 
 // The rows of the rectangle's band from `firstRow`: bands of whole rows of
-// MarchTileSize, one dispatch each (the pixels are independent: no barrier
-// between them), as many rows per submit as `pixels` allow (the pacer's).
-int RenderSession::marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels)
+// `rowStep` (MarchTileSize; a shared march's, a workgroup's), one dispatch
+// each (the pixels are independent: no barrier between them), as many rows
+// per submit as `pixels` allow (the pacer's), one step at least.
+int RenderSession::marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels, int rowStep)
 {
   const std::int64_t rowPixels = static_cast<std::int64_t>(marchGroups(rect[2])) * gpu::MarchGroupSide;
-  return static_cast<int>(std::min<std::int64_t>(
-    std::max<std::int64_t>(1, pixels / (rowPixels * MarchTileSize)) * MarchTileSize, rect[3] - firstRow));
+  return static_cast<int>(
+    std::min<std::int64_t>(std::max<std::int64_t>(1, pixels / (rowPixels * rowStep)) * rowStep, rect[3] - firstRow));
 }
 
 // The march's workgroups across `width` pixels.

@@ -337,7 +337,7 @@ private:
   class FrameRounds;
   bool marchRegionShared(const FrameSetup& setup, const ComputePipeline& march, const MarchTarget& target,
     Progress& progress, double from, double to);
-  static int marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels);
+  static int marchBandRows(const std::array<int, 4>& rect, int firstRow, std::int64_t pixels, int rowStep);
   bool refineEdgesShared(const ComputePipeline& march, int pixelSamples, const std::array<int, 4>& rect,
     Progress& progress, double at, MarchRounds& rounds);
   bool selectShared(const ComputePipeline& march, const std::array<int, 4>& rect, bool refine, MarchRounds& rounds);

@@ -48,7 +48,9 @@ constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewe
 // pacers follow each device's own time): the march pacer's first size, and
 // the second stage's; a band's pixels fewer where their states would pass
 // 2^27 bytes, the storage-buffer range every Vulkan device offers
-// (maxStorageBufferRange's required least), alike on every share.
+// (maxStorageBufferRange's required least), alike on every share. Its bands
+// are whole rows of workgroups (8 rows at least: wider than ~11 000 pixels
+// at 41 bins, a band passes that range, which the frame refuses).
 constexpr std::int64_t SharedBandPixels = 1 << 17;
 constexpr std::int64_t SharedRefinePixels = 1 << 12;
 constexpr std::uint64_t EveryDeviceStorageRange = std::uint64_t(1) << 27;

@@ -188,7 +188,7 @@ bool RenderSession::marchRegionShared(const FrameSetup& setup, const ComputePipe
   {
     for (int firstRow = 0; firstRow < rect[3];)
     {
-      const int rows = this->marchBandRows(rect, firstRow, sharedBandPixels(rounds.Words));
+      const int rows = this->marchBandRows(rect, firstRow, sharedBandPixels(rounds.Words), gpu::MarchGroupSide);
       bool goesOn = true;
       this->forMarchColumns(gpu::MarchPixels, rect[2], firstRow, rows,
         [&](const gpu::MarchWork& work, std::uint32_t groupsX, std::uint32_t groupsY) {
@@ -371,21 +371,39 @@ std::vector<std::uint32_t> takenUp(std::vector<std::uint32_t>& held, const std::
   return post;
 }
 
-// Each run of consecutive slots of `slots` (sorted): run(its first index in
-// slots, its first slot, its length).
-void forSlotRuns(const std::vector<std::uint32_t>& slots,
-  const std::function<void(std::size_t index, std::uint64_t slot, std::uint64_t count)>& run)
+// A run of consecutive slots: its first index in the slots, its first slot, its length.
+struct SlotRun
 {
+  std::size_t Index;
+  std::uint64_t Slot, Count;
+};
+
+// `slots` (sorted) as runs of consecutive slots of `slotBytes` each, in
+// batches of at most VulkanBuffer::FillRoundBytes, a staging buffer's most
+// (readRuns and writeRuns stage a batch at once, as fill does a round).
+void forSlotBatches(const std::vector<std::uint32_t>& slots, std::uint64_t slotBytes,
+  const std::function<void(const std::vector<SlotRun>& runs)>& batch)
+{
+  const std::uint64_t most = std::max<std::uint64_t>(1, VulkanBuffer::FillRoundBytes / slotBytes);
+  std::vector<SlotRun> runs;
+  std::uint64_t held = 0;
   std::size_t first = 0;
   while (first < slots.size())
   {
     std::size_t end = first + 1;
-    while (end < slots.size() && slots[end] == slots[end - 1] + 1)
+    while (end < slots.size() && slots[end] == slots[end - 1] + 1 && end - first < most - held)
     {
       ++end;
     }
-    run(first, slots[first], end - first);
+    runs.push_back({ first, slots[first], end - first });
+    held += end - first;
     first = end;
+    if (held == most || first == slots.size())
+    {
+      batch(runs);
+      runs.clear();
+      held = 0;
+    }
   }
 }
 } // namespace
@@ -464,13 +482,16 @@ void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::Marc
   {
     std::sort(rounds.Fresh.begin(), rounds.Fresh.end());
     rounds.Fresh.erase(std::unique(rounds.Fresh.begin(), rounds.Fresh.end()), rounds.Fresh.end());
-    std::vector<WrittenRun> runs;
-    std::vector<const char*> from;
-    forSlotRuns(rounds.Fresh, [&](std::size_t, std::uint64_t slot, std::uint64_t count) {
-      runs.push_back({ &states, slot * bytes, count * bytes });
-      from.push_back(reinterpret_cast<const char*>(rounds.Held.data() + slot * rounds.Words));
+    forSlotBatches(rounds.Fresh, bytes, [&](const std::vector<SlotRun>& batch) {
+      std::vector<WrittenRun> runs;
+      std::vector<const char*> from;
+      for (const SlotRun& run : batch)
+      {
+        runs.push_back({ &states, run.Slot * bytes, run.Count * bytes });
+        from.push_back(reinterpret_cast<const char*>(rounds.Held.data() + run.Slot * rounds.Words));
+      }
+      writeRuns(runs, from);
     });
-    writeRuns(runs, from);
   }
   rounds.Fresh.clear();
   rounds.DeviceHolds = true;
@@ -489,22 +510,16 @@ std::vector<std::uint32_t> RenderSession::readRayStates(const std::vector<std::u
   const auto start = Clock::now();
   const std::uint64_t bytes = rounds.Words * sizeof(std::uint32_t);
   std::vector<std::uint32_t> after(slots.size() * rounds.Words);
-  std::vector<ReadRun> runs;
-  std::vector<char*> into;
-  forSlotRuns(slots, [&](std::size_t index, std::uint64_t slot, std::uint64_t count) {
-    runs.push_back({ this->Buffers->RayStates.get(), slot * bytes, count * bytes });
-    into.push_back(reinterpret_cast<char*>(after.data() + index * rounds.Words));
-  });
-  if (runs.size() == 1) // the first round's every slot: read in staging rounds, as a whole buffer is
-  {
-    runs[0].Buffer->readRange(runs[0].Begin, runs[0].Bytes, [&](std::uint64_t first, std::uint64_t count, const void* from) {
-      std::memcpy(into[0] + first, from, count);
-    });
-  }
-  else
-  {
+  forSlotBatches(slots, bytes, [&](const std::vector<SlotRun>& batch) {
+    std::vector<ReadRun> runs;
+    std::vector<char*> into;
+    for (const SlotRun& run : batch)
+    {
+      runs.push_back({ this->Buffers->RayStates.get(), run.Slot * bytes, run.Count * bytes });
+      into.push_back(reinterpret_cast<char*>(after.data() + run.Index * rounds.Words));
+    }
     readRuns(runs, into);
-  }
+  });
   rounds.Seconds += secondsSince(start);
   return after;
 }
