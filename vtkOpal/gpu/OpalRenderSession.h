@@ -349,7 +349,7 @@ private:
     MarchRounds& rounds);
   void dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY, MarchRounds& rounds);
-  std::vector<std::uint32_t> readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds) const;
+  void readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds, std::uint32_t* after) const;
   int marchPieces() const;
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
   void recordMarch(VkCommandBuffer commands, const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,

@@ -215,11 +215,14 @@ public:
   // where it is not what this round's posts hold, for which exchange throws
   // once the round is over (the share then says it stops in its next round, stop).
   using Received = std::function<bool(int share, const std::uint32_t* words, std::uint64_t count)>;
-  // Sends `post`; hands each other share's to `received`. Whether every
-  // share goes on. Each share's Round must say alike whether all go on.
+  // Sends `post` (its words, the first whether this share goes on); hands
+  // each other share's to `received`. Whether every share goes on. Each
+  // share's Round must say alike whether all go on.
   bool exchange(const std::vector<std::uint32_t>& post, const Received& received = nullptr);
-  // A round of the rays each share took up, written into Held.
-  bool exchangeRays(const std::vector<std::uint32_t>& post);
+  bool exchangeBytes(const std::vector<char>& post, const Received& received);
+  // A round of the rays each share took up (`post`, the words' bytes: a
+  // band's states are sent without a copy), written into Held.
+  bool exchangeRays(const std::vector<char>& post);
   // A round saying this share stops, unless the rounds are over.
   void stop();
   // The frame's last round is over: the rest of it is each share's alone.

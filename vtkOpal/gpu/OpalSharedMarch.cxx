@@ -36,9 +36,16 @@ void RenderSession::MarchRounds::begin(std::uint64_t slots)
 
 bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post, const Received& received)
 {
-  const auto start = Clock::now();
   std::vector<char> bytes(post.size() * sizeof(std::uint32_t));
   std::memcpy(bytes.data(), post.data(), bytes.size());
+  return this->exchangeBytes(bytes, received);
+}
+
+bool RenderSession::MarchRounds::exchangeBytes(const std::vector<char>& post, const Received& received)
+{
+  const auto start = Clock::now();
+  std::uint32_t mine = 0; // whether this share goes on
+  std::memcpy(&mine, post.data(), std::min(post.size(), sizeof(mine)));
   // Each share's post as words, as it arrives (its bytes counted apart).
   std::vector<std::vector<std::uint32_t>> posts(static_cast<std::size_t>(this->Share.Shares));
   std::vector<std::uint64_t> sizes(posts.size(), 0);
@@ -52,7 +59,7 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
     }
   };
   this->Ended = true; // a throw ends it too
-  bool goesOn = this->Share.Round(bytes, sink) && post.at(0) != 0;
+  bool goesOn = this->Share.Round(post, sink) && mine != 0;
   int malformed = -1;
   for (int share = 0; share < this->Share.Shares && goesOn; ++share)
   {
@@ -79,9 +86,9 @@ bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post
   return goesOn;
 }
 
-bool RenderSession::MarchRounds::exchangeRays(const std::vector<std::uint32_t>& post)
+bool RenderSession::MarchRounds::exchangeRays(const std::vector<char>& post)
 {
-  return this->exchange(post, [this](int, const std::uint32_t* rays, std::uint64_t count) {
+  return this->exchangeBytes(post, [this](int, const std::uint32_t* rays, std::uint64_t count) {
     return this->takeRays(rays, count);
   });
 }
@@ -349,24 +356,44 @@ std::vector<std::uint32_t> roundSlots(
   return slots;
 }
 
-// The post of the rays a share took up in a round, `after` the states of
-// `slots` read back (in their order): each its slot and state, but in the
-// first round (`started`) a slot no ray has (it keeps KeptDone); those
-// written into `held`.
-std::vector<std::uint32_t> takenUp(std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& slots,
-  const std::vector<std::uint32_t>& after, std::uint64_t words, bool started)
+// A post of `words` words, its first (whether the share goes on) `goesOn`.
+std::vector<char> postOf(std::uint64_t words, std::uint32_t goesOn)
 {
-  std::vector<std::uint32_t> post{ 1 };
+  std::vector<char> post(words * sizeof(std::uint32_t));
+  std::memcpy(post.data(), &goesOn, sizeof(goesOn));
+  return post;
+}
+
+// The post of the rays a share took up in a round, each its slot and state,
+// written into `held`: `after` holds the states of `slots` read back, in
+// their order. In the first round (`started`) it is `held` itself, read
+// straight into (every slot), and a slot no ray has (it keeps KeptDone) is
+// not posted. Sized before it is filled: a band's states are not copied again.
+std::vector<char> takenUp(std::vector<std::uint32_t>& held, const std::vector<std::uint32_t>& slots,
+  const std::uint32_t* after, std::uint64_t words, bool started)
+{
+  const auto posted = [&](std::size_t i) { return !started || after[i * words] != gpu::KeptDone; };
+  std::uint64_t rays = 0;
   for (std::size_t i = 0; i < slots.size(); ++i)
   {
-    const auto state = after.begin() + static_cast<std::ptrdiff_t>(i * words);
-    if (started && *state == gpu::KeptDone)
+    rays += posted(i) ? 1 : 0;
+  }
+  std::vector<char> post = postOf(1 + rays * (1 + words), 1);
+  char* at = post.data() + sizeof(std::uint32_t);
+  for (std::size_t i = 0; i < slots.size(); ++i)
+  {
+    const std::uint32_t* state = after + i * words;
+    if (!posted(i))
     {
       continue;
     }
-    post.push_back(slots[i]);
-    post.insert(post.end(), state, state + static_cast<std::ptrdiff_t>(words));
-    std::copy_n(state, words, held.begin() + static_cast<std::ptrdiff_t>(slots[i] * words));
+    std::memcpy(at, &slots[i], sizeof(std::uint32_t));
+    std::memcpy(at + sizeof(std::uint32_t), state, words * sizeof(std::uint32_t));
+    at += (1 + words) * sizeof(std::uint32_t);
+    if (!started)
+    {
+      std::copy_n(state, words, held.begin() + static_cast<std::ptrdiff_t>(slots[i] * words));
+    }
   }
   return post;
 }
@@ -432,7 +459,7 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
         " processes left rays unfinished after " + std::to_string(mostRounds) + " rounds; no image is given.");
     }
     const bool started = round == 0;
-    std::vector<std::uint32_t> post{ 1 };
+    std::vector<char> post = postOf(1, 1);
     std::exception_ptr failure;
     try
     {
@@ -441,13 +468,16 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
       {
         const std::vector<std::uint32_t> slots = roundSlots(rounds.Held, rounds.Words, started, layers);
         this->dispatchShared(march, work, groupsX, groupsY, rounds);
-        post = takenUp(rounds.Held, slots, this->readRayStates(slots, rounds), rounds.Words, started);
+        std::vector<std::uint32_t> after(started ? 0 : slots.size() * rounds.Words);
+        std::uint32_t* states = started ? rounds.Held.data() : after.data(); // the first round's: every slot
+        this->readRayStates(slots, rounds, states);
+        post = takenUp(rounds.Held, slots, states, rounds.Words, started);
       }
     }
     catch (...)
     {
       failure = std::current_exception();
-      post = { 0 };
+      post = postOf(1, 0);
     }
     const bool goesOn = rounds.exchangeRays(post);
     if (failure)
@@ -504,24 +534,23 @@ void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::Marc
   });
 }
 
-// The states of `slots` (sorted) after a shared march's dispatch, in their order.
-std::vector<std::uint32_t> RenderSession::readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds) const
+// The states of `slots` (sorted) after a shared march's dispatch, into
+// `after` in their order.
+void RenderSession::readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds, std::uint32_t* after) const
 {
   const auto start = Clock::now();
   const std::uint64_t bytes = rounds.Words * sizeof(std::uint32_t);
-  std::vector<std::uint32_t> after(slots.size() * rounds.Words);
   forSlotBatches(slots, bytes, [&](const std::vector<SlotRun>& batch) {
     std::vector<ReadRun> runs;
     std::vector<char*> into;
     for (const SlotRun& run : batch)
     {
       runs.push_back({ this->Buffers->RayStates.get(), run.Slot * bytes, run.Count * bytes });
-      into.push_back(reinterpret_cast<char*>(after.data() + run.Index * rounds.Words));
+      into.push_back(reinterpret_cast<char*>(after + run.Index * rounds.Words));
     }
     readRuns(runs, into);
   });
   rounds.Seconds += secondsSince(start);
-  return after;
 }
 
 } // namespace opal
