@@ -45,7 +45,10 @@ bool RenderSession::MarchRounds::exchangeBytes(const std::vector<char>& post, co
 {
   const auto start = Clock::now();
   std::uint32_t mine = 0; // whether this share goes on
-  std::memcpy(&mine, post.data(), std::min(post.size(), sizeof(mine)));
+  if (!post.empty())
+  {
+    std::memcpy(&mine, post.data(), std::min(post.size(), sizeof(mine)));
+  }
   // Each share's post as words, as it arrives (its bytes counted apart).
   std::vector<std::vector<std::uint32_t>> posts(static_cast<std::size_t>(this->Share.Shares));
   std::vector<std::uint64_t> sizes(posts.size(), 0);
