@@ -197,6 +197,12 @@ bool vtkOpalSpectralRender::HoldsUploadedVolume(vtkImageData* volume) const
 bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
+  // A march shared by the ranks reads the light fields only in the rank's
+  // piece: they hold it alone (docs/design.md §8.1), set before the upload
+  // makes them.
+  const bool shared = this->MarchesShared();
+  session.holdPiece(shared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
+    shared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
   if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime())
   {
     return true;

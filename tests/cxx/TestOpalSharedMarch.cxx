@@ -15,6 +15,7 @@
 // every order) lit from the side on 3 shares with the sub-rays. A
 // share aborting in its light pass or midway through its march stops every
 // share's frame (no hang, no image); bad shares are refused.
+#include "OpalParallel.h"
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -22,11 +23,14 @@
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
 
+#include <algorithm>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace
@@ -37,32 +41,53 @@ struct ShareResult
   opal::RenderFrame Frame;
   std::string Failure;
   std::string Validation; // the validation layer's first message, if any
+  // With HeldPieces: the layers its light fields held for the shared frame,
+  // and its frame alone after it, with the layers they held then.
+  std::pair<int, int> HeldLayers;
+  opal::RenderFrame Alone;
+  std::pair<int, int> HeldAlone;
+};
+
+// How the shares run: share 1 stops its frame once its progress passes
+// `Share1StopsAt` (above 1: never) and, with `Share1Before`, rendered that
+// frame alone first (its buffers then larger); with `Staging`, each share's
+// host copies go through staging buffers (a discrete GPU's path:
+// VulkanOptions::StagingTransfers); with `HeldPieces` each share holds its
+// piece of the light fields alone (holdPiece), computed by the shares
+// together (shareLightPass) before the frame, and renders alone after it.
+struct SharedRun
+{
+  double Share1StopsAt = 2.0;
+  const opal::RenderParameters* Share1Before = nullptr;
+  bool Staging = false;
+  bool HeldPieces = false;
 };
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
-// `stone` on as many threads, their march shared; share 1 stops its frame
-// once its progress passes `share1StopsAt` (above 1: never) and, with
-// `share1Before`, rendered that frame alone first (its buffers then larger);
-// with `staging`, each share's host copies go through staging buffers (a
-// discrete GPU's path: VulkanOptions::StagingTransfers).
-std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares,
-  double share1StopsAt = 2.0, const opal::RenderParameters* share1Before = nullptr, bool staging = false)
+// `stone` on as many threads, their march shared, as `run` says.
+std::vector<ShareResult> sharedFrames(
+  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const SharedRun& run = {})
 {
   opaltest::Meeting meeting(shares);
   opal::VulkanOptions options;
   options.Validation = true;
   options.MarchPieceFieldsOnly = true;
-  options.StagingTransfers = staging;
+  options.StagingTransfers = run.Staging;
   std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
   for (int share = 0; share < shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
-    sessions.back()->Session.setVolume(stone);
-    if (share == 1 && share1Before)
+    opal::RenderSession& session = sessions.back()->Session;
+    session.setVolume(stone);
+    if (share == 1 && run.Share1Before)
     {
-      sessions.back()->Session.render(*share1Before);
+      session.render(*run.Share1Before);
     }
-    sessions.back()->Session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
+    if (run.HeldPieces)
+    {
+      session.holdPiece(share, shares);
+    }
+    session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
       [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
         return meeting.meet(share, false, mine, sink);
       } });
@@ -76,7 +101,25 @@ std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opa
       opal::RenderSession& session = sessions[static_cast<std::size_t>(share)]->Session;
       try
       {
-        result.Frame = session.render(p, [&](double done) { return share != 1 || done < share1StopsAt; });
+        if (run.HeldPieces)
+        {
+          session.shareLightPass(
+            opal::resolveFrame(p), share, shares,
+            [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+              return meeting.meet(share, true, mine, sink);
+            },
+            [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+              return meeting.meet(share, false, mine, sink);
+            });
+        }
+        result.Frame = session.render(p, [&](double done) { return share != 1 || done < run.Share1StopsAt; });
+        result.HeldLayers = session.heldLightLayers();
+        if (run.HeldPieces)
+        {
+          session.shareMarch(std::nullopt);
+          result.Alone = session.render(p);
+          result.HeldAlone = session.heldLightLayers();
+        }
       }
       catch (const std::exception& e)
       {
@@ -93,14 +136,22 @@ std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opa
   return results;
 }
 
-// Every share of `shares` renders the lone session's image, value for value
-// (share 1 having rendered `share1Before` alone first, where given).
+// Share `share` of `shares`' layers of `stone` and the SweepHaloRows (2)
+// beside them, within the grid: what its light fields hold by piece.
+std::pair<int, int> heldPiece(const opal::RenderVolume& stone, int share, int shares)
+{
+  const int layers = stone.Dimensions[2];
+  const std::pair<int, int> piece = opal::evenShare(layers, share, shares);
+  return { std::max(piece.first - 2, 0), std::min(piece.second + 2, layers) };
+}
+
+// Every share of `shares` renders the lone session's image, value for value.
 void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const std::string& scene,
-  const opal::RenderParameters* share1Before = nullptr, bool staging = false)
+  const SharedRun& run = {})
 {
   opaltest::SceneRenderer alone({});
   const opal::RenderImage lone = alone.render(stone, p);
-  const std::vector<ShareResult> results = sharedFrames(stone, p, shares, 2.0, share1Before, staging);
+  const std::vector<ShareResult> results = sharedFrames(stone, p, shares, run);
   for (std::size_t share = 0; share < results.size(); ++share)
   {
     const ShareResult& result = results[share];
@@ -113,18 +164,34 @@ void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& 
     OPAL_CHECK(t.MarchRounds > 0 && t.MarchRounds <= t.March && lone.Timings.MarchRounds == 0,
       what + ": the rounds timed as a part of the march (" + std::to_string(t.MarchRounds) + " of " +
         std::to_string(t.March) + " s), none alone");
+    if (run.HeldPieces)
+    {
+      const std::pair<int, int> piece = heldPiece(stone, static_cast<int>(share), shares);
+      OPAL_CHECK(result.HeldLayers == piece,
+        what + ": its light fields held its piece and halo alone, layers " + std::to_string(piece.first) + " to " +
+          std::to_string(piece.second) + " (held " + std::to_string(result.HeldLayers.first) + " to " +
+          std::to_string(result.HeldLayers.second) + ")");
+      OPAL_CHECK(result.Alone.Status == opal::FrameStatus::Completed && result.Alone.Ran.LightPass &&
+          opaltest::identical(result.Alone.Image, lone) && result.HeldAlone == std::make_pair(0, stone.Dimensions[2]),
+        what + ": a frame alone after it computes the whole light field again and gives the lone image");
+    }
   }
 }
 
-// The message shareMarch throws for `share` of `shares` (with MarchPieces
-// `pieces`); "" where it accepts it.
-std::string refusal(int share, int shares, int pieces)
+// The message shareMarch (or with `held`, holdPiece) throws for `share` of
+// `shares` (with MarchPieces `pieces`); "" where it accepts it.
+std::string refusal(int share, int shares, int pieces, bool held = false)
 {
   opal::VulkanOptions options;
   options.MarchPieces = pieces;
   opal::RenderSession session(options);
   try
   {
+    if (held)
+    {
+      session.holdPiece(share, shares);
+      return "";
+    }
     session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
       [](const std::vector<char>&, const opal::RenderSession::ShareSink&) { return true; } });
   }
@@ -152,7 +219,7 @@ int TestOpalSharedMarch(int, char*[])
   const auto paperVolume = opal::buildVolume(paper);
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
-  checkShared(paperStone, p, 3, "fig12");
+  checkShared(paperStone, p, 3, "fig12, each share's light fields held by piece", { 2.0, nullptr, false, true });
   // Bands: 640 pixels across, a shared band holds 136 rows (its states
   // within the 2^27 bytes every device's storage-buffer range offers), so
   // 200 rows take two; the whole image's states (~190 MB) would pass
@@ -161,14 +228,14 @@ int TestOpalSharedMarch(int, char*[])
   opal::RenderParameters wide = p;
   wide.ImageSize = { 640, 200 };
   wide.WriteSpectrum = false;
-  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in two bands, through staging", nullptr, true);
+  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in two bands, through staging", { 2.0, nullptr, true });
   opal::RenderParameters refined = p;
   refined.PixelSamples = 3;
   // Share 1's edge queues' buffers larger than the others' (a larger frame
   // alone before): share 0's queues still go to it.
   opal::RenderParameters larger = refined;
   larger.ImageSize = { 64, 48 };
-  checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", &larger);
+  checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", { 2.0, &larger });
 
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
@@ -183,13 +250,14 @@ int TestOpalSharedMarch(int, char*[])
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
   side.PixelSamples = 3;
-  checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays");
+  checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays, light fields by piece",
+    { 2.0, nullptr, false, true });
 
   // Share 1 aborting in its light pass (before any round) or midway through
   // its march: every share's frame stops, none hangs or throws.
   for (const double stopsAt : { 0.05, 0.5 })
   {
-    for (const ShareResult& result : sharedFrames(paperStone, p, 3, stopsAt))
+    for (const ShareResult& result : sharedFrames(paperStone, p, 3, { stopsAt }))
     {
       OPAL_CHECK(result.Failure.empty() && result.Frame.Status == opal::FrameStatus::Aborted && result.Frame.Image.RGB.empty(),
         "share 1 aborting at " + std::to_string(stopsAt) + ": every share's frame stops without an image" +
@@ -201,5 +269,10 @@ int TestOpalSharedMarch(int, char*[])
   OPAL_CHECK(refusal(3, 3, 1).find("Share 3 is not one of the 3 shares") != std::string::npos, "share 3 of 3: refused");
   OPAL_CHECK(refusal(0, 2, 3).find("MarchPieces") != std::string::npos, "a shared march with MarchPieces 3: refused");
   OPAL_CHECK(refusal(0, 1, 3).empty(), "one share of one with MarchPieces 3: the march alone, accepted");
+  OPAL_CHECK(refusal(3, 3, 1, true).find("share 3 is not one of the 3 shares") != std::string::npos,
+    "holding share 3 of 3: refused");
+  OPAL_CHECK(refusal(-1, 0, 1, true).find("is not one of the 0 shares") != std::string::npos, "holding of 0 shares: refused");
+  OPAL_CHECK(refusal(0, 2, 3, true).find("MarchPieces") != std::string::npos, "holding a piece with MarchPieces 3: refused");
+  OPAL_CHECK(refusal(0, 1, 3, true).empty(), "holding the whole of one share with MarchPieces 3: accepted");
   return opaltest::finish("TestOpalSharedMarch");
 }

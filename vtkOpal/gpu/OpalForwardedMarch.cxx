@@ -142,7 +142,13 @@ void RenderSession::recordWholeFields(VkCommandBuffer commands, const std::vecto
 std::vector<RenderSession::PieceField> RenderSession::marchFields() const
 {
   const DeviceVolume& v = *this->Volume;
-  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields = this->lightPassFields(v.HasShadowField);
+  // A light field held by piece (holdPiece) holds no more than its piece already.
+  const bool lightWhole = v.LightLayers == std::make_pair(0, v.Shape.Dimensions[2]);
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields;
+  if (lightWhole)
+  {
+    fields = this->lightPassFields(v.HasShadowField);
+  }
   fields.emplace_back(v.Cells.get(), sizeof(gpu::VoxelCell));
   if (v.Absorbs)
   {
@@ -385,8 +391,7 @@ std::uint64_t RenderSession::lightStateBytes(bool queued) const
 // is held (no light pass runs), the queues' with the light above the grid.
 std::uint64_t RenderSession::frameLightStateBytes(const FrameSetup& setup) const
 {
-  const bool held = this->LightField && *this->LightField == lightFieldKey(setup);
-  return held ? 0 : this->lightStateBytes(this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light));
+  return this->lightFieldServes(setup) ? 0 : this->lightStateBytes(this->Volume->Medium.Geometry.lightAboveGrid(setup.Camera.Light));
 }
 
 // The buffer of a forwarded pass's states (the march's rays, the light's

@@ -26,6 +26,7 @@ using namespace sessiondetail;
 bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 {
   this->LightField.reset();
+  this->holdLightLayers({ 0, this->Volume->Shape.Dimensions[2] }); // alone it computes the whole field
   const bool braggShadow = conservesEnergy(setup.Parameters);
   if (braggShadow)
   {
@@ -379,7 +380,7 @@ void RenderSession::prepareShadowField()
     return;
   }
   v.LightShadow.reset();
-  v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.Shape.voxelCount() * sizeof(gpu::LightShadow),
+  v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.lightVoxels() * sizeof(gpu::LightShadow),
     "light Bragg shadow field", v.FieldPlacement);
   v.HasShadowField = true;
   this->bindBuffers();

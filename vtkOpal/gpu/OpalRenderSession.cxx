@@ -216,27 +216,36 @@ RenderVolume shapeOf(const RenderVolume& volume)
 // on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7).
 void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v)
 {
-  VulkanContext& context = *this->Context;
   const std::size_t voxels = volume.voxelCount();
+  v.SurfaceDistance = v.PairedFields
+    ? deviceVoxelField<gpu::vec2>(*this->Context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
+        v.FieldPlacement, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); })
+    : deviceVoxelField<float>(*this->Context, voxels, "SurfaceDistance volume", v.FieldPlacement, {},
+        [&volume](std::size_t i) { return volume.SurfaceDistance[i]; });
+  this->allocateLightFields(v);
+}
+
+// The light pass's fields for the layers v.LightLayers holds: the light
+// field, its absorption's (a placeholder where nothing absorbs) and the
+// Bragg shadows' placeholder (a frame with EnergyConservation allocates them).
+void RenderSession::allocateLightFields(DeviceVolume& v) const
+{
+  VulkanContext& context = *this->Context;
+  const std::uint64_t voxels = v.lightVoxels();
   const std::uint64_t lightFieldBytes = v.PairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
   v.LightAbsorption = deviceLocalBuffer(context, v.Absorbs ? voxels * lightFieldBytes : sizeof(gpu::LightFieldPair),
     "light absorption field", nullptr, v.FieldPlacement);
-  v.SurfaceDistance = v.PairedFields
-    ? deviceVoxelField<gpu::vec2>(context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
-        v.FieldPlacement, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); })
-    : deviceVoxelField<float>(context, voxels, "SurfaceDistance volume", v.FieldPlacement, {},
-        [&volume](std::size_t i) { return volume.SurfaceDistance[i]; });
   v.LightField = deviceLocalBuffer(context, voxels * lightFieldBytes, "light field", nullptr, v.FieldPlacement);
+  v.LightShadow =
+    deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, v.FieldPlacement);
+  v.HasShadowField = false;
 }
 
-// The light pass's own buffers: the Bragg shadows' placeholder (a frame with
-// EnergyConservation allocates them), a layer's entry voxels and the queues,
-// one per layer, emptied on the device before every sweep (docs/design.md §3.3).
+// The light pass's own buffers: a layer's entry voxels and the queues, one
+// per layer, emptied on the device before every sweep (docs/design.md §3.3).
 void RenderSession::allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v)
 {
   VulkanContext& context = *this->Context;
-  v.LightShadow =
-    deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, v.FieldPlacement);
   const std::size_t layerVoxels = static_cast<std::size_t>(volume.Dimensions[0]) * volume.Dimensions[2];
   v.EntryVoxels = deviceLocalBuffer(
     context, layerVoxels * sizeof(std::uint32_t), "light entry voxels (a layer)", nullptr, v.FieldPlacement);
@@ -363,7 +372,11 @@ void RenderSession::setVolume(const RenderVolume& volume)
   VulkanContext& context = *this->Context;
   std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
     fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !this->MarchPieceFieldsOnly);
-  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields),
+  uploaded->Shape = shapeOf(volume);
+  uploaded->LightLayers = this->lightLayersOf(*uploaded);
+  const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels(); // the light fields' layers beyond the piece held
+  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields) -
+      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
@@ -386,7 +399,6 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->ScatteredLight = scatteredLightPlaceholder(context, placement);
   uploaded->ScatteredLightGrid = deviceLocalBuffer(
     context, sizeof(gpu::ScatteredLightNode), "scattered light tally grid placeholder", nullptr, placement);
-  uploaded->Shape = shapeOf(volume);
   this->Volume = std::move(uploaded);
   this->bindBuffers();
   this->PendingUploadSeconds = secondsSince(start);
@@ -503,7 +515,7 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
   const bool solves = scattersEveryOrder(setup.Parameters) && !this->scatteredLightServes(setup);
   progress.stage(sharedSolveSeconds >= 0 ? FrameLightShare : 0.0, FrameLightShare * (solves ? 0.5 : 1.0));
   // The light field holds a light in the model's frame: a new camera alone keeps it.
-  frame.Ran.LightPass = !(this->LightField && *this->LightField == lightFieldKey(setup));
+  frame.Ran.LightPass = !this->lightFieldServes(setup);
   if (frame.Ran.LightPass && !this->runLightPass(setup, progress))
   {
     return frame;
@@ -945,10 +957,21 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
 }
 
 // The address table: each field's buffer's address, or where `shifted`
-// names the buffer, the address given (a piece's, recordPieceFields).
+// names the buffer, the address given (a piece's, recordPieceFields); a
+// light field held by piece less the bytes of the layers before it.
 gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanBuffer*, std::uint64_t>& shifted) const
 {
   const DeviceVolume& v = *this->Volume;
+  std::map<const VulkanBuffer*, std::uint64_t> at = shifted;
+  for (const auto& [buffer, record] : this->lightPassFields(v.HasShadowField))
+  {
+    // A light field held by piece (holdPiece): the passes index the whole grid.
+    // Unsigned and modulo 2^64, as the shaders add an index's bytes (voxelAddress).
+    if (v.LightLayers.first > 0 && at.find(buffer) == at.end())
+    {
+      at[buffer] = buffer->address() - v.lightFirstVoxel() * record;
+    }
+  }
   gpu::VolumeAddresses addresses;
   const std::pair<gpu::uvec2*, const VulkanBuffer*> fields[] = { { &addresses.voxelCells, v.Cells.get() },
     { &addresses.surfaceDistance, v.SurfaceDistance.get() }, { &addresses.lightField, v.LightField.get() },
@@ -958,8 +981,8 @@ gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanB
     { &addresses.scatteredLightGrid, v.ScatteredLightGrid.get() } };
   for (const auto& [address, buffer] : fields)
   {
-    const auto piece = shifted.find(buffer);
-    *address = addressWords(piece != shifted.end() ? piece->second : buffer->address());
+    const auto piece = at.find(buffer);
+    *address = addressWords(piece != at.end() ? piece->second : buffer->address());
   }
   return addresses;
 }

@@ -172,6 +172,23 @@ public:
   bool shareScatteredField(
     const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const LayerExchange& round);
 
+  // The piece of the volume's layers z that this session's light field
+  // (and its absorption's, the Bragg shadows) holds, for a march shared by
+  // processes (shareMarch): share `share` of `shares`, the layers it marches,
+  // and the rows beside them that its march and the light's sweep read
+  // (docs/design.md §8.1); 1 share: the whole volume, as by default. Kept
+  // for the volumes set after. Only fields read by address (a volume beyond
+  // a storage buffer's range, or VulkanOptions::MarchPieceFieldsOnly) are
+  // held by piece; bound fields are held whole. A light field held by
+  // piece comes from shareLightPass with the same shares and serves only
+  // the march shared so; a frame that computes the light alone computes it
+  // whole. A new piece drops the light field held. Refuses (std::
+  // invalid_argument) a share not among the shares, and more shares than
+  // one with VulkanOptions::MarchPieces.
+  void holdPiece(int share, int shares);
+  // The layers z [first, second) the light fields hold (none without a volume).
+  std::pair<int, int> heldLightLayers() const;
+
   // The view march of the frames that follow shared by `Shares` processes,
   // each holding share `Share` of the volume's layers z (docs/design.md
   // §8.1): share 0 starts every ray of a dispatch; each share then marches
@@ -272,6 +289,11 @@ private:
   void writeParameterBlock(FrameSetup& setup) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
+  void allocateLightFields(DeviceVolume& v) const;
+  std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
+  void holdLightLayers(std::pair<int, int> layers);
+  void holdSweptRows(std::pair<int, int> rows);
+  bool lightFieldServes(const FrameSetup& setup) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more
@@ -430,6 +452,7 @@ private:
   int MarchPieces = 1; // VulkanOptions::MarchPieces
   bool MarchPieceFieldsOnly = false; // VulkanOptions::MarchPieceFieldsOnly
   std::optional<MarchShare> SharedMarch; // shareMarch
+  std::pair<int, int> HeldPiece{ 0, 1 }; // holdPiece: share, shares
   std::unique_ptr<MarchRounds> Rounds;   // a shared march's, while a frame runs (FrameRounds)
   // The sweeps of the forwarded passes: MarchSweeps and LightWalkSweeps, or
   // fewer where VulkanOptions' ForwardedMarchSweeps and ForwardedLightSweeps ask.

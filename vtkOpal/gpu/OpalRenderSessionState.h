@@ -19,6 +19,7 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace opal
@@ -63,11 +64,16 @@ inline std::int64_t sharedBandPixels(std::uint64_t stateWords)
 // field, as pairs (8 and 16) or one value each (4 and 8, PairedFields); with
 // absorption also its two coefficients (8) and their light field (16 or 8).
 // (Besides: the light pass's entry queue, 4 bytes per voxel of one layer.)
-inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
+inline std::uint64_t lightBytesPerVoxel(bool absorbs, bool pairedFields)
 {
   const std::uint64_t lightField = pairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
+  return lightField * (absorbs ? 2 : 1);
+}
+inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
+{
   const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
-  return sizeof(gpu::VoxelCell) + surfaceDistance + lightField + (absorbs ? sizeof(gpu::vec2) + lightField : 0);
+  return sizeof(gpu::VoxelCell) + surfaceDistance + (absorbs ? sizeof(gpu::vec2) : 0) +
+    lightBytesPerVoxel(absorbs, pairedFields);
 }
 // A frame's progress before its march: the light pass and the every-order
 // solve (renderFrame), then the exposure's thumbnail up to 0.25.
@@ -170,6 +176,20 @@ struct RenderSession::DeviceVolume
   bool PairedFields = true;
   std::unique_ptr<VulkanBuffer> Addresses; // gpu::VolumeAddresses
   bool addressed() const { return this->FieldPlacement == BufferPlacement::DeviceAddressed; }
+  // The layers z [first, second) that the light pass's fields (LightField,
+  // LightAbsorption, the Bragg shadows) hold: all, or a piece of a march
+  // shared by processes and its halo (RenderSession::holdPiece, docs/
+  // design.md §8.1), addressed from the piece's first voxel.
+  std::pair<int, int> LightLayers{ 0, 0 };
+  std::size_t layerVoxels() const
+  {
+    return static_cast<std::size_t>(this->Shape.Dimensions[0]) * static_cast<std::size_t>(this->Shape.Dimensions[1]);
+  }
+  std::size_t lightFirstVoxel() const { return this->layerVoxels() * static_cast<std::size_t>(this->LightLayers.first); }
+  std::size_t lightVoxels() const
+  {
+    return this->layerVoxels() * static_cast<std::size_t>(this->LightLayers.second - this->LightLayers.first);
+  }
 };
 
 // The per-frame buffers, kept while they are large enough.

@@ -68,10 +68,13 @@ bool readsRow(const std::array<int, 3>& dims, std::pair<int, int> rows, std::siz
 }
 
 using Fields = std::vector<std::pair<VulkanBuffer*, std::uint64_t>>;
+// The voxels [first, end) a step's fields hold, from their buffers' start:
+// all, or the piece of a light field held by piece (holdPiece).
+using HeldVoxels = std::pair<std::size_t, std::size_t>;
 
-// Bytes of `runs`: each field's records of each run, field after field,
-// read together (readRuns: one submit on a device with dedicated memory).
-std::vector<char> readShare(const Fields& fields, const Runs& runs)
+// Bytes of `runs` (held): each field's records of each run, field after
+// field, read together (readRuns: one submit on a device with dedicated memory).
+std::vector<char> readShare(const Fields& fields, const HeldVoxels& held, const Runs& runs)
 {
   std::vector<ReadRun> read;
   std::uint64_t bytes = 0;
@@ -79,7 +82,11 @@ std::vector<char> readShare(const Fields& fields, const Runs& runs)
   {
     for (const auto& [first, end] : runs)
     {
-      read.push_back({ buffer, first * record, (end - first) * record });
+      if (first < held.first || end > held.second)
+      {
+        throw std::logic_error("readShare: a share's voxels beyond the layers its light fields hold.");
+      }
+      read.push_back({ buffer, (first - held.first) * record, (end - first) * record });
       bytes += read.back().Bytes;
     }
   }
@@ -99,9 +106,10 @@ std::vector<char> readShare(const Fields& fields, const Runs& runs)
 using Wanted = std::function<bool(std::size_t firstVoxel)>;
 
 // Bytes [first, first + count) of `runs` (as readShare lays them out)
-// written into the fields together (writeRuns), the runs `wanted` only.
-void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, std::uint64_t first, std::uint64_t count,
-  const char* bytes)
+// written into the fields together (writeRuns), the runs `wanted` only and
+// their voxels `held` only.
+void writeShare(const Fields& fields, const HeldVoxels& held, const Runs& runs, const Wanted& wanted,
+  std::uint64_t first, std::uint64_t count, const char* bytes)
 {
   std::vector<WrittenRun> written;
   std::vector<const char*> from;
@@ -111,10 +119,13 @@ void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, st
     for (const auto& [voxel, end] : runs)
     {
       const std::uint64_t runBytes = (end - voxel) * record;
-      const std::uint64_t start = std::max(first, runStart), stop = std::min(first + count, runStart + runBytes);
+      // The run's bytes of held voxels, where this piece of the stream carries them.
+      const std::uint64_t heldStart = runStart + (std::clamp(held.first, voxel, end) - voxel) * record;
+      const std::uint64_t heldStop = runStart + (std::clamp(held.second, voxel, end) - voxel) * record;
+      const std::uint64_t start = std::max(first, heldStart), stop = std::min(first + count, heldStop);
       if (start < stop && (!wanted || wanted(voxel)))
       {
-        written.push_back({ buffer, voxel * record + (start - runStart), stop - start });
+        written.push_back({ buffer, (voxel - held.first) * record + (start - runStart), stop - start });
         from.push_back(bytes + (start - first));
       }
       runStart += runBytes;
@@ -129,6 +140,7 @@ void writeShare(const Fields& fields, const Runs& runs, const Wanted& wanted, st
 struct SharePlacer
 {
   const Fields& Into;
+  HeldVoxels Held;
   int Own;
   std::function<Runs(int share)> RunsOf;
   Wanted Keeps; // the runs this share reads; none: all
@@ -142,7 +154,7 @@ struct SharePlacer
     }
     try
     {
-      writeShare(this->Into, this->RunsOf(share), this->Keeps, first, count, bytes);
+      writeShare(this->Into, this->Held, this->RunsOf(share), this->Keeps, first, count, bytes);
     }
     catch (...)
     {
@@ -177,6 +189,7 @@ struct SlabShare
 {
   Fields Written;
   std::array<int, 3> Dimensions{};
+  HeldVoxels Held;
 };
 
 // Every share's slab of the fields to every other share, a chunk of each a
@@ -200,8 +213,9 @@ bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSes
   }
   for (std::size_t k = 0; k < rounds; ++k)
   {
-    const std::vector<char> chunk = readShare(step.Written, chunkOf(slabOfShare(share), voxels, k));
-    SharePlacer place{ step.Written, share, [&](int from) { return chunkOf(slabOfShare(from), voxels, k); }, {}, {} };
+    const std::vector<char> chunk = readShare(step.Written, step.Held, chunkOf(slabOfShare(share), voxels, k));
+    SharePlacer place{ step.Written, step.Held, share, [&](int from) { return chunkOf(slabOfShare(from), voxels, k); },
+      {}, {} };
     exchanging = false; // a throw ends it too
     exchanging = round(chunk, std::ref(place));
     place.rethrow();
@@ -314,6 +328,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
     [&](SlabShare& step, bool& exchanging) {
       setup = this->setUpSharedStep(frame);
       this->LightField.reset();
+      this->holdSweptRows(shareRows(this->Volume->Shape.Dimensions, share, shares));
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
       this->resetForwardedLeft();
       const bool braggShadow = conservesEnergy(setup->Parameters);
@@ -325,10 +340,11 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
       progress.stage(0.0, FrameLightShare * (scattersEveryOrder(setup->Parameters) ? 0.5 : 1.0));
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
       const std::pair<int, int> rows = shareRows(dims, share, shares);
-      step = { this->lightPassFields(braggShadow), dims };
+      const DeviceVolume& v = *this->Volume;
+      step = { this->lightPassFields(braggShadow), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() } };
       const auto exchangeLayer = [&](int swept) {
-        const std::vector<char> halo = readShare(step.Written, haloOf(dims, rows, swept));
-        SharePlacer place{ step.Written, share,
+        const std::vector<char> halo = readShare(step.Written, step.Held, haloOf(dims, rows, swept));
+        SharePlacer place{ step.Written, step.Held, share,
           [&](int from) { return haloOf(dims, shareRows(dims, from, shares), swept); },
           [&](std::size_t voxel) { return readsRow(dims, rows, voxel); }, {} };
         exchanging = false; // a throw ends it too
@@ -375,7 +391,7 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-      step = { this->scatteredFieldFields(), dims };
+      step = { this->scatteredFieldFields(), dims, { 0, this->Volume->Shape.voxelCount() } };
       const Runs slab = slabOf(dims, shareRows(dims, share, shares));
       return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
         slab.front().first, slab.front().second);

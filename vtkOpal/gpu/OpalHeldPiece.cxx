@@ -1,0 +1,124 @@
+// The piece of the volume's layers z that a process of a march shared by
+// processes holds of its light fields (docs/design.md §8.1): its march
+// reads the light field only in its piece and one layer beside it, and the
+// light's sweep, shared by the same shares, only SweepHaloRows rows beside it.
+#include "OpalRenderSession.h"
+
+#include "OpalParallel.h"
+#include "OpalRenderSessionState.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace opal
+{
+
+using namespace sessiondetail;
+
+namespace
+{
+// The rows beside a piece its light field holds: the sweep's reads (and the
+// march's trilinear read, one layer, within them).
+constexpr int HeldPieceHalo = SweepHaloRows;
+
+// Layers `piece` of `layers` and `halo` beside them, within the grid.
+std::pair<int, int> withHalo(std::pair<int, int> piece, int halo, int layers)
+{
+  return { std::max(piece.first - halo, 0), std::min(piece.second + halo, layers) };
+}
+
+// Share `share`'s layers of `layers` and `halo` beside them, within the grid.
+std::pair<int, int> pieceWithHalo(int layers, int share, int shares, int halo)
+{
+  return withHalo(evenShare(layers, share, shares), halo, layers);
+}
+
+bool holds(std::pair<int, int> held, std::pair<int, int> layers)
+{
+  return held.first <= layers.first && layers.second <= held.second;
+}
+} // namespace
+
+void RenderSession::holdPiece(int share, int shares)
+{
+  if (shares < 1 || share < 0 || share >= shares)
+  {
+    throw std::invalid_argument("holdPiece: share " + std::to_string(share) + " is not one of the " +
+      std::to_string(shares) + " shares.");
+  }
+  if (shares > 1 && this->MarchPieces > 1)
+  {
+    throw std::invalid_argument("holdPiece: a piece held for a march shared by processes cannot also be forwarded "
+                                "through MarchPieces pieces in one process.");
+  }
+  this->HeldPiece = { share, shares };
+  if (this->Volume && this->Volume->LightLayers != this->lightLayersOf(*this->Volume))
+  {
+    this->cancelFrame(); // its passes read the fields
+    this->holdLightLayers(this->lightLayersOf(*this->Volume));
+  }
+}
+
+std::pair<int, int> RenderSession::heldLightLayers() const
+{
+  return this->Volume ? this->Volume->LightLayers : std::pair<int, int>{ 0, 0 };
+}
+
+// The layers the light fields of `v` hold for HeldPiece: all of them
+// unless addressed (a bound field is read from its buffer's start).
+std::pair<int, int> RenderSession::lightLayersOf(const DeviceVolume& v) const
+{
+  const int layers = v.Shape.Dimensions[2];
+  const auto [share, shares] = this->HeldPiece;
+  return shares > 1 && v.addressed() ? pieceWithHalo(layers, share, shares, HeldPieceHalo) : std::make_pair(0, layers);
+}
+
+// The light fields made anew for `layers` where they hold others, the light
+// field held dropped.
+void RenderSession::holdLightLayers(std::pair<int, int> layers)
+{
+  DeviceVolume& v = *this->Volume;
+  if (v.LightLayers == layers)
+  {
+    return;
+  }
+  this->LightField.reset();
+  v.LightField.reset(); // freed before the new ones are made
+  v.LightAbsorption.reset();
+  v.LightShadow.reset();
+  v.LightLayers = layers;
+  this->allocateLightFields(v);
+  this->bindBuffers();
+}
+
+// A share of the light pass computing `rows`: the piece held where it holds
+// them and the rows beside them that the sweep reads, else the whole field
+// (the processes sharing the pass are not those that share the march).
+void RenderSession::holdSweptRows(std::pair<int, int> rows)
+{
+  const int layers = this->Volume->Shape.Dimensions[2];
+  if (!holds(this->Volume->LightLayers, withHalo(rows, SweepHaloRows, layers)))
+  {
+    this->holdLightLayers({ 0, layers });
+  }
+}
+
+// The light field held is the frame's light and holds the layers its march
+// reads: all, or a shared march's piece and the layer beside it.
+bool RenderSession::lightFieldServes(const FrameSetup& setup) const
+{
+  if (!this->LightField || !(*this->LightField == lightFieldKey(setup)))
+  {
+    return false;
+  }
+  const DeviceVolume& v = *this->Volume;
+  const int layers = v.Shape.Dimensions[2];
+  const std::pair<int, int> read = this->SharedMarch
+    ? pieceWithHalo(layers, this->SharedMarch->Share, this->SharedMarch->Shares, 1)
+    : std::make_pair(0, layers);
+  return holds(v.LightLayers, read);
+}
+
+} // namespace opal
