@@ -12,9 +12,12 @@
 // to a share whose buffers an earlier frame made larger, the sub-rays' sums
 // kept between dispatches); fire-opal (an absorbing body,
 // coupled-wave fcc planes, energy conservation's rounds and Bragg shadows,
-// every order) lit from the side on 3 shares with the sub-rays. A
-// share aborting in its light pass or midway through its march stops every
-// share's frame (no hang, no image); bad shares are refused.
+// every order) lit from the side on 3 shares with the sub-rays. In fig12's
+// 3-share case and fire-opal's each share holds its piece of the light
+// fields (and fire-opal's every-order field) alone (holdPiece), the light
+// computed by the shares together, and a frame alone after it computes them
+// whole again. A share aborting in its light pass or midway through its
+// march stops every share's frame (no hang, no image); bad shares are refused.
 #include "OpalParallel.h"
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"

@@ -142,22 +142,17 @@ void RenderSession::recordWholeFields(VkCommandBuffer commands, const std::vecto
 std::vector<RenderSession::PieceField> RenderSession::marchFields() const
 {
   const DeviceVolume& v = *this->Volume;
-  // A light field held by piece (holdPiece) holds no more than its piece already.
-  const bool lightWhole = v.LightLayers == std::make_pair(0, v.Shape.Dimensions[2]);
+  // Fields held by piece (holdPiece) hold no more than their piece already.
+  const bool wholeHeld = v.LightLayers == std::make_pair(0, v.Shape.Dimensions[2]);
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields;
-  if (lightWhole)
+  if (wholeHeld)
   {
-    fields = this->lightPassFields(v.HasShadowField);
+    fields = this->pieceHeldFields();
   }
   fields.emplace_back(v.Cells.get(), sizeof(gpu::VoxelCell));
   if (v.Absorbs)
   {
     fields.emplace_back(v.AbsorptionCells.get(), sizeof(gpu::vec2));
-  }
-  if (v.HasScatteredField)
-  {
-    const auto scattered = this->scatteredFieldFields();
-    fields.insert(fields.end(), scattered.begin(), scattered.end());
   }
   std::vector<PieceField> pieceFields;
   for (const auto& [field, bytes] : fields)

@@ -1,7 +1,8 @@
 // The piece of the volume's layers z that a process of a march shared by
-// processes holds of its light fields (docs/design.md §8.1): its march
-// reads the light field only in its piece and one layer beside it, and the
-// light's sweep, shared by the same shares, only SweepHaloRows rows beside it.
+// processes holds of its light fields and every-order field (docs/design.md
+// §8.1): its march reads them only in its piece and one layer beside it, and
+// the light's sweep, shared by the same shares, only SweepHaloRows rows
+// beside it.
 #include "OpalRenderSession.h"
 
 #include "OpalParallel.h"
@@ -76,7 +77,8 @@ std::pair<int, int> RenderSession::lightLayersOf(const DeviceVolume& v) const
 }
 
 // The light fields made anew for `layers` where they hold others, the light
-// field held dropped.
+// field held dropped, and the every-order field, where read per voxel, made
+// anew too, to be written from the grid held (ScatteredFieldPending).
 void RenderSession::holdLightLayers(std::pair<int, int> layers)
 {
   DeviceVolume& v = *this->Volume;
@@ -88,18 +90,41 @@ void RenderSession::holdLightLayers(std::pair<int, int> layers)
   v.LightField.reset(); // freed before the new ones are made
   v.LightAbsorption.reset();
   v.LightShadow.reset();
+  const bool scatteredField = v.HasScatteredField;
+  v.ScatteredLight = scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
   v.LightLayers = layers;
   this->allocateLightFields(v);
+  if (scatteredField)
+  {
+    v.ScatteredLight = std::make_unique<VulkanBuffer>(
+      *this->Context, v.lightVoxels() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
+    v.ScatteredFieldPending = true;
+  }
   this->bindBuffers();
 }
 
-// A share of the light pass computing `rows`: the piece held where it holds
-// them and the rows beside them that the sweep reads, else the whole field
-// (the processes sharing the pass are not those that share the march).
-void RenderSession::holdSweptRows(std::pair<int, int> rows)
+// The fields DeviceVolume::LightLayers holds, with their bytes per voxel:
+// the light pass's (lightPassFields, the Bragg shadows where made) and the
+// every-order field where read per voxel.
+std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::pieceHeldFields() const
+{
+  const DeviceVolume& v = *this->Volume;
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields = this->lightPassFields(v.HasShadowField);
+  if (v.HasScatteredField)
+  {
+    const auto scattered = this->scatteredFieldFields();
+    fields.insert(fields.end(), scattered.begin(), scattered.end());
+  }
+  return fields;
+}
+
+// A share of a shared step computing `rows` and reading `halo` rows beside
+// them: the piece held where it holds them, else the whole fields (the
+// processes sharing the step are not those that share the march).
+void RenderSession::holdShareRows(std::pair<int, int> rows, int halo)
 {
   const int layers = this->Volume->Shape.Dimensions[2];
-  if (!holds(this->Volume->LightLayers, withHalo(rows, SweepHaloRows, layers)))
+  if (!holds(this->Volume->LightLayers, withHalo(rows, halo, layers)))
   {
     this->holdLightLayers({ 0, layers });
   }

@@ -304,7 +304,7 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   // allocation leaves the old buffer bound and the flags as they were.
   std::unique_ptr<VulkanBuffer> next = perVoxel
     ? std::make_unique<VulkanBuffer>(
-        *this->Context, v.Shape.voxelCount() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement)
+        *this->Context, v.lightVoxels() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement)
     : scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
   v.ScatteredLight = std::move(next);
   v.HasScatteredField = perVoxel;
@@ -312,13 +312,20 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   this->bindBuffers();
 }
 
-// The held grid's field per voxel, by the light pass (LightPassScatteredField).
-// In the frame, once its buffers are bound and its parameters (the grid's
-// shape) uploaded: a solve shared by processes holds its grid before them.
+// The held grid's field per voxel, by the light pass (LightPassScatteredField),
+// at the voxels held (all, or a piece: holdPiece; each voxel's value is the
+// grid's at it alone). In the frame, once its buffers are bound and its
+// parameters (the grid's shape) uploaded: a solve shared by processes holds
+// its grid before them.
 void RenderSession::writeScatteredField()
 {
-  this->dispatchOverVoxels(
-    this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr, 0, this->Volume->Shape.voxelCount());
+  const DeviceVolume& v = *this->Volume;
+  if (v.ScatteredLight->size() < v.lightVoxels() * sizeof(gpu::vec4))
+  {
+    throw std::logic_error("writeScatteredField: the every-order field holds fewer voxels than its layers.");
+  }
+  this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
+    v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels());
   this->Volume->ScatteredFieldPending = false;
 }
 

@@ -367,11 +367,14 @@ void RenderSession::setVolume(const RenderVolume& volume)
   this->PendingLightSeconds = -1;
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
-  // Fields and light field, laid out (fieldLayout), refused up front if too large.
+  // Fields and light field, laid out (fieldLayout), refused up front if too
+  // large; read by address where a piece is held (holdPiece), so that the
+  // light fields can hold it alone.
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
+  const bool piecesRead = this->MarchPieceFieldsOnly || this->HeldPiece.second > 1;
   std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
-    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !this->MarchPieceFieldsOnly);
+    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !piecesRead);
   uploaded->Shape = shapeOf(volume);
   uploaded->LightLayers = this->lightLayersOf(*uploaded);
   const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels(); // the light fields' layers beyond the piece held
@@ -958,14 +961,14 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
 
 // The address table: each field's buffer's address, or where `shifted`
 // names the buffer, the address given (a piece's, recordPieceFields); a
-// light field held by piece less the bytes of the layers before it.
+// field held by piece less the bytes of the layers before it.
 gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanBuffer*, std::uint64_t>& shifted) const
 {
   const DeviceVolume& v = *this->Volume;
   std::map<const VulkanBuffer*, std::uint64_t> at = shifted;
-  for (const auto& [buffer, record] : this->lightPassFields(v.HasShadowField))
+  for (const auto& [buffer, record] : this->pieceHeldFields())
   {
-    // A light field held by piece (holdPiece): the passes index the whole grid.
+    // A field held by piece (holdPiece): the passes index the whole grid.
     // Unsigned and modulo 2^64, as the shaders add an index's bytes (voxelAddress).
     if (v.LightLayers.first > 0 && at.find(buffer) == at.end())
     {

@@ -172,21 +172,23 @@ public:
   bool shareScatteredField(
     const ResolvedFrame& frame, int share, int shares, const FieldExchange& exchange, const LayerExchange& round);
 
-  // The piece of the volume's layers z that this session's light field
-  // (and its absorption's, the Bragg shadows) holds, for a march shared by
-  // processes (shareMarch): share `share` of `shares`, the layers it marches,
-  // and the rows beside them that its march and the light's sweep read
-  // (docs/design.md §8.1); 1 share: the whole volume, as by default. Kept
-  // for the volumes set after. Only fields read by address (a volume beyond
-  // a storage buffer's range, or VulkanOptions::MarchPieceFieldsOnly) are
-  // held by piece; bound fields are held whole. A light field held by
-  // piece comes from shareLightPass with the same shares and serves only
-  // the march shared so; a frame that computes the light alone computes it
-  // whole. A new piece drops the light field held. Refuses (std::
-  // invalid_argument) a share not among the shares, and more shares than
-  // one with VulkanOptions::MarchPieces.
+  // The piece of the volume's layers z that this session's light field (and
+  // its absorption's, the Bragg shadows, the every-order field read per
+  // voxel) holds, for a march shared by processes (shareMarch): share
+  // `share` of `shares`, the layers it marches, and the rows beside them that
+  // its march and the light's sweep read (docs/design.md §8.1); 1 share: the
+  // whole volume, as by default. Kept for the volumes set after, which then
+  // lay their fields out to be read by address (one value per voxel, §3.7);
+  // a volume set before, or a device that cannot address buffers, holds
+  // them whole. A light field held by piece comes from shareLightPass with
+  // the same shares and serves only the march shared so; a frame that
+  // computes the light alone computes it whole. The every-order field is
+  // written at the voxels held. A new piece drops the light field held and
+  // the every-order field (not its grid). Refuses (std::invalid_argument) a
+  // share not among the shares, and more shares than one with
+  // VulkanOptions::MarchPieces.
   void holdPiece(int share, int shares);
-  // The layers z [first, second) the light fields hold (none without a volume).
+  // The layers z [first, second) the fields holdPiece names hold (none without a volume).
   std::pair<int, int> heldLightLayers() const;
 
   // The view march of the frames that follow shared by `Shares` processes,
@@ -292,7 +294,8 @@ private:
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
   void holdLightLayers(std::pair<int, int> layers);
-  void holdSweptRows(std::pair<int, int> rows);
+  void holdShareRows(std::pair<int, int> rows, int halo);
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;
   bool lightFieldServes(const FrameSetup& setup) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the

@@ -328,7 +328,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
     [&](SlabShare& step, bool& exchanging) {
       setup = this->setUpSharedStep(frame);
       this->LightField.reset();
-      this->holdSweptRows(shareRows(this->Volume->Shape.Dimensions, share, shares));
+      this->holdShareRows(shareRows(this->Volume->Shape.Dimensions, share, shares), SweepHaloRows);
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
       this->resetForwardedLeft();
       const bool braggShadow = conservesEnergy(setup->Parameters);
@@ -388,11 +388,14 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
   const bool shared = shareSlabs(
     [&](SlabShare& step, bool&) {
       const FrameSetup setup = this->setUpSharedStep(frame);
+      const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
+      const std::pair<int, int> rows = shareRows(dims, share, shares);
+      this->holdShareRows(rows, 0);
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
-      const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-      step = { this->scatteredFieldFields(), dims, { 0, this->Volume->Shape.voxelCount() } };
-      const Runs slab = slabOf(dims, shareRows(dims, share, shares));
+      const DeviceVolume& v = *this->Volume;
+      step = { this->scatteredFieldFields(), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() } };
+      const Runs slab = slabOf(dims, rows);
       return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
         slab.front().first, slab.front().second);
     },
