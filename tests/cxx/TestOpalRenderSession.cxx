@@ -6,10 +6,14 @@
 // the volume uploaded through staging buffers (the path of a GPU with
 // dedicated memory, forced on lavapipe) renders the same image, a volume too
 // large for one staging round too; so does a
-// build of only the render's arrays (opal-render's, VolumeArrays::Render).
+// build of only the render's arrays (opal-render's, VolumeArrays::Render);
+// runs of bytes read and written together (readRuns, writeRuns) through
+// staging in batches.
 #include "OpalRenderScenes.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
+#include "OpalVulkanBuffer.h"
+#include "OpalVulkanContext.h"
 #include "OpalVulkanError.h"
 
 #include <algorithm>
@@ -348,6 +352,62 @@ void checkFrameTicket(opal::RenderSession& session, const opal::RenderParameters
     "a bad frame does not start, naming the parameter");
 }
 
+// readRuns and writeRuns through staging buffers (a discrete GPU's path,
+// VulkanOptions::StagingTransfers): runs of 150 MB in all, one of 100 MB,
+// staged in batches of at most VulkanBuffer::FillRoundBytes (64 MB), each
+// byte where it belongs, as the buffer's own rounds (read) read it back.
+void checkStagedRuns()
+{
+  opal::VulkanOptions options;
+  options.StagingTransfers = true;
+  opal::VulkanContext context(options);
+  constexpr std::uint64_t MB = std::uint64_t(1) << 20;
+  const std::uint64_t bytes = 160 * MB;
+  opal::VulkanBuffer buffer(context, bytes, "staged runs", opal::BufferPlacement::DeviceAddressed); // beyond a range
+  OPAL_CHECK(buffer.as<char>() == nullptr, "set-up: the buffer is not mapped (staged)");
+  std::vector<char> zeros(bytes, 0);
+  buffer.upload(zeros.data(), bytes);
+  std::vector<char> host(bytes);
+  for (std::uint64_t i = 0; i < bytes; ++i)
+  {
+    host[i] = static_cast<char>((i * 0x9E3779B97F4A7C15ull) >> 56); // no period of a batch
+  }
+  const std::vector<opal::WrittenRun> runs{ { &buffer, 0, 100 * MB }, { &buffer, 100 * MB + 16, 3 },
+    { &buffer, 120 * MB, 30 * MB } };
+  std::vector<const char*> from;
+  for (const opal::WrittenRun& run : runs)
+  {
+    from.push_back(host.data() + run.Begin);
+  }
+  opal::writeRuns(runs, from);
+  std::vector<char> device(bytes);
+  buffer.read(bytes, [&](std::uint64_t first, std::uint64_t count, const void* at) {
+    std::copy_n(static_cast<const char*>(at), count, device.data() + first);
+  });
+  std::vector<char> expected(bytes, 0);
+  std::vector<opal::ReadRun> readBack;
+  std::vector<std::vector<char>> into;
+  for (const opal::WrittenRun& run : runs)
+  {
+    std::copy_n(host.data() + run.Begin, run.Bytes, expected.data() + run.Begin);
+    readBack.push_back({ &buffer, run.Begin, run.Bytes });
+    into.emplace_back(run.Bytes);
+  }
+  OPAL_CHECK(device == expected, "writeRuns in batches: each run's bytes written where they belong, no others");
+  std::vector<char*> intoAt;
+  for (std::vector<char>& run : into)
+  {
+    intoAt.push_back(run.data());
+  }
+  opal::readRuns(readBack, intoAt);
+  bool same = true;
+  for (std::size_t r = 0; r < runs.size(); ++r)
+  {
+    same = same && std::equal(into[r].begin(), into[r].end(), host.begin() + static_cast<std::ptrdiff_t>(runs[r].Begin));
+  }
+  OPAL_CHECK(same, "readRuns in batches: each run's bytes read back");
+}
+
 int TestOpalRenderSession(int, char*[])
 {
   auto renderer = opaltest::makeRenderer();
@@ -355,6 +415,7 @@ int TestOpalRenderSession(int, char*[])
   {
     return opaltest::noDeviceReturnCode();
   }
+  checkStagedRuns();
   opal::ModelParameters model;
   model.Dimensions = { 40, 20, 50 };
   model.DomainCount = 30;

@@ -408,33 +408,19 @@ struct SlotRun
   std::uint64_t Slot, Count;
 };
 
-// `slots` (sorted) as runs of consecutive slots of `slotBytes` each, in
-// batches of at most VulkanBuffer::FillRoundBytes, a staging buffer's most
-// (readRuns and writeRuns stage a batch at once, as fill does a round).
-void forSlotBatches(const std::vector<std::uint32_t>& slots, std::uint64_t slotBytes,
-  const std::function<void(const std::vector<SlotRun>& runs)>& batch)
+// `slots` (sorted) as runs of consecutive slots (readRuns and writeRuns
+// stage them in batches, as fill does its rounds).
+std::vector<SlotRun> slotRuns(const std::vector<std::uint32_t>& slots)
 {
-  const std::uint64_t most = std::max<std::uint64_t>(1, VulkanBuffer::FillRoundBytes / slotBytes);
   std::vector<SlotRun> runs;
-  std::uint64_t held = 0;
-  std::size_t first = 0;
-  while (first < slots.size())
+  for (std::size_t first = 0, end = 0; first < slots.size(); first = end)
   {
-    std::size_t end = first + 1;
-    while (end < slots.size() && slots[end] == slots[end - 1] + 1 && end - first < most - held)
+    for (end = first + 1; end < slots.size() && slots[end] == slots[end - 1] + 1; ++end)
     {
-      ++end;
     }
     runs.push_back({ first, slots[first], end - first });
-    held += end - first;
-    first = end;
-    if (held == most || first == slots.size())
-    {
-      batch(runs);
-      runs.clear();
-      held = 0;
-    }
   }
+  return runs;
 }
 } // namespace
 
@@ -515,16 +501,14 @@ void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::Marc
   {
     std::sort(rounds.Fresh.begin(), rounds.Fresh.end());
     rounds.Fresh.erase(std::unique(rounds.Fresh.begin(), rounds.Fresh.end()), rounds.Fresh.end());
-    forSlotBatches(rounds.Fresh, bytes, [&](const std::vector<SlotRun>& batch) {
-      std::vector<WrittenRun> runs;
-      std::vector<const char*> from;
-      for (const SlotRun& run : batch)
-      {
-        runs.push_back({ &states, run.Slot * bytes, run.Count * bytes });
-        from.push_back(reinterpret_cast<const char*>(rounds.Held.data() + run.Slot * rounds.Words));
-      }
-      writeRuns(runs, from);
-    });
+    std::vector<WrittenRun> runs;
+    std::vector<const char*> from;
+    for (const SlotRun& run : slotRuns(rounds.Fresh))
+    {
+      runs.push_back({ &states, run.Slot * bytes, run.Count * bytes });
+      from.push_back(reinterpret_cast<const char*>(rounds.Held.data() + run.Slot * rounds.Words));
+    }
+    writeRuns(runs, from);
   }
   rounds.Fresh.clear();
   rounds.DeviceHolds = true;
@@ -543,16 +527,14 @@ void RenderSession::readRayStates(const std::vector<std::uint32_t>& slots, March
 {
   const auto start = Clock::now();
   const std::uint64_t bytes = rounds.Words * sizeof(std::uint32_t);
-  forSlotBatches(slots, bytes, [&](const std::vector<SlotRun>& batch) {
-    std::vector<ReadRun> runs;
-    std::vector<char*> into;
-    for (const SlotRun& run : batch)
-    {
-      runs.push_back({ this->Buffers->RayStates.get(), run.Slot * bytes, run.Count * bytes });
-      into.push_back(reinterpret_cast<char*>(after + run.Index * rounds.Words));
-    }
-    readRuns(runs, into);
-  });
+  std::vector<ReadRun> runs;
+  std::vector<char*> into;
+  for (const SlotRun& run : slotRuns(slots))
+  {
+    runs.push_back({ this->Buffers->RayStates.get(), run.Slot * bytes, run.Count * bytes });
+    into.push_back(reinterpret_cast<char*>(after + run.Index * rounds.Words));
+  }
+  readRuns(runs, into);
   rounds.Seconds += secondsSince(start);
 }
 

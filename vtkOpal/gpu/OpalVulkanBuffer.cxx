@@ -296,12 +296,45 @@ void VulkanBuffer::readRange(std::uint64_t begin, std::uint64_t bytes, const Con
     });
 }
 
-void readRuns(const std::vector<ReadRun>& runs, const std::vector<char*>& into)
+namespace
 {
-  if (runs.empty())
+// `runs` (with their host bytes `at`) in batches whose staging takes at most
+// VulkanBuffer::FillRoundBytes, as fill's rounds do, a longer run split
+// into pieces of that size: `batch` is called on each, in order.
+template <typename Run, typename Host>
+void inRunBatches(const std::vector<Run>& runs, const std::vector<Host*>& at,
+  const std::function<void(const std::vector<Run>&, const std::vector<Host*>&)>& batch)
+{
+  constexpr std::uint64_t most = VulkanBuffer::FillRoundBytes;
+  std::vector<Run> batchRuns;
+  std::vector<Host*> batchAt;
+  std::uint64_t staged = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i)
   {
-    return;
+    for (std::uint64_t first = 0; first == 0 || first < runs[i].Bytes; first += most)
+    {
+      const std::uint64_t bytes = std::min(runs[i].Bytes - first, most);
+      if (staged + stagedSize(bytes) > most)
+      {
+        batch(batchRuns, batchAt);
+        batchRuns.clear();
+        batchAt.clear();
+        staged = 0;
+      }
+      batchRuns.push_back({ runs[i].Buffer, runs[i].Begin + first, bytes });
+      batchAt.push_back(at[i] + first);
+      staged += stagedSize(bytes);
+    }
   }
+  if (!batchRuns.empty())
+  {
+    batch(batchRuns, batchAt);
+  }
+}
+
+// One batch of readRuns: one staging buffer, one submit.
+void readBatch(const std::vector<ReadRun>& runs, const std::vector<char*>& into)
+{
   std::vector<const char*> views;
   const std::unique_ptr<VulkanBuffer> staging = stageOut(runs.front().Buffer->context(), runs, views);
   for (std::size_t i = 0; i < runs.size(); ++i)
@@ -310,7 +343,8 @@ void readRuns(const std::vector<ReadRun>& runs, const std::vector<char*>& into)
   }
 }
 
-void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from)
+// One batch of writeRuns: one staging buffer, one submit.
+void writeBatch(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from)
 {
   std::uint64_t total = 0;
   for (const WrittenRun& run : runs)
@@ -350,6 +384,17 @@ void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char
     }
     afterCopiesIn(commands);
   });
+}
+} // namespace
+
+void readRuns(const std::vector<ReadRun>& runs, const std::vector<char*>& into)
+{
+  inRunBatches<ReadRun, char>(runs, into, readBatch);
+}
+
+void writeRuns(const std::vector<WrittenRun>& runs, const std::vector<const char*>& from)
+{
+  inRunBatches<WrittenRun, const char>(runs, from, writeBatch);
 }
 
 } // namespace opal

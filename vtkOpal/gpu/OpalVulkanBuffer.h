@@ -137,8 +137,9 @@ private:
 // the host together: mapped buffers directly, the others through one staging
 // buffer and one submit. A shared step's layer reads and writes a few short
 // rows of each field, for which a staging buffer and a wait each cost more
-// than the rows (docs/design.md §8.1). The staging buffer holds all the runs'
-// bytes at once: for runs of a few MB.
+// than the rows (docs/design.md §8.1). The runs are staged in batches of at
+// most FillRoundBytes, as fill's rounds are (a longer run in pieces): one
+// staging buffer and one submit a batch.
 // Bytes [Begin, Begin + Bytes) of a buffer read (ReadRun) or written (WrittenRun).
 template <typename BufferType>
 struct RunOf
