@@ -223,15 +223,14 @@ int TestOpalSharedMarch(int, char*[])
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
   checkShared(paperStone, p, 3, "fig12, each share's light fields held by piece", { 2.0, nullptr, false, true });
-  // Bands: 640 pixels across, a shared band holds 136 rows (its states
-  // within the 2^27 bytes every device's storage-buffer range offers), so
-  // 200 rows take two; the whole image's states (~190 MB) would pass
-  // lavapipe's range (2^27 bytes). Through staging buffers, as on a discrete
-  // GPU: the first round's read-back (132 MB) in batches of 64 MB.
+  // Bands: 640 pixels across, a shared band holds 24 rows (2^14 pixels at
+  // most, in whole rows of 8), so 200 rows take nine, the last of 8 rows;
+  // the whole image's states (~190 MB) would pass lavapipe's storage-buffer
+  // range (2^27 bytes). Through staging buffers, as on a discrete GPU.
   opal::RenderParameters wide = p;
   wide.ImageSize = { 640, 200 };
   wide.WriteSpectrum = false;
-  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in two bands, through staging", { 2.0, nullptr, true });
+  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in nine bands, through staging", { 2.0, nullptr, true });
   opal::RenderParameters refined = p;
   refined.PixelSamples = 3;
   // Share 1's edge queues' buffers larger than the others' (a larger frame

@@ -46,13 +46,16 @@ constexpr int SweepHaloRows = 2;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // The works of a march shared by processes (docs/design.md §8.1) are alike on
 // every share, so its bands and refined pixels per dispatch are fixed (the
-// pacers follow each device's own time): the march pacer's first size, and
-// the second stage's; a band's pixels fewer where their states would pass
-// 2^27 bytes, the storage-buffer range every Vulkan device offers
-// (maxStorageBufferRange's required least), alike on every share. Its bands
-// are whole rows of workgroups (8 rows at least: wider than ~11 000 pixels
-// at 41 bins, a band passes that range, which the frame refuses).
-constexpr std::int64_t SharedBandPixels = 1 << 17;
+// pacers follow each device's own time): a band of 2^14 pixels (its states,
+// held on the device, in Held, the posts and the exchange's buffers, are
+// what a shared march holds beyond the render: 2^17 held ~0.37 GB more per
+// rank at 320 x 240 and was no faster), and the second stage's 2^12; a
+// band's pixels fewer where their states would pass 2^27 bytes, the
+// storage-buffer range every Vulkan device offers (maxStorageBufferRange's
+// required least), alike on every share. Its bands are whole rows of
+// workgroups (8 rows at least: wider than ~11 000 pixels at 41 bins, a band
+// passes that range, which the frame refuses).
+constexpr std::int64_t SharedBandPixels = 1 << 14;
 constexpr std::int64_t SharedRefinePixels = 1 << 12;
 constexpr std::uint64_t EveryDeviceStorageRange = std::uint64_t(1) << 27;
 inline std::int64_t sharedBandPixels(std::uint64_t stateWords)
