@@ -130,6 +130,16 @@ void RenderSession::holdShareRows(std::pair<int, int> rows, int halo)
   }
 }
 
+// The voxels whose light fields and every-order field a frame's memory is
+// checked for: the piece held where one is asked for (the ranks' shared
+// steps compute it; a frame computing the light alone makes the fields
+// whole, and its allocation is then refused where they do not fit).
+std::uint64_t RenderSession::framedVoxels() const
+{
+  const DeviceVolume& v = *this->Volume;
+  return this->HeldPiece.second > 1 ? v.lightVoxels() : v.Shape.voxelCount();
+}
+
 // The light field held is the frame's light and holds the layers its march
 // reads: all, or a shared march's piece and the layer beside it.
 bool RenderSession::lightFieldServes(const FrameSetup& setup) const

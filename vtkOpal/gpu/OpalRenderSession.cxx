@@ -716,8 +716,10 @@ bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
   }
   const DeviceVolume& v = *this->Volume;
   const std::uint64_t keptShadows =
-    v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.Shape.voxelCount() * sizeof(gpu::LightShadow) : 0;
-  return volumeDeviceBytes(v.Shape.Dimensions, v.Absorbs, setup.Parameters, true, v.PairedFields) + keptShadows +
+    v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.lightVoxels() * sizeof(gpu::LightShadow) : 0;
+  return volumeDeviceBytes(v.Shape.Dimensions, this->framedVoxels(), v.Absorbs, setup.Parameters, true,
+           v.PairedFields) +
+    keptShadows +
     this->frameImageBytes(setup, true) > this->Context->memoryBudget();
 }
 
@@ -748,7 +750,9 @@ void RenderSession::checkVolumeFits(
   const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& parameters)
 {
   this->context(); // throws once released
-  this->requireDeviceMemory(volumeDeviceBytes(dimensions, absorbs, parameters, false, false),
+  const std::uint64_t voxels = static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
+    static_cast<std::uint64_t>(dimensions[2]);
+  this->requireDeviceMemory(volumeDeviceBytes(dimensions, voxels, absorbs, parameters, false, false),
     "the volume's fields for this render need", "", "use fewer voxels");
 }
 
@@ -769,8 +773,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->Volume->Absorbs, setup.Parameters, fieldPerVoxel,
-      this->Volume->PairedFields);
+    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->framedVoxels(), this->Volume->Absorbs, setup.Parameters,
+      fieldPerVoxel, this->Volume->PairedFields);
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");

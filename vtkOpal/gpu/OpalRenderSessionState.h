@@ -97,17 +97,21 @@ inline std::uint64_t scatteredLightGridBytes(const std::array<int, 3>& dimension
 // volume's own, the Bragg shadows with energy conservation (§7.2) and the
 // every-order tally grid (scatteredLightGridBytes), with its field per
 // voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10),
-// its fields paired where `pairedFields` (§3.7).
-inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, bool absorbs, const RenderParameters& p,
-  bool fieldPerVoxel, bool pairedFields)
+// its fields paired where `pairedFields` (§3.7); the light fields, the
+// Bragg shadows and the every-order field for `heldVoxels` of them (all, or
+// a piece: RenderSession::holdPiece).
+inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std::uint64_t heldVoxels, bool absorbs,
+  const RenderParameters& p, bool fieldPerVoxel, bool pairedFields)
 {
   const bool everyOrder = scattersEveryOrder(p);
   const std::uint64_t voxels =
     static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
     static_cast<std::uint64_t>(dimensions[2]);
   const std::uint64_t gridBytes = everyOrder ? scatteredLightGridBytes(dimensions) : 0;
-  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
-                    (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
+  const std::uint64_t light = lightBytesPerVoxel(absorbs, pairedFields);
+  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) - light) +
+    heldVoxels * (light + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
+                   (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     gridBytes;
 }
 // What the every-order field's binding holds where no field per voxel is:
