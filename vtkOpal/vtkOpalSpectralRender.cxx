@@ -194,15 +194,14 @@ bool vtkOpalSpectralRender::HoldsUploadedVolume(vtkImageData* volume) const
     this->UploadedVolumeTime == volume->GetMTime();
 }
 
-bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input)
+bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
   // A march shared by the ranks reads the light fields only in the rank's
   // piece: they hold it alone (docs/design.md §8.1), set before the upload
-  // makes them.
-  const bool shared = this->MarchesShared();
-  session.holdPiece(shared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
-    shared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
+  // makes them; any other frame (a background frame too) reads them whole.
+  session.holdPiece(marchShared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
+    marchShared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
   if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime())
   {
     return true;
@@ -451,7 +450,9 @@ vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::ShareBeforeFrame(
     return sofar;
   }
   const RenderOutcome uploaded = sofar == RenderOutcome::Rendered && piece
-    ? this->Guarded([&] { return this->UploadVolume(this->VolumeOf(input)) ? sofar : RenderOutcome::Failed; })
+    ? this->Guarded([&] {
+        return this->UploadVolume(this->VolumeOf(input), this->MarchesShared()) ? sofar : RenderOutcome::Failed;
+      })
     : sofar;
   // Each step is called by every rank whatever the one before left it with:
   // with this rank's session and frame where it is ready, and whether it

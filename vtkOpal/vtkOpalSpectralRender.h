@@ -209,7 +209,9 @@ private:
   // of it. Under MPI the gathered volume's arrays are released after the
   // upload (the device holds their values; docs/design.md §8.1): an upload
   // that needs them again fails, saying that the render's update gathers them.
-  bool UploadVolume(vtkImageData* input);
+  // `marchShared`: the frames that follow march shared by the ranks
+  // (MarchesShared), whose light fields the session then holds by piece.
+  bool UploadVolume(vtkImageData* input, bool marchShared = false);
   // Whether a session exists for the current device settings (Session would keep it).
   bool HasSessionOfSettings() const;
   // Whether that session holds this version of `volume`.

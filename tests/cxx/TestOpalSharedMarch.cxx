@@ -17,7 +17,8 @@
 // fields (and fire-opal's every-order field) alone (holdPiece), the light
 // computed by the shares together, and a frame alone after it computes them
 // whole again. A share aborting in its light pass or midway through its
-// march stops every share's frame (no hang, no image); bad shares are refused.
+// march stops every share's frame (no hang, no image); bad shares are refused;
+// a piece's whole field refused by a memory limit leaves nothing stale.
 #include "OpalParallel.h"
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
@@ -25,6 +26,7 @@
 #include "OpalShareMeeting.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
+#include "OpalVulkanError.h"
 
 #include <algorithm>
 #include <exception>
@@ -181,6 +183,52 @@ void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& 
   }
 }
 
+// A session holding a piece (0 of 3) whose frame alone must make the light
+// fields whole, under a device memory limit that holds the piece's frame
+// and not the whole field: the allocation refuses it, naming the limit,
+// twice, the session holding no layers after (not a table of freed
+// buffers that the next frame writes through); the validation layer silent.
+void checkWholeFieldRefused(const opal::RenderVolume& stone, const opal::RenderParameters& p)
+{
+  opal::VulkanOptions options;
+  options.Validation = true;
+  options.MarchPieceFieldsOnly = true; // read by address, as a held piece is
+  std::uint64_t limit = 0;
+  {
+    opal::RenderSession probe(options);
+    probe.holdPiece(0, 3);
+    probe.setVolume(stone);
+    const std::pair<int, int> held = probe.heldLightLayers();
+    probe.render(p);
+    const std::uint64_t unheld = static_cast<std::uint64_t>(stone.Dimensions[0]) * stone.Dimensions[1] *
+      static_cast<std::uint64_t>(stone.Dimensions[2] - (held.second - held.first));
+    limit = probe.context().memoryPeak() - unheld * 8 / 2; // half the whole light field's layers beyond the piece
+  }
+  options.MemoryLimitBytes = limit;
+  opal::RenderSession session(options);
+  session.holdPiece(0, 3);
+  session.setVolume(stone);
+  for (int attempt = 1; attempt <= 2; ++attempt)
+  {
+    std::string message;
+    try
+    {
+      session.render(p);
+    }
+    catch (const opal::VulkanError& e)
+    {
+      message = e.what();
+    }
+    OPAL_CHECK(message.find("vkAllocateMemory refused") != std::string::npos &&
+        session.heldLightLayers() == std::make_pair(0, 0),
+      "the whole light field refused by the memory limit, attempt " + std::to_string(attempt) +
+        ": the allocation says so and no layers are held (" + message + ")");
+  }
+  const auto messages = session.context().validationMessages();
+  OPAL_CHECK(messages.empty(), "the refused fields: the validation layer is silent " +
+      (messages.empty() ? std::string() : messages.front()));
+}
+
 // The message shareMarch (or with `held`, holdPiece) throws for `share` of
 // `shares` (with MarchPieces `pieces`); "" where it accepts it.
 std::string refusal(int share, int shares, int pieces, bool held = false)
@@ -267,6 +315,8 @@ int TestOpalSharedMarch(int, char*[])
     }
   }
 
+
+  checkWholeFieldRefused(paperStone, p);
 
   OPAL_CHECK(refusal(3, 3, 1).find("Share 3 is not one of the 3 shares") != std::string::npos, "share 3 of 3: refused");
   OPAL_CHECK(refusal(0, 2, 3).find("MarchPieces") != std::string::npos, "a shared march with MarchPieces 3: refused");

@@ -54,10 +54,14 @@ void RenderSession::holdPiece(int share, int shares)
     throw std::invalid_argument("holdPiece: a piece held for a march shared by processes cannot also be forwarded "
                                 "through MarchPieces pieces in one process.");
   }
-  this->HeldPiece = { share, shares };
-  if (this->Volume && this->Volume->LightLayers != this->lightLayersOf(*this->Volume))
+  if (this->HeldPiece == std::make_pair(share, shares))
   {
-    this->cancelFrame(); // its passes read the fields
+    return;
+  }
+  this->cancelFrame(); // a background frame reads the fields and the piece
+  this->HeldPiece = { share, shares };
+  if (this->Volume)
+  {
     this->holdLightLayers(this->lightLayersOf(*this->Volume));
   }
 }
@@ -92,13 +96,29 @@ void RenderSession::holdLightLayers(std::pair<int, int> layers)
   v.LightShadow.reset();
   const bool scatteredField = v.HasScatteredField;
   v.ScatteredLight = scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
-  v.LightLayers = layers;
-  this->allocateLightFields(v);
-  if (scatteredField)
+  v.HasScatteredField = false;
+  try
   {
-    v.ScatteredLight = std::make_unique<VulkanBuffer>(
-      *this->Context, v.lightVoxels() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement);
-    v.ScatteredFieldPending = true;
+    v.LightLayers = layers;
+    this->allocateLightFields(v);
+    if (scatteredField)
+    {
+      v.ScatteredLight = std::make_unique<VulkanBuffer>(
+        *this->Context, v.heldFieldBytes(sizeof(gpu::vec4)), "scattered light field", v.FieldPlacement);
+      v.HasScatteredField = true;
+      v.ScatteredFieldPending = true;
+    }
+  }
+  catch (...)
+  {
+    // Refused (out of memory): no layers held, placeholders bound, so
+    // that the next frame or step makes its fields anew, not one that
+    // writes through a table of freed buffers.
+    v.LightLayers = { 0, 0 };
+    this->allocateLightFields(v);
+    v.ScatteredLight = scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
+    this->bindBuffers();
+    throw;
   }
   this->bindBuffers();
 }

@@ -304,7 +304,7 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   // allocation leaves the old buffer bound and the flags as they were.
   std::unique_ptr<VulkanBuffer> next = perVoxel
     ? std::make_unique<VulkanBuffer>(
-        *this->Context, v.lightVoxels() * sizeof(gpu::vec4), "scattered light field", v.FieldPlacement)
+        *this->Context, v.heldFieldBytes(sizeof(gpu::vec4)), "scattered light field", v.FieldPlacement)
     : scatteredLightPlaceholder(*this->Context, v.FieldPlacement);
   v.ScatteredLight = std::move(next);
   v.HasScatteredField = perVoxel;
@@ -387,7 +387,7 @@ void RenderSession::prepareShadowField()
     return;
   }
   v.LightShadow.reset();
-  v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.lightVoxels() * sizeof(gpu::LightShadow),
+  v.LightShadow = std::make_unique<VulkanBuffer>(*this->Context, v.heldFieldBytes(sizeof(gpu::LightShadow)),
     "light Bragg shadow field", v.FieldPlacement);
   v.HasShadowField = true;
   this->bindBuffers();

@@ -231,11 +231,11 @@ void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, Devi
 void RenderSession::allocateLightFields(DeviceVolume& v) const
 {
   VulkanContext& context = *this->Context;
-  const std::uint64_t voxels = v.lightVoxels();
   const std::uint64_t lightFieldBytes = v.PairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
-  v.LightAbsorption = deviceLocalBuffer(context, v.Absorbs ? voxels * lightFieldBytes : sizeof(gpu::LightFieldPair),
-    "light absorption field", nullptr, v.FieldPlacement);
-  v.LightField = deviceLocalBuffer(context, voxels * lightFieldBytes, "light field", nullptr, v.FieldPlacement);
+  v.LightAbsorption = deviceLocalBuffer(context,
+    v.Absorbs ? v.heldFieldBytes(lightFieldBytes) : sizeof(gpu::LightFieldPair), "light absorption field", nullptr,
+    v.FieldPlacement);
+  v.LightField = deviceLocalBuffer(context, v.heldFieldBytes(lightFieldBytes), "light field", nullptr, v.FieldPlacement);
   v.LightShadow =
     deviceLocalBuffer(context, sizeof(gpu::LightShadow), "light Bragg shadow placeholder", nullptr, v.FieldPlacement);
   v.HasShadowField = false;

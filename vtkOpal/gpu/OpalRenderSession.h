@@ -179,8 +179,10 @@ public:
   // its march and the light's sweep read (docs/design.md §8.1); 1 share: the
   // whole volume, as by default. Kept for the volumes set after, which then
   // lay their fields out to be read by address (one value per voxel, §3.7);
-  // a volume set before, or a device that cannot address buffers, holds
-  // them whole. A light field held by piece comes from shareLightPass with
+  // a volume set before whose fields are bound (not read by address), or a
+  // device that cannot address buffers, holds them whole. A refused
+  // allocation leaves no layers held (placeholders), made anew by the next
+  // frame or shared step. A light field held by piece comes from shareLightPass with
   // the same shares and serves only the march shared so; a frame that
   // computes the light alone computes it whole. The every-order field is
   // written at the voxels held. A new piece drops the light field held and

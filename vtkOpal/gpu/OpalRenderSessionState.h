@@ -197,6 +197,13 @@ struct RenderSession::DeviceVolume
   {
     return this->layerVoxels() * static_cast<std::size_t>(this->LightLayers.second - this->LightLayers.first);
   }
+  // A held field's bytes at `voxelBytes` a voxel: at least 16, a
+  // placeholder's, where no layers are held (a refused allocation,
+  // RenderSession::holdLightLayers).
+  std::uint64_t heldFieldBytes(std::uint64_t voxelBytes) const
+  {
+    return std::max<std::uint64_t>(this->lightVoxels() * voxelBytes, 16);
+  }
 };
 
 // The per-frame buffers, kept while they are large enough.
