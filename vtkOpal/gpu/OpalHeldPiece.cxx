@@ -103,10 +103,7 @@ void RenderSession::holdLightLayers(std::pair<int, int> layers)
     this->allocateLightFields(v);
     if (scatteredField)
     {
-      v.ScatteredLight = std::make_unique<VulkanBuffer>(
-        *this->Context, v.heldFieldBytes(sizeof(gpu::vec4)), "scattered light field", v.FieldPlacement);
-      v.HasScatteredField = true;
-      v.ScatteredFieldPending = true;
+      this->makeScatteredField(true);
     }
   }
   catch (...)

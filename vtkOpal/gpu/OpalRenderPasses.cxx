@@ -300,8 +300,17 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   {
     return;
   }
-  // Made before the old one goes (the placeholder is a vec4): a failed
-  // allocation leaves the old buffer bound and the flags as they were.
+  this->makeScatteredField(perVoxel);
+  this->bindBuffers();
+}
+
+// The every-order field per voxel for the layers held, or its placeholder,
+// to be written from the grid held. Made before the old one goes (the
+// placeholder is a vec4): a failed allocation leaves the old buffer and the
+// flags as they were.
+void RenderSession::makeScatteredField(bool perVoxel)
+{
+  DeviceVolume& v = *this->Volume;
   std::unique_ptr<VulkanBuffer> next = perVoxel
     ? std::make_unique<VulkanBuffer>(
         *this->Context, v.heldFieldBytes(sizeof(gpu::vec4)), "scattered light field", v.FieldPlacement)
@@ -309,7 +318,6 @@ void RenderSession::placeScatteredField(const FrameSetup& setup)
   v.ScatteredLight = std::move(next);
   v.HasScatteredField = perVoxel;
   v.ScatteredFieldPending = true;
-  this->bindBuffers();
 }
 
 // The held grid's field per voxel, by the light pass (LightPassScatteredField),

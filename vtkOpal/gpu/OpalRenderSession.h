@@ -300,6 +300,7 @@ private:
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;
   bool lightFieldServes(const FrameSetup& setup) const;
   std::uint64_t framedVoxels() const;
+  void makeScatteredField(bool perVoxel);
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more
