@@ -707,7 +707,7 @@ void main()
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
-  int slot = passItem(LightPassGroupSize);
+  int slot = work.slotFirst + passItem(LightPassGroupSize);
   LightWalk w;
   bool started = false;
   bool last = FORWARDED && work.last != 0;

@@ -313,7 +313,9 @@ struct VolumeAddresses
 // A forwarded walk to the light (§8.1) walks only within layers z in
 // [piece.x, piece.y), each walk kept where it needs another piece and taken
 // up again by a later dispatch of the same voxels (`resumed` 1); the last
-// (`last` 1) counts the walks still kept (ForwardedLeftBinding).
+// (`last` 1) counts the walks still kept (ForwardedLeftBinding). A walk's
+// state is slot slotFirst + its invocation: a pass shared by processes keeps
+// every share's walks in one buffer, each share's from its own first slot.
 struct LightPassWork
 {
   int first;
@@ -322,6 +324,7 @@ struct LightPassWork
   int resumed;
   ivec2 piece;
   int last;
+  int slotFirst;
 };
 
 // Invocations per workgroup of the light pass.

@@ -106,6 +106,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("work.", LightPassWork, resumed),
     OPAL_FIELD("work.", LightPassWork, piece),
     OPAL_FIELD("work.", LightPassWork, last),
+    OPAL_FIELD("work.", LightPassWork, slotFirst),
     OPAL_FIELD("marchWork.", MarchWork, origin),
     OPAL_FIELD("marchWork.", MarchWork, mode),
     OPAL_FIELD("marchWork.", MarchWork, first),

@@ -15,8 +15,11 @@
 // every order) lit from the side on 3 shares with the sub-rays. In fig12's
 // 3-share case and fire-opal's each share holds its piece of the light
 // fields (and fire-opal's every-order field) alone (holdPiece), the light
-// computed by the shares together, and a frame alone after it computes them
-// whole again. A share aborting in its light pass or midway through its
+// computed by the shares together (fire-opal's walks to the light going
+// between the shares, each reading its piece's medium alone), and a frame
+// alone after it computes them whole again. A share aborting in the shares'
+// walks to the light stops every share's step, and each frame computes the
+// light alone. A share aborting in its light pass or midway through its
 // march stops every share's frame (no hang, no image); bad shares are refused;
 // a piece's whole field refused by a memory limit leaves nothing stale.
 #include "OpalParallel.h"
@@ -49,6 +52,7 @@ struct ShareResult
   // With HeldPieces: the layers its light fields held for the shared frame,
   // and its frame alone after it, with the layers they held then.
   std::pair<int, int> HeldLayers;
+  bool LightShared = false; // the light computed by the shares together
   opal::RenderFrame Alone;
   std::pair<int, int> HeldAlone;
 };
@@ -59,13 +63,15 @@ struct ShareResult
 // host copies go through staging buffers (a discrete GPU's path:
 // VulkanOptions::StagingTransfers); with `HeldPieces` each share holds its
 // piece of the light fields alone (holdPiece), computed by the shares
-// together (shareLightPass) before the frame, and renders alone after it.
+// together (shareLightPass) before the frame, and renders alone after it;
+// share 1 then stops that step once its progress passes `Share1StopsLightAt`.
 struct SharedRun
 {
   double Share1StopsAt = 2.0;
   const opal::RenderParameters* Share1Before = nullptr;
   bool Staging = false;
   bool HeldPieces = false;
+  double Share1StopsLightAt = 2.0;
 };
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
@@ -108,14 +114,15 @@ std::vector<ShareResult> sharedFrames(
       {
         if (run.HeldPieces)
         {
-          session.shareLightPass(
+          result.LightShared = session.shareLightPass(
             opal::resolveFrame(p), share, shares,
             [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
               return meeting.meet(share, true, mine, sink);
             },
             [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
               return meeting.meet(share, false, mine, sink);
-            });
+            },
+            [&](double done) { return share != 1 || done < run.Share1StopsLightAt; });
         }
         result.Frame = session.render(p, [&](double done) { return share != 1 || done < run.Share1StopsAt; });
         result.HeldLayers = session.heldLightLayers();
@@ -171,14 +178,21 @@ void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& 
         std::to_string(t.March) + " s), none alone");
     if (run.HeldPieces)
     {
-      const std::pair<int, int> piece = heldPiece(stone, static_cast<int>(share), shares);
+      // Where share 1 stopped the shared light, each frame computed it alone, whole.
+      const bool lightShared = run.Share1StopsLightAt > 1.0;
+      OPAL_CHECK(result.LightShared == lightShared,
+        what + (lightShared ? ": the shares computed the light together" : ": share 1's abort stopped every share's light"));
+      const std::pair<int, int> piece =
+        lightShared ? heldPiece(stone, static_cast<int>(share), shares) : std::make_pair(0, stone.Dimensions[2]);
       OPAL_CHECK(result.HeldLayers == piece,
         what + ": its light fields held its piece and halo alone, layers " + std::to_string(piece.first) + " to " +
           std::to_string(piece.second) + " (held " + std::to_string(result.HeldLayers.first) + " to " +
           std::to_string(result.HeldLayers.second) + ")");
-      OPAL_CHECK(result.Alone.Status == opal::FrameStatus::Completed && result.Alone.Ran.LightPass &&
+      // A frame alone after it needs the whole light field: computed again
+      // where the shares computed it (by piece), kept where the frame had.
+      OPAL_CHECK(result.Alone.Status == opal::FrameStatus::Completed && result.Alone.Ran.LightPass == lightShared &&
           opaltest::identical(result.Alone.Image, lone) && result.HeldAlone == std::make_pair(0, stone.Dimensions[2]),
-        what + ": a frame alone after it computes the whole light field again and gives the lone image");
+        what + ": a frame alone after it holds the whole light field and gives the lone image");
     }
   }
 }
@@ -302,6 +316,13 @@ int TestOpalSharedMarch(int, char*[])
   side.PixelSamples = 3;
   checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays, light fields by piece",
     { 2.0, nullptr, false, true });
+  // Share 1 aborting in the shares' walks to the light after its first work
+  // (of two): every share's step stops, none hangs; each frame then computes
+  // the light alone, to the lone image.
+  opal::RenderParameters single = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+  single.LightPosition = side.LightPosition;
+  checkShared(fireStone, single, 3, "fire-opal, lit from the side, share 1 aborting in the walks to the light",
+    { 2.0, nullptr, false, true, 1e-9 });
 
   // Share 1 aborting in its light pass (before any round) or midway through
   // its march: every share's frame stops, none hangs or throws.

@@ -116,7 +116,7 @@ void RenderSession::recordSweepLayer(VkCommandBuffer commands, const ComputePipe
     }
     this->recordPieceFields(commands, fields, layers);
     const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * (end - first);
-    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0), 0 },
+    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0), 0, 0 },
       static_cast<std::uint32_t>((voxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     this->recordWrittenBack(commands, fields, layers);
   }
@@ -175,14 +175,14 @@ std::pair<std::uint64_t, std::uint64_t> RenderSession::pieceBytes(const PieceFie
   return { first * layerBytes, last == dims[2] ? field.Whole->size() : std::max(first, last) * layerBytes };
 }
 
-// With MarchPieceFieldsOnly (and marchPieces above 1), a buffer per field of
-// the march (marchFields) for the largest piece's layers and halo (the
-// march's or the walks to the light's, the larger), made for
-// each march region (a test's option, so kept simple); none otherwise.
-void RenderSession::preparePieceFields()
+// With MarchPieceFieldsOnly and `pieces` above 1 (MarchPieces, a shared
+// march's or a shared light pass's shares), a buffer per field of the march
+// (marchFields) for the largest piece's layers and halo (the march's or the
+// walks to the light's, the larger), made for each march region and light
+// pass (a test's option, so kept simple); none otherwise.
+void RenderSession::preparePieceFields(int pieces)
 {
   this->PieceFieldBuffers.clear();
-  const int pieces = this->marchPieces();
   if (!this->MarchPieceFieldsOnly || pieces <= 1)
   {
     return;
@@ -222,13 +222,14 @@ std::vector<RenderSession::PieceField> RenderSession::pieceFields() const
 // absorption's `cellsHalo`, SurfaceDistance `distanceHalo`, the light fields
 // (and the absorption's, the Bragg shadows) `lightHalo`, which it writes
 // at its voxels (copied back after each dispatch, recordWrittenBack). None
-// without MarchPieces: a shared march's pieces (its share's) split no light pass.
+// where the pass splits into no `pieces` (MarchPieces in one process, a
+// shared march's shares for the walks it shares, marchLightShared).
 std::vector<RenderSession::PieceField> RenderSession::lightPassPieceFields(
-  int cellsHalo, int distanceHalo, int lightHalo) const
+  int pieces, int cellsHalo, int distanceHalo, int lightHalo) const
 {
   const DeviceVolume& v = *this->Volume;
   std::vector<PieceField> fields;
-  if (this->MarchPieces <= 1)
+  if (pieces <= 1)
   {
     return fields;
   }
@@ -250,9 +251,9 @@ std::vector<RenderSession::PieceField> RenderSession::lightPassPieceFields(
 // where it walks, and those of TraceStepLayers + 1 layers beyond the piece
 // where a walk starts behind it (walkLayerHeld); SurfaceDistance as the
 // march reads it; its light at its own voxel, in its voxel's piece.
-std::vector<RenderSession::PieceField> RenderSession::lightPieceFields() const
+std::vector<RenderSession::PieceField> RenderSession::lightPieceFields(int pieces) const
 {
-  return this->lightPassPieceFields(LightCellsHalo, gpu::TraceStepLayers + 2, 0);
+  return this->lightPassPieceFields(pieces, LightCellsHalo, gpu::TraceStepLayers + 2, 0);
 }
 
 // The sweep from above's: the halo of the ranks' shared sweep
@@ -260,7 +261,7 @@ std::vector<RenderSession::PieceField> RenderSession::lightPieceFields() const
 // and the segment to it.
 std::vector<RenderSession::PieceField> RenderSession::sweepPieceFields() const
 {
-  return this->lightPassPieceFields(SweepHaloRows, SweepHaloRows, SweepHaloRows);
+  return this->lightPassPieceFields(this->MarchPieces, SweepHaloRows, SweepHaloRows, SweepHaloRows);
 }
 
 // Records: each field's piece layers and halo copied into its piece buffer,

@@ -58,9 +58,9 @@ bool RenderSession::sweepLightLayers(
   if (forwarded)
   {
     this->prepareRayStates(this->lightStateBytes(true));
-    this->preparePieceFields();
+    this->preparePieceFields(this->MarchPieces);
   }
-  const std::vector<PieceField> walkFields = this->lightPieceFields();
+  const std::vector<PieceField> walkFields = this->lightPieceFields(this->MarchPieces);
   const std::vector<PieceField> sweepFields = this->sweepPieceFields();
   for (int top = layers - 1; top >= 0;)
   {
@@ -76,7 +76,7 @@ bool RenderSession::sweepLightLayers(
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
         this->recordSweepLayer(commands, sweep, sweepFields, rows, layer);
-        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0), 0 };
+        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0), 0, 0 };
         this->recordPiecePasses(commands, walkFields, this->Sweeps.LightWalks, [&](const PiecePass& pass) {
           enter.dispatchIndirect(commands, pass.of(work), *this->Volume->EntryQueues,
             static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
@@ -102,7 +102,7 @@ bool RenderSession::marchLightPerVoxel(bool braggShadow, Progress& progress)
   if (forwarded)
   {
     this->prepareRayStates(this->lightStateBytes(false));
-    this->preparePieceFields();
+    this->preparePieceFields(this->MarchPieces);
   }
   return this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow, forwarded),
     this->SlabPacer, progress.stageCallback(), 0, this->Volume->Shape.voxelCount(), forwarded);
@@ -120,7 +120,7 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
   {
     const auto count = static_cast<std::int32_t>(
       std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), most)), end - first));
-    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0), 0 };
+    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0), 0, 0 };
     const auto groups = static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {
@@ -129,7 +129,7 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
         pass.dispatch(commands, work, groups);
         return;
       }
-      this->recordPiecePasses(commands, this->lightPieceFields(), this->Sweeps.LightWalks,
+      this->recordPiecePasses(commands, this->lightPieceFields(this->MarchPieces), this->Sweeps.LightWalks,
         [&](const PiecePass& piecePass) { pass.dispatch(commands, piecePass.of(work), groups); });
     });
     pacer.measured(count, secondsSince(start));
@@ -502,7 +502,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.pixelSamples = target.PixelSamples;
   this->Buffers->Parameters->upload(&block, sizeof(block));
   this->prepareRayStates(this->rayStateBytes(setup, rect));
-  this->preparePieceFields();
+  this->preparePieceFields(this->marchPieces());
   const ComputePipeline& march = this->marchPipeline(setup);
   if (this->SharedMarch)
   {

@@ -376,8 +376,14 @@ private:
   static std::uint32_t queuedGroups(std::int64_t count);
   bool marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX, std::uint32_t groupsY,
     MarchRounds& rounds);
+  struct SharedForwarding;
+  bool forwardShared(const SharedForwarding& pass, MarchRounds& rounds);
+  std::vector<char> forwardedRound(const SharedForwarding& pass, MarchRounds& rounds, bool started);
   void dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY, MarchRounds& rounds);
+  void writeFreshStates(MarchRounds& rounds);
+  bool marchLightShared(bool braggShadow, Progress& progress, const LayerExchange& round, bool& exchanging);
+  bool holdsPieceOf(int share, int shares) const;
   void readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds, std::uint32_t* after) const;
   int marchPieces() const;
   void recordMarchRing(VkCommandBuffer commands, const ComputePipeline& march, const std::array<int, 4>& rect) const;
@@ -417,10 +423,10 @@ private:
   };
   std::vector<PieceField> marchFields() const;
   std::pair<std::uint64_t, std::uint64_t> pieceBytes(const PieceField& field, std::pair<int, int> layers) const;
-  void preparePieceFields();
+  void preparePieceFields(int pieces);
   std::vector<PieceField> pieceFields() const;
-  std::vector<PieceField> lightPassPieceFields(int cellsHalo, int distanceHalo, int lightHalo) const;
-  std::vector<PieceField> lightPieceFields() const;
+  std::vector<PieceField> lightPassPieceFields(int pieces, int cellsHalo, int distanceHalo, int lightHalo) const;
+  std::vector<PieceField> lightPieceFields(int pieces) const;
   std::vector<PieceField> sweepPieceFields() const;
   void recordPieceFields(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   void recordWrittenBack(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;

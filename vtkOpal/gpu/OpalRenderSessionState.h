@@ -56,6 +56,10 @@ constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewe
 // workgroups (8 rows at least: wider than ~11 000 pixels at 41 bins, a band
 // passes that range, which the frame refuses).
 constexpr std::int64_t SharedBandPixels = 1 << 14;
+// The walks to the light a share of a light pass shared by processes starts
+// in each work of its rounds (RenderSession::marchLightShared): their kept
+// states, LightStateWords each, 1 MB a share.
+constexpr std::int64_t SharedLightWalks = 1 << 13;
 constexpr std::int64_t SharedRefinePixels = 1 << 12;
 constexpr std::uint64_t EveryDeviceStorageRange = std::uint64_t(1) << 27;
 inline std::int64_t sharedBandPixels(std::uint64_t stateWords)
@@ -259,6 +263,7 @@ public:
   bool exchangeRays(const std::vector<char>& post);
   // A round saying this share stops, unless the rounds are over.
   void stop();
+  int shares() const { return this->Share.Shares; }
   // The frame's last round is over: the rest of it is each share's alone.
   void finish() { this->Ended = true; }
 
@@ -283,6 +288,23 @@ public:
 
 private:
   RenderSession& Session;
+};
+
+// A forwarded pass's work shared by processes (RenderSession::forwardShared,
+// docs/design.md §8.1): this share's piece of the layers z, the slots it
+// starts in the first round (one run; none where another share starts
+// them), the rounds that bound every path, what a refusal names, whether a
+// failure posts a round saying this share stops (the march's rounds) or
+// leaves them to its step's last exchange (a shared step's), and the
+// dispatch of a round's slots (`started`: the first round's).
+struct RenderSession::SharedForwarding
+{
+  std::pair<int, int> Layers;
+  std::pair<std::uint64_t, std::uint64_t> Started;
+  int MostRounds;
+  std::string Pass, States;
+  bool StopsInRound;
+  std::function<void(bool started, const std::vector<std::uint32_t>& slots)> Dispatch;
 };
 
 // A pass of RenderSession::recordPiecePasses (docs/design.md §8.1): its

@@ -341,17 +341,15 @@ bool raysGoOn(const std::vector<std::uint32_t>& held, std::uint64_t words)
   return false;
 }
 
-// The slots a round takes up: in the first (`started`) every slot, later
-// those held in `layers` (the shader's resumeRay: a layer word within them).
-std::vector<std::uint32_t> roundSlots(
-  const std::vector<std::uint32_t>& held, std::uint64_t words, bool started, std::pair<int, int> layers)
+// The slots a round after the first takes up: those held in `layers` (the
+// shader's resumeRay: a layer word within them).
+std::vector<std::uint32_t> roundSlots(const std::vector<std::uint32_t>& held, std::uint64_t words, std::pair<int, int> layers)
 {
   std::vector<std::uint32_t> slots;
   for (std::uint64_t at = 0; at < held.size(); at += words)
   {
     const std::uint32_t layer = held[at];
-    if (started || (layer < gpu::KeptUnwritten && static_cast<int>(layer) >= layers.first &&
-                     static_cast<int>(layer) < layers.second))
+    if (layer < gpu::KeptUnwritten && static_cast<int>(layer) >= layers.first && static_cast<int>(layer) < layers.second)
     {
       slots.push_back(static_cast<std::uint32_t>(at / words));
     }
@@ -426,11 +424,8 @@ std::vector<SlotRun> slotRuns(const std::vector<std::uint32_t>& slots)
 
 // One dispatch's work of a shared march: share 0 starts every ray in the
 // first round; in each round after, every share takes up the rays held in
-// its layers; each round's rays go to every share (MarchRounds) until none
-// goes on, within as many rounds as one process's sweeps have passes and
-// the start (a longer path is refused alike by every share: no partial
-// image); then every share writes every finished ray's pixel. False where
-// a share stopped.
+// its layers (forwardShared); then every share writes every finished ray's
+// pixel. False where a share stopped.
 bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork work, std::uint32_t groupsX,
   std::uint32_t groupsY, MarchRounds& rounds)
 {
@@ -438,33 +433,52 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
   const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], share.Share, share.Shares);
   work.piece = gpu::ivec2(layers.first, layers.second);
   work.sharesRays = 1;
-  rounds.begin(std::uint64_t(groupsX) * groupsY * gpu::MarchGroupSide * gpu::MarchGroupSide);
-  const int mostRounds = MarchSweeps * (share.Shares - 1) + 2;
+  const std::uint64_t slots = std::uint64_t(groupsX) * groupsY * gpu::MarchGroupSide * gpu::MarchGroupSide;
+  rounds.begin(slots);
+  const SharedForwarding pass{ layers, { 0, share.Share == 0 ? slots : 0 }, MarchSweeps * (share.Shares - 1) + 2,
+    "view march", "rays", true, [&](bool started, const std::vector<std::uint32_t>&) {
+      work.resumed = started ? gpu::MarchStartsRays : gpu::MarchResumesRays;
+      this->dispatchShared(march, work, groupsX, groupsY, rounds);
+    } };
+  if (!this->forwardShared(pass, rounds))
+  {
+    return false;
+  }
+  work.resumed = gpu::MarchWritesFinished;
+  this->dispatchShared(march, work, groupsX, groupsY, rounds);
+  return true;
+}
+
+// The rounds of a forwarded pass's work shared by processes: in the first,
+// each share starts the states of its `Started` slots; in each round after,
+// every share takes up the states held in its layers; each round's states go
+// to every share (MarchRounds) until none goes on, within MostRounds (a
+// longer path is refused alike by every share: no partial result). A
+// failure in a round posts that this share stops where the pass
+// `StopsInRound` (the march); otherwise it leaves the rounds to its step's
+// last exchange. False where a share stopped.
+bool RenderSession::forwardShared(const SharedForwarding& pass, MarchRounds& rounds)
+{
+  const int shares = rounds.shares();
   for (int round = 0; round == 0 || raysGoOn(rounds.Held, rounds.Words); ++round)
   {
-    if (round == mostRounds)
+    if (round == pass.MostRounds)
     {
-      throw std::runtime_error("The view march shared by " + std::to_string(share.Shares) +
-        " processes left rays unfinished after " + std::to_string(mostRounds) + " rounds; no image is given.");
+      throw std::runtime_error("The " + pass.Pass + " shared by " + std::to_string(shares) + " processes left " +
+        pass.States + " unfinished after " + std::to_string(pass.MostRounds) + " rounds; no image is given.");
     }
-    const bool started = round == 0;
     std::vector<char> post = postOf(1, 1);
     std::exception_ptr failure;
     try
     {
-      work.resumed = started ? gpu::MarchStartsRays : gpu::MarchResumesRays;
-      if (!started || share.Share == 0)
-      {
-        const std::vector<std::uint32_t> slots = roundSlots(rounds.Held, rounds.Words, started, layers);
-        this->dispatchShared(march, work, groupsX, groupsY, rounds);
-        std::vector<std::uint32_t> after(started ? 0 : slots.size() * rounds.Words);
-        std::uint32_t* states = started ? rounds.Held.data() : after.data(); // the first round's: every slot
-        this->readRayStates(slots, rounds, states);
-        post = takenUp(rounds.Held, slots, states, rounds.Words, started);
-      }
+      post = this->forwardedRound(pass, rounds, round == 0);
     }
     catch (...)
     {
+      if (!pass.StopsInRound)
+      {
+        throw;
+      }
       failure = std::current_exception();
       post = postOf(1, 0);
     }
@@ -478,17 +492,57 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
       return false;
     }
   }
-  work.resumed = gpu::MarchWritesFinished;
-  this->dispatchShared(march, work, groupsX, groupsY, rounds);
   return true;
 }
 
+// A round of forwardShared on this share: its slots (the first round's
+// started, then those held in its layers) dispatched, their states read back
+// (the first round's straight into Held) and posted. A share starting none
+// in the first round dispatches nothing there.
+std::vector<char> RenderSession::forwardedRound(const SharedForwarding& pass, MarchRounds& rounds, bool started)
+{
+  const auto [first, end] = pass.Started;
+  if (started && first == end)
+  {
+    return postOf(1, 1);
+  }
+  std::vector<std::uint32_t> slots;
+  if (started)
+  {
+    for (std::uint64_t slot = first; slot < end; ++slot)
+    {
+      slots.push_back(static_cast<std::uint32_t>(slot));
+    }
+  }
+  else
+  {
+    slots = roundSlots(rounds.Held, rounds.Words, pass.Layers);
+  }
+  pass.Dispatch(started, slots);
+  std::vector<std::uint32_t> after(started ? 0 : slots.size() * rounds.Words);
+  std::uint32_t* states = started ? rounds.Held.data() + first * rounds.Words : after.data();
+  this->readRayStates(slots, rounds, states);
+  return takenUp(rounds.Held, slots, states, rounds.Words, started);
+}
+
 // A dispatch of `work` in a shared march on this share, after the states the
-// device lacks are written (all of Held the first time, then the slots
-// other shares posted), reading its piece's fields alone with
-// VulkanOptions::MarchPieceFieldsOnly (recordPieceFields).
+// device lacks are written (writeFreshStates), reading its piece's fields
+// alone with VulkanOptions::MarchPieceFieldsOnly (recordPieceFields).
 void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
   std::uint32_t groupsY, MarchRounds& rounds)
+{
+  this->writeFreshStates(rounds);
+  const std::vector<PieceField> fields = this->pieceFields();
+  this->Context->submitAndWait([&](VkCommandBuffer commands) {
+    this->recordPieceFields(commands, fields, { work.piece.x, work.piece.y });
+    march.dispatch(commands, work, groupsX, groupsY);
+    this->recordWholeFields(commands, fields);
+  });
+}
+
+// The states the device's buffer lacks written from Held: all of them the
+// first time, then the slots other shares posted since (Fresh), as runs.
+void RenderSession::writeFreshStates(MarchRounds& rounds)
 {
   const auto start = Clock::now();
   VulkanBuffer& states = *this->Buffers->RayStates;
@@ -513,12 +567,6 @@ void RenderSession::dispatchShared(const ComputePipeline& march, const gpu::Marc
   rounds.Fresh.clear();
   rounds.DeviceHolds = true;
   rounds.Seconds += secondsSince(start);
-  const std::vector<PieceField> fields = this->pieceFields();
-  this->Context->submitAndWait([&](VkCommandBuffer commands) {
-    this->recordPieceFields(commands, fields, { work.piece.x, work.piece.y });
-    march.dispatch(commands, work, groupsX, groupsY);
-    this->recordWholeFields(commands, fields);
-  });
 }
 
 // The states of `slots` (sorted) after a shared march's dispatch, into
