@@ -529,12 +529,13 @@ LightWalk startLightWalk(int index, vec3 p, vec3 direction, float d)
 }
 
 // Saves (`saving`) or restores the walk of invocation `slot` of a forwarded
-// light pass (from p along `direction`): everything its steps read again,
-// bit for bit (LightStateWords with the layer word); its phase alone where
-// it has not started.
-void keepLightWalk(int slot, bool saving, inout LightWalk w, vec3 direction)
+// light pass (from p along `direction`): its voxel, then everything its
+// steps read again, bit for bit (LightStateWords with the layer word); its
+// voxel and phase alone where it has not started.
+void keepLightWalk(int slot, bool saving, inout int voxel, inout LightWalk w, vec3 direction)
 {
   beginKeeping(slot, LightStateWords, saving);
+  keepInt(voxel);
   keepInt(w.phase);
   if (w.phase == LightWalkUnstarted) return; // its start sets the rest
   keepFloat(w.t);
@@ -652,14 +653,23 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
     P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)), shadow);
 }
 
-// The voxel this invocation lights, or -1.
-int voxelOfInvocation()
+// The voxel this invocation (its walk's state in slot `slot`) lights, or -1.
+// A queued walk's is its queue's entry; in a light pass shared by processes
+// (docs/design.md §8.1), where a dispatch takes up `count` walks of another
+// share's queue (not this device's), the voxel kept with its walk (read
+// before its layer word says whether it goes on here: nothing is read at it
+// before that).
+int voxelOfInvocation(int slot)
 {
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   int local = passItem(LightPassGroupSize);
   if (LIGHT_PASS_MODE == LightPassMarchTowardsLight || LIGHT_PASS_MODE == LightPassScatteredField)
   {
     return local < work.count ? work.first + local : -1;
+  }
+  if (LIGHT_PASS_MODE == LightPassMarchQueued && work.count > 0)
+  {
+    return local < work.count ? int(keptStates[slot * LightStateWords + 1]) : -1;
   }
   if (LIGHT_PASS_MODE == LightPassMarchQueued)
   {
@@ -672,28 +682,30 @@ int voxelOfInvocation()
 // another piece's kept untouched for it (false); in a later one, its walk
 // taken up again where this piece holds the layer it goes on in (false
 // where done or elsewhere: one word read); `started` once begun.
-bool takeUpWalk(int slot, ivec3 c, vec3 direction, out LightWalk w, out bool started)
+bool takeUpWalk(int slot, int index, ivec3 c, vec3 direction, out LightWalk w, out bool started)
 {
   started = false;
+  int voxel = index;
   if (work.resumed == 0)
   {
     if (layerHeld(c.z)) return true;
     // Not started: its voxel's own reads wait for its piece.
     keepLayer(slot, LightStateWords, uint(neededLayer));
     w.phase = LightWalkUnstarted;
-    keepLightWalk(slot, true, w, direction);
+    keepLightWalk(slot, true, voxel, w, direction);
     return false;
   }
   uint layer = keptLayer(slot, LightStateWords);
   if (!keptGoesOn(layer) || !layerHeld(int(layer))) return false;
-  keepLightWalk(slot, false, w, direction);
+  keepLightWalk(slot, false, voxel, w, direction);
   started = w.phase != LightWalkUnstarted;
   return true;
 }
 
 void main()
 {
-  int index = voxelOfInvocation();
+  int slot = work.slotFirst + passItem(LightPassGroupSize);
+  int index = voxelOfInvocation(slot);
   if (index < 0) return;
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
   ivec3 c = ivec3(index % nx, (index / nx) % ny, index / (nx * ny));
@@ -707,11 +719,10 @@ void main()
   vec3 toLight = P.light - p;
   float distanceToLight = length(toLight);
   vec3 direction = toLight / distanceToLight;
-  int slot = work.slotFirst + passItem(LightPassGroupSize);
   LightWalk w;
   bool started = false;
   bool last = FORWARDED && work.last != 0;
-  if (FORWARDED && !takeUpWalk(slot, c, direction, w, started))
+  if (FORWARDED && !takeUpWalk(slot, index, c, direction, w, started))
   {
     countUnfinished(slot, LightStateWords, last);
     return;
@@ -743,7 +754,7 @@ void main()
   if (!done || (FORWARDED && !layerHeld(c.z)))
   {
     keepLayer(slot, LightStateWords, uint(neededLayer));
-    keepLightWalk(slot, true, w, direction);
+    keepLightWalk(slot, true, index, w, direction);
     countUnfinished(slot, LightStateWords, last);
     return;
   }

@@ -309,7 +309,9 @@ struct VolumeAddresses
 // Push constants of the light pass: the voxels [first, first + count) in
 // LightPassMarchTowardsLight and LightPassScatteredField; the layer y = layer
 // in the other two modes, LightPassSweepFromAbove sweeping its rows
-// z = first to first + count - 1 (a share of the layer, docs/design.md §8.1).
+// z = first to first + count - 1 (a share of the layer, docs/design.md §8.1),
+// LightPassMarchQueued the layer's queue (count 0) or, taking up another
+// share's queued walks in a pass shared by processes, `count` of them.
 // A forwarded walk to the light (§8.1) walks only within layers z in
 // [piece.x, piece.y), each walk kept where it needs another piece and taken
 // up again by a later dispatch of the same voxels (`resumed` 1); the last
@@ -378,8 +380,10 @@ OPAL_CONSTANT uint KeptUnwritten = 0xfffffffeu;
 // TraceStepLayers + 2 layers beyond its own (docs/design.md §8.1).
 OPAL_CONSTANT int TraceStepLayers = 4;
 // The words a forwarded walk to the light keeps per voxel, exactly
-// (light_optical_depth.comp's keepLightWalk and its layer word).
-OPAL_CONSTANT int LightStateWords = 32;
+// (light_optical_depth.comp's keepLightWalk and its layer word): its voxel
+// among them, which a share of a shared light pass taking up another
+// share's queued walk reads (its own queue holds other voxels).
+OPAL_CONSTANT int LightStateWords = 33;
 // The words a forwarded march keeps per ray, exactly (view_march.comp's
 // keepRay and its layer word): its place, its entry and exit traces, walk and
 // round, its recorded crossings, its sums and, with energy conservation, the

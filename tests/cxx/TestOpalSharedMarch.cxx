@@ -284,6 +284,10 @@ int TestOpalSharedMarch(int, char*[])
   const auto paperVolume = opal::buildVolume(paper);
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
+  // Each share holding its piece: each layer's sweep, then its queued walks
+  // to the light between the shares, taken up where a share holds the
+  // layer they need (each walk's voxel kept with it: the share's queue holds
+  // its own), their light stored back in their own voxel's share.
   checkShared(paperStone, p, 3, "fig12, each share's light fields held by piece", { 2.0, nullptr, false, true });
   // Bands: 640 pixels across, a shared band holds 24 rows (2^14 pixels at
   // most, in whole rows of 8), so 200 rows take nine, the last of 8 rows;

@@ -44,9 +44,11 @@ bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
   return completed;
 }
 
-// Layer by layer from the top: each layer reads the one above.
-bool RenderSession::sweepLightLayers(
-  bool braggShadow, Progress& progress, std::pair<int, int> rows, const std::function<bool(int layer)>& afterLayer)
+// Layer by layer from the top: each layer reads the one above. With
+// `walkQueue` each layer's queued walks are its (the walks shared between
+// processes, walkQueueShared) after the layer's sweep, before `afterLayer`.
+bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress, std::pair<int, int> rows,
+  const std::function<bool(int layer)>& afterLayer, const std::function<bool(int layer)>& walkQueue)
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
   const int layers = dims[1];
@@ -64,7 +66,7 @@ bool RenderSession::sweepLightLayers(
   const std::vector<PieceField> sweepFields = this->sweepPieceFields();
   for (int top = layers - 1; top >= 0;)
   {
-    const int layersPerSubmit = afterLayer
+    const int layersPerSubmit = afterLayer || walkQueue
       ? 1
       : static_cast<int>(std::clamp<std::int64_t>(this->SweepPacer.items() / std::max<std::int64_t>(layerVoxels, 1), 1, layers));
     const auto start = Clock::now();
@@ -76,7 +78,11 @@ bool RenderSession::sweepLightLayers(
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
         this->recordSweepLayer(commands, sweep, sweepFields, rows, layer);
-        const gpu::LightPassWork work{ rows.first, rows.second - rows.first, layer, 0, gpu::ivec2(0, 0), 0, 0 };
+        if (walkQueue)
+        {
+          continue;
+        }
+        const gpu::LightPassWork work{ 0, 0, layer, 0, gpu::ivec2(0, 0), 0, 0 }; // count 0: the layer's queue
         this->recordPiecePasses(commands, walkFields, this->Sweeps.LightWalks, [&](const PiecePass& pass) {
           enter.dispatchIndirect(commands, pass.of(work), *this->Volume->EntryQueues,
             static_cast<std::uint64_t>(layer) * sizeof(gpu::DispatchQueue));
@@ -84,6 +90,10 @@ bool RenderSession::sweepLightLayers(
       }
     });
     const int swept = std::min(layersPerSubmit, top + 1);
+    if (walkQueue && !walkQueue(top))
+    {
+      return false;
+    }
     this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
     top -= swept;
     if (!progress.stageDone(static_cast<double>(layers - 1 - top) / layers) || (afterLayer && top >= 0 && !afterLayer(top + 1)))

@@ -34,6 +34,7 @@ class StorageBufferBindings;
 namespace gpu
 {
 struct MarchWork;
+struct LightPassWork;
 struct VolumeAddresses;
 }
 class VulkanBuffer;
@@ -314,9 +315,10 @@ private:
   gpu::VolumeAddresses volumeAddresses(const std::map<const VulkanBuffer*, std::uint64_t>& shifted) const;
   bool runLightPass(const FrameSetup& setup, Progress& progress);
   // Rows z in [rows.first, rows.second) of every layer; `afterLayer` (where
-  // given) after each layer but the last, one layer a submit, false stops.
+  // given) after each layer but the last, one layer a submit, false stops;
+  // `walkQueue` (where given) each layer's queued walks, after its sweep.
   bool sweepLightLayers(bool braggShadow, Progress& progress, std::pair<int, int> rows,
-    const std::function<bool(int layer)>& afterLayer = nullptr);
+    const std::function<bool(int layer)>& afterLayer = nullptr, const std::function<bool(int layer)>& walkQueue = nullptr);
   bool marchLightPerVoxel(bool braggShadow, Progress& progress);
   bool dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer& pacer, const std::function<bool(double)>& keepGoing,
     std::size_t first, std::size_t end, bool forwarded = false);
@@ -382,7 +384,15 @@ private:
   void dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY, MarchRounds& rounds);
   void writeFreshStates(MarchRounds& rounds);
+  struct SharedWalks;
+  std::unique_ptr<SharedWalks> beginSharedWalks(const LayerExchange& round, std::uint64_t perShare);
+  using WalkWork = std::function<gpu::LightPassWork(int share, bool resumed, std::uint64_t taken)>;
+  bool walkShared(SharedWalks& walks, const ComputePipeline& pass, std::uint64_t started, const WalkWork& workOf);
   bool marchLightShared(bool braggShadow, Progress& progress, const LayerExchange& round, bool& exchanging);
+  bool sweepLightShared(bool braggShadow, Progress& progress, std::pair<int, int> rows,
+    const std::function<bool(int layer)>& afterLayer, const LayerExchange& round, bool& exchanging);
+  bool walkQueueShared(SharedWalks& walks, const ComputePipeline& enter, int layer);
+  std::uint64_t queuedWalksPerShare() const;
   bool holdsPieceOf(int share, int shares) const;
   void readRayStates(const std::vector<std::uint32_t>& slots, MarchRounds& rounds, std::uint32_t* after) const;
   int marchPieces() const;

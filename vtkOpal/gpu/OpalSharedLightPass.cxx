@@ -102,16 +102,6 @@ std::vector<char> readShare(const Fields& fields, const HeldVoxels& held, const 
   return share;
 }
 
-// Work k's voxels of share `share` in the shares' walks to the light
-// (marchLightShared): the kth run of SharedLightWalks of its slab, none
-// past its end.
-std::pair<std::size_t, std::size_t> walkWork(const std::array<int, 3>& dims, int share, int shares, std::size_t k)
-{
-  const auto [first, end] = slabOf(dims, shareRows(dims, share, shares)).front();
-  const std::size_t from = std::min(first + k * static_cast<std::size_t>(SharedLightWalks), end);
-  return { from, std::min(from + static_cast<std::size_t>(SharedLightWalks), end) };
-}
-
 // Whether a run (by its first voxel) is written where it arrives; none: all.
 using Wanted = std::function<bool(std::size_t firstVoxel)>;
 
@@ -365,7 +355,9 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
       const Runs slab = slabOf(dims, rows);
       if (this->Volume->Medium.Geometry.lightAboveGrid(setup->Camera.Light))
       {
-        return this->sweepLightLayers(braggShadow, progress, rows, exchangeLayer);
+        return this->holdsPieceOf(share, shares)
+          ? this->sweepLightShared(braggShadow, progress, rows, exchangeLayer, layer, exchanging)
+          : this->sweepLightLayers(braggShadow, progress, rows, exchangeLayer);
       }
       return this->holdsPieceOf(share, shares)
         ? this->marchLightShared(braggShadow, progress, layer, exchanging)
@@ -385,80 +377,10 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
 
 // Whether a shared light pass's shares are the pieces this session holds
 // (holdPiece: a march shared by processes, the data-parallel render): its
-// walks to the light then go between the shares (marchLightShared).
+// walks to the light then go between the shares (OpalSharedLightWalks.cxx).
 bool RenderSession::holdsPieceOf(int share, int shares) const
 {
   return shares > 1 && this->HeldPiece == std::make_pair(share, shares);
-}
-
-// The walks to the light from every voxel (the light low or to the side) of
-// a light pass shared by the processes whose pieces the sessions hold
-// (holdsPieceOf), forwarded
-// between their pieces as one process's are between MarchPieces
-// (docs/design.md §8.1): in each work every share starts the walks of its
-// next SharedLightWalks voxels, each walk goes on in the share whose layers
-// it needs (forwardShared, in `round`s) and its light is stored back in its
-// own voxel's share, so that a share reads its piece's medium and halo alone
-// (lightPieceFields). False where a share stopped (`exchanging` false: a
-// round ended the exchange) or the progress aborts.
-bool RenderSession::marchLightShared(bool braggShadow, Progress& progress, const LayerExchange& round, bool& exchanging)
-{
-  const auto [share, shares] = this->HeldPiece;
-  const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-  const std::pair<int, int> layers = shareRows(dims, share, shares);
-  const auto walks = static_cast<std::size_t>(SharedLightWalks);
-  const auto workOf = [&](int s, std::size_t k) { return walkWork(dims, s, shares, k); };
-  std::size_t works = 0; // alike on every share: the largest slab's
-  for (int s = 0; s < shares; ++s)
-  {
-    const auto [first, end] = slabOf(dims, shareRows(dims, s, shares)).front();
-    works = std::max(works, (end - first + walks - 1) / walks);
-  }
-  const ComputePipeline& pass = this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow, true);
-  this->prepareRayStates(static_cast<std::uint64_t>(shares) * walks * gpu::LightStateWords * sizeof(std::uint32_t));
-  this->preparePieceFields(shares);
-  const std::vector<PieceField> fields = this->lightPieceFields(shares);
-  const MarchShare light{ share, shares, round };
-  MarchRounds rounds(light);
-  rounds.Words = gpu::LightStateWords;
-  rounds.begin(static_cast<std::uint64_t>(shares) * walks);
-  for (std::size_t k = 0; k < works; ++k)
-  {
-    const auto [first, end] = workOf(share, k);
-    const std::uint64_t own = static_cast<std::uint64_t>(share) * walks;
-    const SharedForwarding work{ layers, { own, own + (end - first) }, LightWalkSweeps * (shares - 1) + 2, "light pass",
-      "walks to the light", false, [&](bool started, const std::vector<std::uint32_t>& slots) {
-        this->writeFreshStates(rounds);
-        std::vector<bool> taken(static_cast<std::size_t>(shares), false); // the shares whose walks it takes up
-        for (const std::uint32_t slot : slots)
-        {
-          taken[slot / walks] = true;
-        }
-        this->Context->submitAndWait([&](VkCommandBuffer commands) {
-          this->recordPieceFields(commands, fields, layers);
-          for (int s = 0; s < shares; ++s)
-          {
-            const auto [from, to] = workOf(s, k);
-            if (taken[static_cast<std::size_t>(s)])
-            {
-              const auto count = static_cast<std::int32_t>(to - from);
-              pass.dispatch(commands,
-                gpu::LightPassWork{ static_cast<std::int32_t>(from), count, 0, started ? 0 : 1,
-                  gpu::ivec2(layers.first, layers.second), 0, static_cast<std::int32_t>(s * walks) },
-                static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
-            }
-          }
-          this->recordWrittenBack(commands, fields, layers);
-          this->recordWholeFields(commands, fields);
-        });
-      } };
-    exchanging = this->forwardShared(work, rounds); // a throw leaves it as it was: the step's last exchange ends it
-    if (!exchanging || !progress.stageDone(static_cast<double>(k + 1) / static_cast<double>(works)))
-    {
-      return false;
-    }
-  }
-  return true;
 }
 
 bool RenderSession::needsScatteredField(const ResolvedFrame& frame) const
