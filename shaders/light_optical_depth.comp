@@ -655,10 +655,10 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
 
 // The voxel this invocation (its walk's state in slot `slot`) lights, or -1.
 // A queued walk's is its queue's entry; in a light pass shared by processes
-// (docs/design.md §8.1), where a dispatch takes up `count` walks of another
-// share's queue (not this device's), the voxel kept with its walk (read
-// before its layer word says whether it goes on here: nothing is read at it
-// before that).
+// (docs/design.md §8.1), where a later round's dispatch takes up `count`
+// walks of a share's queue (this device's queue may be another share's),
+// the voxel kept with its walk (read before its layer word says whether it
+// goes on here: nothing is read at it before that).
 int voxelOfInvocation(int slot)
 {
   int nx = P.gridDimensions.x, ny = P.gridDimensions.y;

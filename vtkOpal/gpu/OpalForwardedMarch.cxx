@@ -99,16 +99,17 @@ void RenderSession::requireForwardedFinished(const std::string& pass) const
 }
 
 // Records the sweep from above of layer y = `layer`'s rows z `rows`: one
-// dispatch, or with MarchPieces one per piece of them, each reading and
+// dispatch per piece of them of `pieces` (one; MarchPieces; a shared light
+// pass's shares, whose rows are this share's piece), each reading and
 // writing its piece's `fields` alone (sweepPieceFields), as a rank holding
 // its piece does (docs/design.md §8.1).
 void RenderSession::recordSweepLayer(VkCommandBuffer commands, const ComputePipeline& sweep,
-  const std::vector<PieceField>& fields, std::pair<int, int> rows, int layer) const
+  const std::vector<PieceField>& fields, std::pair<int, int> rows, int layer, int pieces) const
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
-  for (int piece = 0; piece < this->MarchPieces; ++piece)
+  for (int piece = 0; piece < pieces; ++piece)
   {
-    const std::pair<int, int> layers = evenShare(dims[2], piece, this->MarchPieces);
+    const std::pair<int, int> layers = evenShare(dims[2], piece, pieces);
     const int first = std::max(rows.first, layers.first), end = std::min(rows.second, layers.second);
     if (first >= end)
     {
@@ -256,12 +257,12 @@ std::vector<RenderSession::PieceField> RenderSession::lightPieceFields(int piece
   return this->lightPassPieceFields(pieces, LightCellsHalo, gpu::TraceStepLayers + 2, 0);
 }
 
-// The sweep from above's: the halo of the ranks' shared sweep
-// (SweepHaloRows) for the 3 x 3 read of the layer above, the rows about it
-// and the segment to it.
-std::vector<RenderSession::PieceField> RenderSession::sweepPieceFields() const
+// The sweep from above's through `pieces`: the halo of the ranks' shared
+// sweep (SweepHaloRows) for the 3 x 3 read of the layer above, the rows
+// about it and the segment to it.
+std::vector<RenderSession::PieceField> RenderSession::sweepPieceFields(int pieces) const
 {
-  return this->lightPassPieceFields(this->MarchPieces, SweepHaloRows, SweepHaloRows, SweepHaloRows);
+  return this->lightPassPieceFields(pieces, SweepHaloRows, SweepHaloRows, SweepHaloRows);
 }
 
 // Records: each field's piece layers and halo copied into its piece buffer,

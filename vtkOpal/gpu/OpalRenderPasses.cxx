@@ -63,7 +63,9 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress, std::
     this->preparePieceFields(this->MarchPieces);
   }
   const std::vector<PieceField> walkFields = this->lightPieceFields(this->MarchPieces);
-  const std::vector<PieceField> sweepFields = this->sweepPieceFields();
+  // Shared with its walks (walkQueue), the pass's rows are this share's piece (HeldPiece).
+  const int sweepPieces = walkQueue ? this->HeldPiece.second : this->MarchPieces;
+  const std::vector<PieceField> sweepFields = this->sweepPieceFields(sweepPieces);
   for (int top = layers - 1; top >= 0;)
   {
     const int layersPerSubmit = afterLayer || walkQueue
@@ -77,7 +79,7 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress, std::
       }
       for (int layer = top; layer > top - layersPerSubmit && layer >= 0; --layer)
       {
-        this->recordSweepLayer(commands, sweep, sweepFields, rows, layer);
+        this->recordSweepLayer(commands, sweep, sweepFields, rows, layer, sweepPieces);
         if (walkQueue)
         {
           continue;
@@ -90,11 +92,11 @@ bool RenderSession::sweepLightLayers(bool braggShadow, Progress& progress, std::
       }
     });
     const int swept = std::min(layersPerSubmit, top + 1);
+    this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
     if (walkQueue && !walkQueue(top))
     {
       return false;
     }
-    this->SweepPacer.measured(swept * layerVoxels, secondsSince(start));
     top -= swept;
     if (!progress.stageDone(static_cast<double>(layers - 1 - top) / layers) || (afterLayer && top >= 0 && !afterLayer(top + 1)))
     {

@@ -380,7 +380,8 @@ private:
     MarchRounds& rounds);
   struct SharedForwarding;
   bool forwardShared(const SharedForwarding& pass, MarchRounds& rounds);
-  std::vector<char> forwardedRound(const SharedForwarding& pass, MarchRounds& rounds, bool started);
+  std::vector<char> forwardedRound(
+    const SharedForwarding& pass, MarchRounds& rounds, bool started, std::vector<std::uint32_t>& slots);
   void dispatchShared(const ComputePipeline& march, const gpu::MarchWork& work, std::uint32_t groupsX,
     std::uint32_t groupsY, MarchRounds& rounds);
   void writeFreshStates(MarchRounds& rounds);
@@ -408,7 +409,7 @@ private:
   void resetForwardedLeft();
   void requireForwardedFinished(const std::string& pass) const;
   void recordSweepLayer(VkCommandBuffer commands, const ComputePipeline& sweep, const std::vector<PieceField>& fields,
-    std::pair<int, int> rows, int layer) const;
+    std::pair<int, int> rows, int layer, int pieces) const;
   void recordWholeFields(VkCommandBuffer commands, const std::vector<PieceField>& fields) const;
   static int marchNodes(const FrameSetup& setup);
   static std::uint64_t rayStateWords(const FrameSetup& setup);
@@ -437,7 +438,7 @@ private:
   std::vector<PieceField> pieceFields() const;
   std::vector<PieceField> lightPassPieceFields(int pieces, int cellsHalo, int distanceHalo, int lightHalo) const;
   std::vector<PieceField> lightPieceFields(int pieces) const;
-  std::vector<PieceField> sweepPieceFields() const;
+  std::vector<PieceField> sweepPieceFields(int pieces) const;
   void recordPieceFields(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   void recordWrittenBack(VkCommandBuffer commands, const std::vector<PieceField>& fields, std::pair<int, int> layers) const;
   bool refineEdges(const ComputePipeline& march, int pixelSamples, Progress& progress, double at);

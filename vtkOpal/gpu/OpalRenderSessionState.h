@@ -218,7 +218,7 @@ struct RenderSession::FrameBuffers
   std::unique_ptr<VulkanBuffer> HighlightQueue, HighlightPixels; // the pixels queued for the highlight
   std::unique_ptr<VulkanBuffer> EdgeQueue, EdgePixels;           // the pixels an edge crosses
   std::unique_ptr<VulkanBuffer> PixelSums;                       // and their sub-rays' sums
-  std::unique_ptr<VulkanBuffer> RayStates; // a forwarded march's rays (a placeholder without MarchPieces)
+  std::unique_ptr<VulkanBuffer> RayStates; // a forwarded pass's states: the march's rays, the light's walks (a placeholder without)
   std::unique_ptr<VulkanBuffer> ForwardedLeft; // the states a forwarded pass left unfinished (one uint)
   // What each domain passes of the light (the Bragg shadow table, docs/design.md
   // §7.2), device-local; one float where no frame conserved energy yet.
@@ -228,12 +228,15 @@ struct RenderSession::FrameBuffers
   std::size_t ShadowTableFloats = 0;
 };
 
-// The rounds of a frame's shared march (RenderSession::shareMarch, docs/
-// design.md §8.1): each round every share's post goes to every share, its
-// first word whether the share goes on; a ray round's then carry each ray
-// the share took up, its slot and its state's words. Held, the rays of the
-// dispatch being marched, is alike on every share after each round. Once a
-// share stopped, or the exchange ended, there is no round more.
+// The rounds of a forwarded pass shared by processes (RenderSession::
+// forwardShared, docs/design.md §8.1): a frame's shared march, a shared light
+// pass's walks to the light. Each round every share's post goes to every
+// share, its first word whether the share goes on; a state round's then
+// carry each state the share took up, its slot and its words. Held, the
+// states of the work being forwarded, has its layer words alike on every
+// share after each round (a slot done on its share in the first round keeps
+// there what its device wrote: nothing reads it), and Live its slots that go
+// on. Once a share stopped, or the exchange ended, there is no round more.
 class RenderSession::MarchRounds
 {
 public:
@@ -245,6 +248,10 @@ public:
   // shares posted since they were last written (all where DeviceHolds is false).
   std::vector<std::uint32_t> Fresh;
   bool DeviceHolds = false;
+  // The slots whose states go on in a piece (layer word below KeptUnwritten),
+  // sorted: alike on every share after each round (live), so that a round
+  // does not scan all of Held for the few that go on.
+  std::vector<std::uint32_t> Live;
   double Seconds = 0; // in the exchanges and the states' copies (RenderTimings::MarchRounds)
 
   // Held for a dispatch's `slots` rays, none yet (each KeptDone).
@@ -263,6 +270,15 @@ public:
   bool exchangeRays(const std::vector<char>& post);
   // A round saying this share stops, unless the rounds are over.
   void stop();
+  // Live again after a round: of the slots live before, `posted` (this
+  // share's post) and those the other shares posted, those that go on.
+  void live(const std::vector<std::uint32_t>& posted);
+  // The live slots held in `layers` (the shader's resumeRay: a layer word
+  // within them): those a round after the first takes up there.
+  std::vector<std::uint32_t> liveIn(std::pair<int, int> layers) const;
+  // Whether the last round's exchange itself ended (a share sent its last
+  // instead), not a post saying a share stops.
+  bool exchangeEnded() const { return this->ExchangeEnded; }
   int shares() const { return this->Share.Shares; }
   // The frame's last round is over: the rest of it is each share's alone.
   void finish() { this->Ended = true; }
@@ -272,6 +288,8 @@ private:
 
   const MarchShare& Share;
   bool Ended = false;
+  bool ExchangeEnded = false;
+  std::vector<std::uint32_t> Posted; // the slots the other shares posted in the last round
 };
 
 // A frame's shared march's rounds, held by the session (Rounds) while the

@@ -286,7 +286,10 @@ std::string layoutOf(const Fields& fields)
 
 std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
 {
-  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{});
+  // The pieces held too: they decide whether the walks go between the shares
+  // (holdsPieceOf), and so the shares' rounds.
+  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{}) + "pieces held: " +
+    std::to_string(this->HeldPiece.second);
 }
 
 std::string RenderSession::scatteredFieldLayout() const

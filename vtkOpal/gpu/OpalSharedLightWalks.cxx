@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -68,8 +69,16 @@ bool RenderSession::walkShared(SharedWalks& walks, const ComputePipeline& pass, 
   const std::pair<int, int> layers = evenShare(this->Volume->Shape.Dimensions[2], share, shares);
   const std::uint64_t perShare = walks.PerShare;
   const std::uint64_t own = static_cast<std::uint64_t>(share) * perShare;
+  if (started > perShare)
+  {
+    throw std::logic_error("walkShared: a share's walks beyond its slots.");
+  }
   const SharedForwarding work{ layers, { own, own + started }, LightWalkSweeps * (shares - 1) + 2, "light pass",
     "walks to the light", false, [&](bool first, const std::vector<std::uint32_t>& slots) {
+      if (slots.empty())
+      {
+        return; // none held here: the fresh states wait for the next dispatch
+      }
       this->writeFreshStates(walks.Rounds);
       std::vector<std::uint64_t> reach(static_cast<std::size_t>(shares), 0);
       for (const std::uint32_t slot : slots)
@@ -149,7 +158,9 @@ bool RenderSession::walkQueueShared(SharedWalks& walks, const ComputePipeline& e
 {
   const std::int64_t queued = this->queuedCount(*this->Volume->EntryQueues, layer);
   return this->walkShared(walks, enter, static_cast<std::uint64_t>(queued), [layer](int, bool resumed, std::uint64_t taken) {
-    // The share's own queue (count 0), or `taken` of another's, each walk's voxel kept with it.
+    // The share's own queue as the sweep left it (count 0), or in a later
+    // round `taken` walks of a share's queue (this share's too), each walk's
+    // voxel kept with it: this device's queue may be another share's.
     return gpu::LightPassWork{ 0, resumed ? static_cast<std::int32_t>(taken) : 0, layer, 0, gpu::ivec2(0, 0), 0, 0 };
   });
 }

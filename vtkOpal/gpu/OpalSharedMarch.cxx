@@ -31,7 +31,40 @@ void RenderSession::MarchRounds::begin(std::uint64_t slots)
 {
   this->Held.assign(slots * this->Words, gpu::KeptDone);
   this->Fresh.clear();
+  this->Live.clear();
   this->DeviceHolds = false;
+}
+
+std::vector<std::uint32_t> RenderSession::MarchRounds::liveIn(std::pair<int, int> layers) const
+{
+  std::vector<std::uint32_t> slots;
+  for (const std::uint32_t slot : this->Live)
+  {
+    const std::uint32_t layer = this->Held[slot * this->Words];
+    if (static_cast<int>(layer) >= layers.first && static_cast<int>(layer) < layers.second)
+    {
+      slots.push_back(slot);
+    }
+  }
+  return slots;
+}
+
+void RenderSession::MarchRounds::live(const std::vector<std::uint32_t>& posted)
+{
+  std::vector<std::uint32_t> slots = this->Live;
+  slots.insert(slots.end(), posted.begin(), posted.end());
+  slots.insert(slots.end(), this->Posted.begin(), this->Posted.end());
+  std::sort(slots.begin(), slots.end());
+  slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+  this->Live.clear();
+  for (const std::uint32_t slot : slots)
+  {
+    if (this->Held[slot * this->Words] < gpu::KeptUnwritten)
+    {
+      this->Live.push_back(slot);
+    }
+  }
+  this->Posted.clear();
 }
 
 bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post, const Received& received)
@@ -62,7 +95,8 @@ bool RenderSession::MarchRounds::exchangeBytes(const std::vector<char>& post, co
     }
   };
   this->Ended = true; // a throw ends it too
-  bool goesOn = this->Share.Round(post, sink) && mine != 0;
+  this->ExchangeEnded = !this->Share.Round(post, sink);
+  bool goesOn = !this->ExchangeEnded && mine != 0;
   int malformed = -1;
   for (int share = 0; share < this->Share.Shares && goesOn; ++share)
   {
@@ -84,13 +118,14 @@ bool RenderSession::MarchRounds::exchangeBytes(const std::vector<char>& post, co
   if (malformed >= 0)
   {
     throw std::runtime_error("Share " + std::to_string(malformed) +
-      " posted to the shared march's round what the round does not hold; no image is given.");
+      " posted to a shared pass's round what the round does not hold; no image is given.");
   }
   return goesOn;
 }
 
 bool RenderSession::MarchRounds::exchangeRays(const std::vector<char>& post)
 {
+  this->Posted.clear();
   return this->exchangeBytes(post, [this](int, const std::uint32_t* rays, std::uint64_t count) {
     return this->takeRays(rays, count);
   });
@@ -128,6 +163,7 @@ bool RenderSession::MarchRounds::takeRays(const std::uint32_t* rays, std::uint64
     }
     std::copy_n(rays + at + 1, this->Words, this->Held.begin() + static_cast<std::ptrdiff_t>(rays[at] * this->Words));
     this->Fresh.push_back(rays[at]);
+    this->Posted.push_back(rays[at]);
   }
   return true;
 }
@@ -327,36 +363,6 @@ bool RenderSession::shareEdgeQueue(MarchRounds& rounds, int queue, std::uint64_t
 
 namespace
 {
-// Whether a ray of `held` (`words` per slot) goes on in a piece (as the
-// shader's keptGoesOn reads its layer word).
-bool raysGoOn(const std::vector<std::uint32_t>& held, std::uint64_t words)
-{
-  for (std::uint64_t at = 0; at < held.size(); at += words)
-  {
-    if (held[at] < gpu::KeptUnwritten)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-// The slots a round after the first takes up: those held in `layers` (the
-// shader's resumeRay: a layer word within them).
-std::vector<std::uint32_t> roundSlots(const std::vector<std::uint32_t>& held, std::uint64_t words, std::pair<int, int> layers)
-{
-  std::vector<std::uint32_t> slots;
-  for (std::uint64_t at = 0; at < held.size(); at += words)
-  {
-    const std::uint32_t layer = held[at];
-    if (layer < gpu::KeptUnwritten && static_cast<int>(layer) >= layers.first && static_cast<int>(layer) < layers.second)
-    {
-      slots.push_back(static_cast<std::uint32_t>(at / words));
-    }
-  }
-  return slots;
-}
-
 // A post of `words` words, its first (whether the share goes on) `goesOn`.
 std::vector<char> postOf(std::uint64_t words, std::uint32_t goesOn)
 {
@@ -460,7 +466,7 @@ bool RenderSession::marchShared(const ComputePipeline& march, gpu::MarchWork wor
 bool RenderSession::forwardShared(const SharedForwarding& pass, MarchRounds& rounds)
 {
   const int shares = rounds.shares();
-  for (int round = 0; round == 0 || raysGoOn(rounds.Held, rounds.Words); ++round)
+  for (int round = 0; round == 0 || !rounds.Live.empty(); ++round)
   {
     if (round == pass.MostRounds)
     {
@@ -468,10 +474,11 @@ bool RenderSession::forwardShared(const SharedForwarding& pass, MarchRounds& rou
         pass.States + " unfinished after " + std::to_string(pass.MostRounds) + " rounds; no image is given.");
     }
     std::vector<char> post = postOf(1, 1);
+    std::vector<std::uint32_t> slots; // the round's on this share
     std::exception_ptr failure;
     try
     {
-      post = this->forwardedRound(pass, rounds, round == 0);
+      post = this->forwardedRound(pass, rounds, round == 0, slots);
     }
     catch (...)
     {
@@ -487,26 +494,32 @@ bool RenderSession::forwardShared(const SharedForwarding& pass, MarchRounds& rou
     {
       std::rethrow_exception(failure);
     }
+    if (!goesOn && !pass.StopsInRound && !rounds.exchangeEnded())
+    {
+      // Not this pass's way to stop: end the rounds by the step's last exchange.
+      throw std::runtime_error("A share posted to the " + pass.Pass + "'s round that it stops; no image is given.");
+    }
     if (!goesOn)
     {
       return false;
     }
+    rounds.live(slots);
   }
   return true;
 }
 
-// A round of forwardShared on this share: its slots (the first round's
-// started, then those held in its layers) dispatched, their states read back
-// (the first round's straight into Held) and posted. A share starting none
-// in the first round dispatches nothing there.
-std::vector<char> RenderSession::forwardedRound(const SharedForwarding& pass, MarchRounds& rounds, bool started)
+// A round of forwardShared on this share: its `slots` (the first round's
+// started, then the live ones held in its layers) dispatched, their states
+// read back (the first round's straight into Held) and posted. A share
+// starting none in the first round dispatches nothing there.
+std::vector<char> RenderSession::forwardedRound(
+  const SharedForwarding& pass, MarchRounds& rounds, bool started, std::vector<std::uint32_t>& slots)
 {
   const auto [first, end] = pass.Started;
   if (started && first == end)
   {
     return postOf(1, 1);
   }
-  std::vector<std::uint32_t> slots;
   if (started)
   {
     for (std::uint64_t slot = first; slot < end; ++slot)
@@ -516,7 +529,7 @@ std::vector<char> RenderSession::forwardedRound(const SharedForwarding& pass, Ma
   }
   else
   {
-    slots = roundSlots(rounds.Held, rounds.Words, pass.Layers);
+    slots = rounds.liveIn(pass.Layers);
   }
   pass.Dispatch(started, slots);
   std::vector<std::uint32_t> after(started ? 0 : slots.size() * rounds.Words);
