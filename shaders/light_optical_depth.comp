@@ -166,7 +166,7 @@ void followShadow(inout ShadowWalk w, int domain, float length)
       SINGLE_AT(index) = value;                                                   \
       return;                                                                     \
     }                                                                             \
-    int x = index % P.gridDimensions.x;                                           \
+    int x = int(uint(index) % uint(P.gridDimensions.x)); /* unsigned: voxelIndex */ \
     PAIR_AT(index).voxel = value;                                                 \
     if (x > 0) PAIR_AT(index - 1).nextVoxel = value;                              \
     if (x == P.gridDimensions.x - 1) PAIR_AT(index).nextVoxel = value;            \
@@ -653,7 +653,8 @@ void sweepFromLayerAbove(int index, ivec3 c, vec3 p, vec3 direction)
     P.lightFalloffAtEntry != 0 ? lightQ.y : lightQ.y * (rq * rq) / (rp * rp)), shadow);
 }
 
-// The voxel this invocation (its walk's state in slot `slot`) lights, or -1.
+// The voxel this invocation (its walk's state in slot `slot`) lights, or -1
+// (an index's bits unsigned beyond 2^31: voxelIndex).
 // A queued walk's is its queue's entry; in a light pass shared by processes
 // (docs/design.md §8.1), where a later round's dispatch takes up `count`
 // walks of a share's queue (this device's queue may be another share's),
@@ -665,7 +666,7 @@ int voxelOfInvocation(int slot)
   int local = passItem(LightPassGroupSize);
   if (LIGHT_PASS_MODE == LightPassMarchTowardsLight || LIGHT_PASS_MODE == LightPassScatteredField)
   {
-    return local < work.count ? work.first + local : -1;
+    return local < work.count ? int(work.first + uint(local)) : -1;
   }
   if (LIGHT_PASS_MODE == LightPassMarchQueued && work.count > 0)
   {
@@ -675,7 +676,7 @@ int voxelOfInvocation(int slot)
   {
     return local < int(queues[work.layer].count) ? int(ENTRY_VOXEL_AT(local)) : -1;
   }
-  return local < nx * work.count ? local % nx + nx * (work.layer + ny * (work.first + local / nx)) : -1;
+  return local < nx * work.count ? local % nx + nx * (work.layer + ny * (int(work.first) + local / nx)) : -1;
 }
 
 // A forwarded walk to the light in this dispatch: in the first, a voxel of
@@ -706,9 +707,8 @@ void main()
 {
   int slot = work.slotFirst + passItem(LightPassGroupSize);
   int index = voxelOfInvocation(slot);
-  if (index < 0) return;
-  int nx = P.gridDimensions.x, ny = P.gridDimensions.y;
-  ivec3 c = ivec3(index % nx, (index / nx) % ny, index / (nx * ny));
+  if (index == -1) return;
+  ivec3 c = voxelOfIndex(index);
   if (LIGHT_PASS_MODE == LightPassScatteredField)
   {
     // Zero where nothing scatters, as the march reads it only where something does.

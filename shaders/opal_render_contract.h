@@ -307,7 +307,8 @@ struct VolumeAddresses
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in
-// LightPassMarchTowardsLight and LightPassScatteredField; the layer y = layer
+// LightPassMarchTowardsLight and LightPassScatteredField (first unsigned: a
+// grid holds up to 2^32 - 1 voxels, docs/design.md §3.7); the layer y = layer
 // in the other two modes, LightPassSweepFromAbove sweeping its rows
 // z = first to first + count - 1 (a share of the layer, docs/design.md §8.1),
 // LightPassMarchQueued the layer's queue (count 0) or, taking up another
@@ -320,7 +321,7 @@ struct VolumeAddresses
 // every share's walks in one buffer, each share's from its own first slot.
 struct LightPassWork
 {
-  int first;
+  uint first;
   int count;
   int layer;
   int resumed;

@@ -31,9 +31,19 @@ const bool PAIRED_FIELDS = true;
 #define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[i]
 #endif
 
+// A voxel's index. A grid holds up to 2^32 - 1 voxels (docs/design.md
+// §3.7), beyond int's range: an index's bits are read unsigned (voxelAddress,
+// voxelOfIndex), its int wrapping past 2^31, and -1 (2^32 - 1) is no voxel.
 int voxelIndex(ivec3 c)
 {
   return c.x + P.gridDimensions.x * (c.y + P.gridDimensions.y * c.z);
+}
+
+// The voxel of index `index` (its bits unsigned, as voxelIndex says).
+ivec3 voxelOfIndex(int index)
+{
+  uint i = uint(index), nx = uint(P.gridDimensions.x), ny = uint(P.gridDimensions.y);
+  return ivec3(i % nx, (i / nx) % ny, i / (nx * ny));
 }
 
 bool insideGrid(ivec3 c)

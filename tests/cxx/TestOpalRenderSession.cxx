@@ -408,6 +408,38 @@ void checkStagedRuns()
   OPAL_CHECK(same, "readRuns in batches: each run's bytes read back");
 }
 
+// A grid of more voxels than the device's 32-bit voxel index holds (2^32:
+// 65536 x 65536 x 1) is refused by setVolume, naming the count, before any
+// array is read (its arrays here are a voxel long), and the session renders
+// its volume as before.
+void checkTooManyVoxels(opal::RenderSession& session, const opal::RenderParameters& view, const opal::RenderImage& image)
+{
+  const float scattering = 0.0f, distance = 1.0f;
+  const std::int32_t domain = -1;
+  opal::RenderVolume huge;
+  huge.Dimensions = { 65536, 65536, 1 };
+  huge.Spacing = { 0.01, 0.01, 0.01 };
+  huge.ScatteringCoefficient = &scattering;
+  huge.DomainId = &domain;
+  huge.SurfaceDistance = &distance;
+  std::string message;
+  try
+  {
+    session.setVolume(huge);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    message = e.what();
+  }
+  OPAL_CHECK(message.find("4294967296 voxels") != std::string::npos && message.find("4294967295") != std::string::npos,
+    "a grid of 2^32 voxels is refused naming its count and the most (" + message + ")");
+  huge.Dimensions = { 65536, 65535, 1 }; // 2^32 - 65536: allowed as far as the index goes
+  OPAL_CHECK(opal::validate(huge).find("voxels;") == std::string::npos, "a grid below 2^32 voxels is not refused for its count");
+  const opal::RenderFrame frame = session.render(view);
+  OPAL_CHECK(frame.Status == opal::FrameStatus::Completed && opaltest::identical(frame.Image, image),
+    "after the refusal the session renders its volume as before");
+}
+
 int TestOpalRenderSession(int, char*[])
 {
   auto renderer = opaltest::makeRenderer();
@@ -479,6 +511,7 @@ int TestOpalRenderSession(int, char*[])
   checkStagingTransfers(volume->renderVolume(), moved, b.Image);
   checkFixedExposureHoldsNoThumbnail(volume->renderVolume(), moved);
   checkFrameTicket(session, moved, b.Image);
+  checkTooManyVoxels(session, moved, b.Image);
   // After the frame ticket (which renders the session's volume): fields of
   // 8.5 M voxels (68 MB of ScatteringCoefficient and DomainId, as of
   // SurfaceDistance) go up in two rounds of VulkanBuffer::FillRoundBytes.

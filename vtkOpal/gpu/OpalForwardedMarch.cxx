@@ -117,7 +117,7 @@ void RenderSession::recordSweepLayer(VkCommandBuffer commands, const ComputePipe
     }
     this->recordPieceFields(commands, fields, layers);
     const std::int64_t voxels = static_cast<std::int64_t>(dims[0]) * (end - first);
-    sweep.dispatch(commands, gpu::LightPassWork{ first, end - first, layer, 0, gpu::ivec2(0, 0), 0, 0 },
+    sweep.dispatch(commands, gpu::LightPassWork{ static_cast<std::uint32_t>(first), end - first, layer, 0, gpu::ivec2(0, 0), 0, 0 },
       static_cast<std::uint32_t>((voxels + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize));
     this->recordWrittenBack(commands, fields, layers);
   }

@@ -132,7 +132,7 @@ bool RenderSession::dispatchOverVoxels(const ComputePipeline& pass, SubmitPacer&
   {
     const auto count = static_cast<std::int32_t>(
       std::min<std::size_t>(static_cast<std::size_t>(std::min<std::int64_t>(pacer.items(), most)), end - first));
-    const gpu::LightPassWork work{ static_cast<std::int32_t>(first), count, 0, 0, gpu::ivec2(0, 0), 0, 0 };
+    const gpu::LightPassWork work{ static_cast<std::uint32_t>(first), count, 0, 0, gpu::ivec2(0, 0), 0, 0 };
     const auto groups = static_cast<std::uint32_t>((count + gpu::LightPassGroupSize - 1) / gpu::LightPassGroupSize);
     const auto start = Clock::now();
     this->Context->submitAndWait([&](VkCommandBuffer commands) {

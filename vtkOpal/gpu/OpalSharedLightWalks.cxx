@@ -139,7 +139,7 @@ bool RenderSession::marchLightShared(bool braggShadow, Progress& progress, const
     const auto [first, end] = workOf(this->HeldPiece.first, k);
     exchanging = this->walkShared(*shared, pass, end - first, [&](int s, bool, std::uint64_t) {
       const auto [from, to] = workOf(s, k);
-      return gpu::LightPassWork{ static_cast<std::int32_t>(from), static_cast<std::int32_t>(to - from), 0, 0,
+      return gpu::LightPassWork{ static_cast<std::uint32_t>(from), static_cast<std::int32_t>(to - from), 0, 0,
         gpu::ivec2(0, 0), 0, 0 };
     }); // a throw leaves it as it was: the step's last exchange ends it
     if (!exchanging || !progress.stageDone(static_cast<double>(k + 1) / static_cast<double>(works)))

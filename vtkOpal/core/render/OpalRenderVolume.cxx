@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace opal
 {
@@ -193,6 +194,11 @@ std::string validate(const RenderVolume& volume)
     {
       return "The input volume needs positive dimensions and a finite origin and positive spacing.";
     }
+  }
+  if (volume.voxelCount() > MostRenderedVoxels)
+  {
+    return "The input volume has " + std::to_string(volume.voxelCount()) + " voxels; the render reads at most " +
+      std::to_string(MostRenderedVoxels) + " (2^32 - 1, a voxel's index on the device): use fewer voxels.";
   }
   if (!volume.ScatteringCoefficient || !volume.DomainId || !volume.SurfaceDistance)
   {

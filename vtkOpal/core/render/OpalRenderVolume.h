@@ -24,6 +24,10 @@ struct RenderDomain
   std::array<float, 4> Orientation{ 1.0f, 0.0f, 0.0f, 0.0f };
 };
 
+// The most voxels a render reads: the device holds a voxel's index in 32 bits,
+// 2^32 - 1 meaning none (docs/design.md §3.7).
+constexpr std::uint64_t MostRenderedVoxels = 0xffffffffu;
+
 struct RenderVolume
 {
   std::array<int, 3> Dimensions{};
@@ -65,7 +69,8 @@ RenderDomain renderDomain(
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 
 // Empty if the render can read the volume, else one sentence naming what is
-// wrong: dimensions and spacing positive, origin finite, the three fields
+// wrong: dimensions and spacing positive, origin finite, at most
+// MostRenderedVoxels voxels (checked before any array is read), the three fields
 // present, ScatteringCoefficient finite and >= 0, SurfaceDistance finite,
 // AbsorptionCoefficient (if any) finite and >= 0 with its AbsorptionExponent
 // finite, and at most one exponent other than 0 among the absorbing voxels,
