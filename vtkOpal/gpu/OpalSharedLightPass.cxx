@@ -5,6 +5,7 @@
 
 #include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
+#include "OpalShareSlabs.h"
 
 #include <algorithm>
 #include <array>
@@ -35,13 +36,6 @@ std::pair<int, int> shareRows(const std::array<int, 3>& dims, int share, int sha
 
 // Voxel ranges [first, end), in the order a share's bytes carry them.
 using Runs = std::vector<std::pair<std::size_t, std::size_t>>;
-
-// The voxels of rows z [rows.first, rows.second) of every layer: one range.
-Runs slabOf(const std::array<int, 3>& dims, std::pair<int, int> rows)
-{
-  const std::size_t slab = static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
-  return { { slab * static_cast<std::size_t>(rows.first), slab * static_cast<std::size_t>(rows.second) } };
-}
 
 // Layer `layer`'s first and last SweepHaloRows rows of `rows` (all of them where
 // fewer), one range each: what the shares beside read of it.
@@ -176,11 +170,11 @@ struct SharePlacer
 // 160 x 400 with the light field alone).
 constexpr std::uint64_t ChunkBytes = std::uint64_t(4) << 20;
 
-// The voxels of chunk `k` of `slab` (one run), `voxels` a chunk: none past its end.
-Runs chunkOf(const Runs& slab, std::size_t voxels, std::size_t k)
+// The voxels of chunk `k` of `slab`, `voxels` a chunk (slabChunk): none past its end.
+Runs chunkOf(VoxelRange slab, std::size_t voxels, std::size_t k)
 {
-  const std::size_t first = slab.front().first + k * voxels;
-  return first < slab.front().second ? Runs{ { first, std::min(first + voxels, slab.front().second) } } : Runs{};
+  const VoxelRange chunk = slabChunk(slab, voxels, k);
+  return chunk.first < chunk.second ? Runs{ chunk } : Runs{};
 }
 
 // What a shared step computed: the fields it wrote, in the order a share
@@ -204,13 +198,8 @@ bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSes
     voxelBytes += field.second;
   }
   const std::size_t voxels = std::max<std::size_t>(1, ChunkBytes / std::max<std::uint64_t>(voxelBytes, 1));
-  const auto slabOfShare = [&](int s) { return slabOf(step.Dimensions, shareRows(step.Dimensions, s, shares)); };
-  std::size_t rounds = 0; // alike on every share: the largest slab's
-  for (int s = 0; s < shares; ++s)
-  {
-    const Runs slab = slabOfShare(s);
-    rounds = std::max(rounds, (slab.front().second - slab.front().first + voxels - 1) / voxels);
-  }
+  const auto slabOfShare = [&](int s) { return shareSlab(step.Dimensions, s, shares); };
+  const std::size_t rounds = slabChunks(step.Dimensions, shares, voxels); // alike on every share
   for (std::size_t k = 0; k < rounds; ++k)
   {
     const std::vector<char> chunk = readShare(step.Written, step.Held, chunkOf(slabOfShare(share), voxels, k));
@@ -355,7 +344,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
         place.rethrow();
         return exchanging;
       };
-      const Runs slab = slabOf(dims, rows);
+      const VoxelRange slab = shareSlab(dims, share, shares);
       if (this->Volume->Medium.Geometry.lightAboveGrid(setup->Camera.Light))
       {
         return this->holdsPieceOf(share, shares)
@@ -365,7 +354,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
       return this->holdsPieceOf(share, shares)
         ? this->marchLightShared(braggShadow, progress, layer, exchanging)
         : this->dispatchOverVoxels(this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow), this->SlabPacer,
-            progress.stageCallback(), slab.front().first, slab.front().second);
+            progress.stageCallback(), slab.first, slab.second);
     },
     share, shares, layer, exchange);
   if (!shared)
@@ -412,9 +401,9 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
       const DeviceVolume& v = *this->Volume;
       step = { this->scatteredFieldFields(), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() } };
-      const Runs slab = slabOf(dims, rows);
+      const VoxelRange slab = shareSlab(dims, share, shares);
       return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
-        slab.front().first, slab.front().second);
+        slab.first, slab.second);
     },
     share, shares, round, exchange);
   if (shared)

@@ -9,6 +9,7 @@
 
 #include "OpalParallel.h"
 #include "OpalRenderSessionState.h"
+#include "OpalShareSlabs.h"
 
 #include <algorithm>
 #include <array>
@@ -118,20 +119,9 @@ bool RenderSession::marchLightShared(bool braggShadow, Progress& progress, const
   const auto shares = this->HeldPiece.second;
   const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
   const auto walks = static_cast<std::size_t>(SharedLightWalks);
-  const std::size_t layerVoxels = static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
-  // Work k's voxels of share s: the kth run of its rows' (none past their end).
-  const auto workOf = [&](int s, std::size_t k) {
-    const std::pair<int, int> rows = evenShare(dims[2], s, shares);
-    const std::size_t end = layerVoxels * static_cast<std::size_t>(rows.second);
-    const std::size_t from = std::min(layerVoxels * static_cast<std::size_t>(rows.first) + k * walks, end);
-    return std::make_pair(from, std::min(from + walks, end));
-  };
-  std::size_t works = 0; // alike on every share: the largest slab's
-  for (int s = 0; s < shares; ++s)
-  {
-    const std::pair<int, int> rows = evenShare(dims[2], s, shares);
-    works = std::max(works, (layerVoxels * static_cast<std::size_t>(rows.second - rows.first) + walks - 1) / walks);
-  }
+  // Work k's voxels of share s: the kth run of its slab (none past its end).
+  const auto workOf = [&](int s, std::size_t k) { return slabChunk(shareSlab(dims, s, shares), walks, k); };
+  const std::size_t works = slabChunks(dims, shares, walks); // alike on every share
   const ComputePipeline& pass = this->lightPass(gpu::LightPassMarchTowardsLight, braggShadow, true);
   const std::unique_ptr<SharedWalks> shared = this->beginSharedWalks(round, walks);
   for (std::size_t k = 0; k < works; ++k)
@@ -185,14 +175,7 @@ bool RenderSession::sweepLightShared(bool braggShadow, Progress& progress, std::
 std::uint64_t RenderSession::queuedWalksPerShare() const
 {
   const std::array<int, 3>& dims = this->Volume->Shape.Dimensions;
-  const int shares = this->HeldPiece.second;
-  int rows = 0;
-  for (int s = 0; s < shares; ++s)
-  {
-    const std::pair<int, int> share = evenShare(dims[2], s, shares);
-    rows = std::max(rows, share.second - share.first);
-  }
-  return static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(std::max(rows, 1));
+  return static_cast<std::uint64_t>(dims[0]) * static_cast<std::uint64_t>(std::max(mostInShare(dims[2], this->HeldPiece.second), 1));
 }
 
 } // namespace opal

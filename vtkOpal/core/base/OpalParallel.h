@@ -23,6 +23,12 @@ inline std::pair<int, int> evenShare(int count, int share, int shares)
   return { at(share), at(share + 1) };
 }
 
+// The largest share of evenShare's: ceil(count / shares).
+inline int mostInShare(int count, int shares)
+{
+  return static_cast<int>((static_cast<std::int64_t>(count) + shares - 1) / shares);
+}
+
 // Calls functor(begin, end) on disjoint chunks covering [begin, end), one per
 // hardware thread, and returns when all are done.
 template <typename Functor>
