@@ -20,10 +20,6 @@ using namespace sessiondetail;
 
 namespace
 {
-// The rows beside a piece its light field holds: the sweep's reads (and the
-// march's trilinear read, one layer, within them).
-constexpr int HeldPieceHalo = SweepHaloRows;
-
 // Layers `piece` of `layers` and `halo` beside them, within the grid.
 std::pair<int, int> withHalo(std::pair<int, int> piece, int halo, int layers)
 {
@@ -135,16 +131,34 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::pieceHeldFie
   return fields;
 }
 
-// A share of a shared step computing `rows` and reading `halo` rows beside
-// them: the piece held where it holds them, else the whole fields (the
-// processes sharing the step are not those that share the march).
-void RenderSession::holdShareRows(std::pair<int, int> rows, int halo)
+// A share of a shared step computing share `share` of `shares`' rows and
+// reading `halo` rows beside them (HeldPieceHalo at most). True where this
+// session holds that share as its piece of the fields, by address
+// (holdsPieceFieldsOf): the piece's layers, made anew where it held others
+// (a refused allocation left none); else the whole fields where the layers
+// held lack the rows (the processes sharing the step are not those that
+// share the march), and false.
+bool RenderSession::holdShareRows(int share, int shares, int halo)
 {
+  if (this->holdsPieceFieldsOf(share, shares))
+  {
+    this->holdLightLayers(this->lightLayersOf(*this->Volume));
+    return true;
+  }
   const int layers = this->Volume->Shape.Dimensions[2];
-  if (!holds(this->Volume->LightLayers, withHalo(rows, halo, layers)))
+  if (!holds(this->Volume->LightLayers, pieceWithHalo(layers, share, shares, halo)))
   {
     this->holdLightLayers({ 0, layers });
   }
+  return false;
+}
+
+// Whether this session's fields hold share `share` of `shares` as its piece
+// (holdsPieceOf, read by address: lightLayersOf), so that the shares of a
+// step need send one another only the rows their pieces' halos hold.
+bool RenderSession::holdsPieceFieldsOf(int share, int shares) const
+{
+  return this->holdsPieceOf(share, shares) && this->Volume->addressed();
 }
 
 // The voxels whose light fields and every-order field a frame's memory is

@@ -297,7 +297,8 @@ private:
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
   void holdLightLayers(std::pair<int, int> layers);
-  void holdShareRows(std::pair<int, int> rows, int halo);
+  bool holdShareRows(int share, int shares, int halo);
+  bool holdsPieceFieldsOf(int share, int shares) const;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;
   bool lightFieldServes(const FrameSetup& setup) const;
   std::uint64_t framedVoxels() const;

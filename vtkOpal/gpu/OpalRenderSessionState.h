@@ -43,6 +43,11 @@ constexpr int LightWalkSweeps = 5;
 // a second row keeps a margin for the shader's rounding. The ranks' shared
 // sweep exchanges them after each layer.
 constexpr int SweepHaloRows = 2;
+// The rows beside a piece its light fields and every-order field hold
+// (RenderSession::holdPiece): the sweep's reads (and the march's trilinear
+// read, one layer, within them). The shares holding their pieces exchange
+// only the rows the pieces beside hold of theirs.
+constexpr int HeldPieceHalo = SweepHaloRows;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // The works of a march shared by processes (docs/design.md §8.1) are alike on
 // every share, so its bands and refined pixels per dispatch are fixed (the

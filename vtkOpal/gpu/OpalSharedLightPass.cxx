@@ -170,24 +170,71 @@ struct SharePlacer
 // 160 x 400 with the light field alone).
 constexpr std::uint64_t ChunkBytes = std::uint64_t(4) << 20;
 
-// The voxels of chunk `k` of `slab`, `voxels` a chunk (slabChunk): none past its end.
-Runs chunkOf(VoxelRange slab, std::size_t voxels, std::size_t k)
-{
-  const VoxelRange chunk = slabChunk(slab, voxels, k);
-  return chunk.first < chunk.second ? Runs{ chunk } : Runs{};
-}
-
 // What a shared step computed: the fields it wrote, in the order a share
-// carries them, and the grid's shape (none where it failed first).
+// carries them, and the grid's shape (none where it failed first); whether
+// the shares hold their pieces of the fields (holdsPieceFieldsOf), so that each
+// sends only the rows the pieces beside it hold.
 struct SlabShare
 {
   Fields Written;
   std::array<int, 3> Dimensions{};
   HeldVoxels Held;
+  bool PiecesHeld = false;
 };
 
-// Every share's slab of the fields to every other share, a chunk of each a
-// round, each written into the fields as it arrives. False where a share
+// The voxels share `s` sends of its slab: all of it, or where the shares hold
+// their pieces its first and last HeldPieceHalo rows z, all that the pieces
+// beside hold of it (a piece's halo rows lie within that many rows of the
+// slabs' edges, however thin the slabs).
+Runs sentOf(const SlabShare& step, int s, int shares)
+{
+  const VoxelRange slab = shareSlab(step.Dimensions, s, shares);
+  const std::size_t edge = static_cast<std::size_t>(step.Dimensions[0]) * static_cast<std::size_t>(step.Dimensions[1]) *
+    static_cast<std::size_t>(HeldPieceHalo);
+  if (!step.PiecesHeld || slab.second - slab.first <= 2 * edge)
+  {
+    return { slab };
+  }
+  return { { slab.first, slab.first + edge }, { slab.second - edge, slab.second } };
+}
+
+// Chunk `k` of `voxels` voxels of `runs` taken end to end: none past their end.
+Runs chunkOf(const Runs& runs, std::size_t voxels, std::size_t k)
+{
+  Runs chunk;
+  std::size_t skip = k * voxels, left = voxels;
+  for (const auto& [first, end] : runs)
+  {
+    if (left == 0)
+    {
+      break;
+    }
+    if (skip >= end - first)
+    {
+      skip -= end - first;
+      continue;
+    }
+    const std::size_t from = first + skip, to = std::min(end, from + left);
+    chunk.emplace_back(from, to);
+    left -= to - from;
+    skip = 0;
+  }
+  return chunk;
+}
+
+std::size_t voxelsOf(const Runs& runs)
+{
+  std::size_t voxels = 0;
+  for (const auto& [first, end] : runs)
+  {
+    voxels += end - first;
+  }
+  return voxels;
+}
+
+// What every share sends of its slab of the fields (sentOf: all of it, or
+// its edge rows where the shares hold their pieces) to every other share, a
+// chunk of each a round, each written into the fields as it arrives. False where a share
 // stopped (the round then ended the exchange: `exchanging` false).
 bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSession::LayerExchange& round,
   bool& exchanging)
@@ -198,13 +245,18 @@ bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSes
     voxelBytes += field.second;
   }
   const std::size_t voxels = std::max<std::size_t>(1, ChunkBytes / std::max<std::uint64_t>(voxelBytes, 1));
-  const auto slabOfShare = [&](int s) { return shareSlab(step.Dimensions, s, shares); };
-  const std::size_t rounds = slabChunks(step.Dimensions, shares, voxels); // alike on every share
+  std::vector<Runs> sent;
+  std::size_t rounds = 0; // alike on every share: the most any sends
+  for (int s = 0; s < shares; ++s)
+  {
+    sent.push_back(sentOf(step, s, shares));
+    rounds = std::max(rounds, (voxelsOf(sent.back()) + voxels - 1) / voxels);
+  }
   for (std::size_t k = 0; k < rounds; ++k)
   {
-    const std::vector<char> chunk = readShare(step.Written, step.Held, chunkOf(slabOfShare(share), voxels, k));
-    SharePlacer place{ step.Written, step.Held, share, [&](int from) { return chunkOf(slabOfShare(from), voxels, k); },
-      {}, {} };
+    const std::vector<char> chunk = readShare(step.Written, step.Held, chunkOf(sent[static_cast<std::size_t>(share)], voxels, k));
+    SharePlacer place{ step.Written, step.Held, share,
+      [&](int from) { return chunkOf(sent.at(static_cast<std::size_t>(from)), voxels, k); }, {}, {} };
     exchanging = false; // a throw ends it too
     exchanging = round(chunk, std::ref(place));
     place.rethrow();
@@ -261,29 +313,32 @@ bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
 
 namespace
 {
-// A share's layout as the processes compare it: each field's bytes per voxel.
-std::string layoutOf(const Fields& fields)
+// A share's layout as the processes compare it: each field's bytes per
+// voxel, and the pieces held (`pieces`) and whether the fields are read by
+// address, which decide whether the walks go between the shares
+// (holdsPieceOf), and so the shares' rounds, and which rows they exchange
+// (holdsPieceFieldsOf, sentOf).
+std::string layoutOf(const Fields& fields, int pieces, bool addressed)
 {
   std::string layout;
   for (const auto& field : fields)
   {
     layout += std::to_string(field.second) + " bytes per voxel; ";
   }
-  return layout;
+  return layout + "pieces held: " + std::to_string(pieces) + (addressed ? " by address" : "");
 }
 } // namespace
 
 std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
 {
-  // The pieces held too: they decide whether the walks go between the shares
-  // (holdsPieceOf), and so the shares' rounds.
-  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{}) + "pieces held: " +
-    std::to_string(this->HeldPiece.second);
+  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{}, this->HeldPiece.second,
+    this->Volume && this->Volume->addressed());
 }
 
 std::string RenderSession::scatteredFieldLayout() const
 {
-  return layoutOf(this->Volume ? this->scatteredFieldFields() : Fields{});
+  return layoutOf(this->Volume ? this->scatteredFieldFields() : Fields{}, this->HeldPiece.second,
+    this->Volume && this->Volume->addressed());
 }
 
 // The every-order field, the one field its shares carry.
@@ -320,7 +375,7 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
     [&](SlabShare& step, bool& exchanging) {
       setup = this->setUpSharedStep(frame);
       this->LightField.reset();
-      this->holdShareRows(shareRows(this->Volume->Shape.Dimensions, share, shares), SweepHaloRows);
+      const bool piecesHeld = this->holdShareRows(share, shares, SweepHaloRows);
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
       this->resetForwardedLeft();
       const bool braggShadow = conservesEnergy(setup->Parameters);
@@ -333,7 +388,8 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
       const std::pair<int, int> rows = shareRows(dims, share, shares);
       const DeviceVolume& v = *this->Volume;
-      step = { this->lightPassFields(braggShadow), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() } };
+      step = { this->lightPassFields(braggShadow), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() },
+        piecesHeld };
       const auto exchangeLayer = [&](int swept) {
         const std::vector<char> halo = readShare(step.Written, step.Held, haloOf(dims, rows, swept));
         SharePlacer place{ step.Written, step.Held, share,
@@ -395,12 +451,12 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
     [&](SlabShare& step, bool&) {
       const FrameSetup setup = this->setUpSharedStep(frame);
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
-      const std::pair<int, int> rows = shareRows(dims, share, shares);
-      this->holdShareRows(rows, 0);
+      const bool piecesHeld = this->holdShareRows(share, shares, 0);
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
       const DeviceVolume& v = *this->Volume;
-      step = { this->scatteredFieldFields(), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() } };
+      step = { this->scatteredFieldFields(), dims, { v.lightFirstVoxel(), v.lightFirstVoxel() + v.lightVoxels() },
+        piecesHeld };
       const VoxelRange slab = shareSlab(dims, share, shares);
       return this->dispatchOverVoxels(this->lightPass(gpu::LightPassScatteredField, false), this->FieldPacer, nullptr,
         slab.first, slab.second);
