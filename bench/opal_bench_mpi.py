@@ -17,8 +17,12 @@ saying so: each rank holds its piece of the volume's arrays and the device field
 until their upload), ~54 / ranks + 64 bytes per voxel (fitted to 320 x 160 x
 400 on 1, 2 and 4 ranks, the process included; 13 / ranks with the render's
 arrays). ARRAYS is the volume's OutputArrays: all (the default) or render
-(only what the render reads).
-Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS]"""
+(only what the render reads). SCHEME is whole (the default: each rank
+renders its piece of the image from the whole volume's fields, then the
+shared steps above) or pieces: every render, the footprint's too, with
+ShareMarch (each rank holding its piece of the light fields and the
+every-order field), the frame then every order, and the estimate from it.
+Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS [SCHEME]]"""
 import os
 import resource
 import sys
@@ -31,12 +35,14 @@ from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessControlle
 
 plugin, dimensions = sys.argv[1], [int(v) for v in sys.argv[2:5]]
 arrays = sys.argv[5] if len(sys.argv) > 5 else "all"
+pieces = len(sys.argv) > 6 and sys.argv[6] == "pieces"
 LoadPlugin(plugin, remote=False, ns=globals())
 controller = vtkMultiProcessController.GetGlobalController()
 rank, ranks = controller.GetLocalProcessId(), controller.GetNumberOfProcesses()
 PIECE_BYTES, WHOLE_BYTES = (54 if arrays == "all" else 13), 64
 voxels = dimensions[0] * dimensions[1] * dimensions[2]
-size = f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels" + (", render arrays" if arrays == "render" else "")
+size = (f"{dimensions[0]}x{dimensions[1]}x{dimensions[2]} voxels" + (", render arrays" if arrays == "render" else "") +
+        (", ShareMarch" if pieces else ""))
 
 
 def fits():
@@ -94,7 +100,7 @@ def process_footprint():
     (its Vulkan device started and its pipelines built); that render is then
     deleted. Its device peak too (the image's buffers)."""
     small = OpalVolume(Dimensions=[8, 4, 10], DomainCount=10, OutputArrays=arrays)  # noqa: F821 (from the plugin)
-    render = OpalSpectralRender(Input=small)  # noqa: F821
+    render = OpalSpectralRender(Input=small, ShareMarch=int(pieces))  # noqa: F821
     render.UpdatePipeline(0.0)
     fields = render.GetClientSideObject().GetOutputDataObject(0).GetFieldData()
     device = fields.GetArray("DeviceMemoryPeak")
@@ -121,7 +127,8 @@ def estimate(volume_seconds, bytes_per_voxel, device_bytes_per_voxel):
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
           f"{bytes_per_voxel:.0f} bytes per voxel here beyond the process's own footprint "
           f"({device_bytes_per_voxel:.0f} of them device buffers), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
-          f"(the device fields of the whole volume on every rank)", flush=True)
+          + ("(each rank its piece of the light fields, the medium whole)" if pieces
+             else "(the device fields of the whole volume on every rank)"), flush=True)
 
 
 def shared_stage(render, heading, shares_property):
@@ -143,7 +150,7 @@ if fits():
               f"(of which device buffers {baseline_device_mb:.0f} MB)", flush=True)
     volume = OpalVolume(Dimensions=dimensions, OutputArrays=arrays)  # noqa: F821 (from the plugin)
     volume_seconds = timed(volume)
-    render = OpalSpectralRender(Input=volume)  # noqa: F821
+    render = OpalSpectralRender(Input=volume, ShareMarch=int(pieces))  # noqa: F821
     render_seconds = timed(render)
     controller.Barrier()
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
@@ -155,6 +162,7 @@ if fits():
         # ranks share the photon solve (its stage, "every order").
         render.ScatteringOrders = "all"
         shared_stage(render, "every order, traced by {} rank(s):", "LastScatteredLightShares")
+    if device_mb is not None and not pieces:
         # The light low to the side, single scattering: the light pass marches
         # from every voxel, and the ranks share it (its stage, "light pass").
         render.ScatteringOrders = "single"
