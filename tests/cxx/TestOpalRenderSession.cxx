@@ -411,7 +411,9 @@ void checkStagedRuns()
 // A grid of more voxels than the device's 32-bit voxel index holds (2^32:
 // 65536 x 65536 x 1) is refused by setVolume, naming the count, before any
 // array is read (its arrays here are a voxel long), and the session renders
-// its volume as before.
+// its volume as before; a layer y beyond 2^31 - 1 voxels (65536 x 1 x 32768)
+// likewise; grids just within both limits pass those checks (their arrays
+// absent, validate stops at them).
 void checkTooManyVoxels(opal::RenderSession& session, const opal::RenderParameters& view, const opal::RenderImage& image)
 {
   const float scattering = 0.0f, distance = 1.0f;
@@ -433,8 +435,16 @@ void checkTooManyVoxels(opal::RenderSession& session, const opal::RenderParamete
   }
   OPAL_CHECK(message.find("4294967296 voxels") != std::string::npos && message.find("4294967295") != std::string::npos,
     "a grid of 2^32 voxels is refused naming its count and the most (" + message + ")");
-  huge.Dimensions = { 65536, 65535, 1 }; // 2^32 - 65536: allowed as far as the index goes
-  OPAL_CHECK(opal::validate(huge).find("voxels;") == std::string::npos, "a grid below 2^32 voxels is not refused for its count");
+  huge.Dimensions = { 65536, 1, 32768 }; // a layer y of 2^31 voxels
+  OPAL_CHECK(opal::validate(huge).find("2147483648 voxels each") != std::string::npos,
+    "a layer y of 2^31 voxels is refused naming its count (" + opal::validate(huge) + ")");
+  huge.ScatteringCoefficient = nullptr; // validate stops at the absent array, reading none
+  for (const std::array<int, 3> within : { std::array<int, 3>{ 65536, 65535, 1 }, std::array<int, 3>{ 65535, 1, 32768 } })
+  {
+    huge.Dimensions = within;
+    OPAL_CHECK(opal::validate(huge).find("lacks") != std::string::npos,
+      "a grid within both limits passes their checks (" + opal::validate(huge) + ")");
+  }
   const opal::RenderFrame frame = session.render(view);
   OPAL_CHECK(frame.Status == opal::FrameStatus::Completed && opaltest::identical(frame.Image, image),
     "after the refusal the session renders its volume as before");

@@ -276,8 +276,7 @@ public:
   // A round saying this share stops, unless the rounds are over.
   void stop();
   // Live again after a round: of the slots live before, `posted` (this
-  // share's post) and those the other shares posted (in Fresh, with any
-  // posted earlier that the device has not been written since), those that go on.
+  // share's post) and those the other shares posted, those that go on.
   void live(const std::vector<std::uint32_t>& posted);
   // The live slots held in `layers` (the shader's resumeRay: a layer word
   // within them): those a round after the first takes up there.
@@ -295,6 +294,7 @@ private:
   const MarchShare& Share;
   bool Ended = false;
   bool ExchangeEnded = false;
+  std::vector<std::uint32_t> Posted; // the slots the other shares posted in the last round
 };
 
 // A frame's shared march's rounds, held by the session (Rounds) while the

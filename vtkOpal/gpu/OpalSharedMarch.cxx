@@ -53,7 +53,7 @@ void RenderSession::MarchRounds::live(const std::vector<std::uint32_t>& posted)
 {
   std::vector<std::uint32_t> slots = this->Live;
   slots.insert(slots.end(), posted.begin(), posted.end());
-  slots.insert(slots.end(), this->Fresh.begin(), this->Fresh.end()); // those posted since the device's last write
+  slots.insert(slots.end(), this->Posted.begin(), this->Posted.end());
   std::sort(slots.begin(), slots.end());
   slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
   this->Live.clear();
@@ -64,6 +64,7 @@ void RenderSession::MarchRounds::live(const std::vector<std::uint32_t>& posted)
       this->Live.push_back(slot);
     }
   }
+  this->Posted.clear();
 }
 
 bool RenderSession::MarchRounds::exchange(const std::vector<std::uint32_t>& post, const Received& received)
@@ -124,6 +125,7 @@ bool RenderSession::MarchRounds::exchangeBytes(const std::vector<char>& post, co
 
 bool RenderSession::MarchRounds::exchangeRays(const std::vector<char>& post)
 {
+  this->Posted.clear();
   return this->exchangeBytes(post, [this](int, const std::uint32_t* rays, std::uint64_t count) {
     return this->takeRays(rays, count);
   });
@@ -161,6 +163,7 @@ bool RenderSession::MarchRounds::takeRays(const std::uint32_t* rays, std::uint64
     }
     std::copy_n(rays + at + 1, this->Words, this->Held.begin() + static_cast<std::ptrdiff_t>(rays[at] * this->Words));
     this->Fresh.push_back(rays[at]);
+    this->Posted.push_back(rays[at]);
   }
   return true;
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace opal
@@ -199,6 +200,12 @@ std::string validate(const RenderVolume& volume)
   {
     return "The input volume has " + std::to_string(volume.voxelCount()) + " voxels; the render reads at most " +
       std::to_string(MostRenderedVoxels) + " (2^32 - 1, a voxel's index on the device): use fewer voxels.";
+  }
+  const auto layerVoxels = static_cast<std::uint64_t>(volume.Dimensions[0]) * static_cast<std::uint64_t>(volume.Dimensions[2]);
+  if (layerVoxels > MostLayerVoxels)
+  {
+    return "The input volume's layers y hold " + std::to_string(layerVoxels) + " voxels each (x by z); the render reads at most " +
+      std::to_string(MostLayerVoxels) + " (2^31 - 1, the light's sweep of a layer): use fewer voxels in x and z.";
   }
   if (!volume.ScatteringCoefficient || !volume.DomainId || !volume.SurfaceDistance)
   {

@@ -27,6 +27,10 @@ struct RenderDomain
 // The most voxels a render reads: the device holds a voxel's index in 32 bits,
 // 2^32 - 1 meaning none (docs/design.md §3.7).
 constexpr std::uint64_t MostRenderedVoxels = 0xffffffffu;
+// The most voxels of a layer y (x by z) a render reads: the light's sweep
+// takes a layer's voxels as one signed dispatch (only a grid one voxel high
+// reaches it within MostRenderedVoxels).
+constexpr std::uint64_t MostLayerVoxels = 0x7fffffffu;
 
 struct RenderVolume
 {
@@ -70,7 +74,8 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 
 // Empty if the render can read the volume, else one sentence naming what is
 // wrong: dimensions and spacing positive, origin finite, at most
-// MostRenderedVoxels voxels (checked before any array is read), the three fields
+// MostRenderedVoxels voxels and MostLayerVoxels a layer y (checked before any
+// array is read), the three fields
 // present, ScatteringCoefficient finite and >= 0, SurfaceDistance finite,
 // AbsorptionCoefficient (if any) finite and >= 0 with its AbsorptionExponent
 // finite, and at most one exponent other than 0 among the absorbing voxels,
