@@ -145,6 +145,10 @@ struct OPAL_ALIGNED RenderParameterBlock
   // axis, and voxels per cell (node i of an axis sits at voxel i x stride).
   OPAL_ALIGNED ivec3 scatteredLightNodes;
   int scatteredLightStride;
+  // The first voxel that the light fields and the every-order field hold,
+  // bound (a piece of a march shared by processes, §8.1): an index less
+  // it. 0 where they are addressed, whose addresses are shifted instead.
+  int heldFirstVoxel;
 };
 
 // One wavelength bin (core/colour/OpalSpectralSampling.h): its centre and width,

@@ -67,13 +67,14 @@ std::pair<int, int> RenderSession::heldLightLayers() const
   return this->Volume ? this->Volume->LightLayers : std::pair<int, int>{ 0, 0 };
 }
 
-// The layers the light fields of `v` hold for HeldPiece: all of them
-// unless addressed (a bound field is read from its buffer's start).
+// The layers the light fields of `v` hold for HeldPiece: the piece and
+// its halo, read at an index less its first voxel (bound: boundFirstVoxel)
+// or from an address shifted by it (addressed: volumeAddresses); else all.
 std::pair<int, int> RenderSession::lightLayersOf(const DeviceVolume& v) const
 {
   const int layers = v.Shape.Dimensions[2];
   const auto [share, shares] = this->HeldPiece;
-  return shares > 1 && v.addressed() ? pieceWithHalo(layers, share, shares, HeldPieceHalo) : std::make_pair(0, layers);
+  return shares > 1 ? pieceWithHalo(layers, share, shares, HeldPieceHalo) : std::make_pair(0, layers);
 }
 
 // The light fields made anew for `layers` where they hold others, the light
@@ -133,14 +134,14 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::pieceHeldFie
 
 // A share of a shared step computing share `share` of `shares`' rows and
 // reading `halo` rows beside them (HeldPieceHalo at most). True where this
-// session holds that share as its piece of the fields, by address
-// (holdsPieceFieldsOf): the piece's layers, made anew where it held others
+// session holds that share as its piece of the fields (holdsPieceOf): the
+// piece's layers, made anew where it held others
 // (a refused allocation left none); else the whole fields where the layers
 // held lack the rows (the processes sharing the step are not those that
 // share the march), and false.
 bool RenderSession::holdShareRows(int share, int shares, int halo)
 {
-  if (this->holdsPieceFieldsOf(share, shares))
+  if (this->holdsPieceOf(share, shares))
   {
     this->holdLightLayers(this->lightLayersOf(*this->Volume));
     return true;
@@ -151,14 +152,6 @@ bool RenderSession::holdShareRows(int share, int shares, int halo)
     this->holdLightLayers({ 0, layers });
   }
   return false;
-}
-
-// Whether this session's fields hold share `share` of `shares` as its piece
-// (holdsPieceOf, read by address: lightLayersOf), so that the shares of a
-// step need send one another only the rows their pieces' halos hold.
-bool RenderSession::holdsPieceFieldsOf(int share, int shares) const
-{
-  return this->holdsPieceOf(share, shares) && this->Volume->addressed();
 }
 
 // The voxels whose light fields and every-order field a frame's memory is

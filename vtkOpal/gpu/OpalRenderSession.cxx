@@ -368,13 +368,11 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, laid out (fieldLayout), refused up front if too
-  // large; read by address where a piece is held (holdPiece), so that the
-  // light fields can hold it alone.
+  // large; the light fields hold the piece held alone (holdPiece).
   auto uploaded = std::make_unique<DeviceVolume>();
   VulkanContext& context = *this->Context;
-  const bool piecesRead = this->MarchPieceFieldsOnly || this->HeldPiece.second > 1;
   std::tie(uploaded->FieldPlacement, uploaded->PairedFields) =
-    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !piecesRead);
+    fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !this->MarchPieceFieldsOnly);
   uploaded->Shape = shapeOf(volume);
   uploaded->LightLayers = this->lightLayersOf(*uploaded);
   const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels(); // the light fields' layers beyond the piece held
@@ -700,7 +698,29 @@ void RenderSession::writeParameterBlock(FrameSetup& setup) const
   const ScatteredLightGrid tallyGrid = scatteredLightGrid(geometry);
   block.scatteredLightNodes = tallyGrid.Nodes;
   block.scatteredLightStride = tallyGrid.Stride;
+  block.heldFirstVoxel = this->boundFirstVoxel();
   setCoupledWave(block, p, shape);
+}
+
+// The first voxel the light fields hold where bound (a piece: holdPiece),
+// which the passes take from an index; 0 where addressed (volumeAddresses
+// shifts their addresses). Below 2^31: a bound field is within a storage
+// buffer's range.
+int RenderSession::boundFirstVoxel() const
+{
+  const DeviceVolume& v = *this->Volume;
+  return v.addressed() ? 0 : static_cast<int>(v.lightFirstVoxel());
+}
+
+// The parameter block's heldFirstVoxel as the layers held now: they change
+// after a frame's block is written (a shared step holding its share's rows,
+// a frame computing the light alone), as the address table does (bindBuffers).
+void RenderSession::writeHeldFirstVoxel() const
+{
+  if (this->Volume && this->Buffers && this->Buffers->Parameters)
+  {
+    this->Buffers->Parameters->as<gpu::RenderParameterBlock>()->heldFirstVoxel = this->boundFirstVoxel();
+  }
 }
 
 // Every order reads its field per voxel where the device's budget holds it
@@ -868,6 +888,7 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
     this->bindBuffers();
   }
   b.Parameters->upload(&setup.Block, sizeof(setup.Block));
+  this->writeHeldFirstVoxel(); // the layers held may have changed since the block was written
 }
 
 RenderSession::ScatteredLightKey RenderSession::scatteredLightKey(const FrameSetup& setup)
@@ -904,6 +925,7 @@ void RenderSession::uploadWavelengthTable(const std::vector<WavelengthBin>& bins
 // Points every binding of the contract at its buffer, by name.
 void RenderSession::bindBuffers()
 {
+  this->writeHeldFirstVoxel();
   const FrameBuffers& b = *this->Buffers;
   if (!this->Volume || !b.WavelengthTable || !b.PixelColour || !b.PixelSpectrum || !b.ShadowTable)
   {

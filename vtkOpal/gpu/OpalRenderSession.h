@@ -292,13 +292,14 @@ private:
   bool scatteredLightFromGrid(const FrameSetup& setup) const;
   bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;
   void writeParameterBlock(FrameSetup& setup) const;
+  int boundFirstVoxel() const;
+  void writeHeldFirstVoxel() const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
   void holdLightLayers(std::pair<int, int> layers);
   bool holdShareRows(int share, int shares, int halo);
-  bool holdsPieceFieldsOf(int share, int shares) const;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;
   bool lightFieldServes(const FrameSetup& setup) const;
   std::uint64_t framedVoxels() const;

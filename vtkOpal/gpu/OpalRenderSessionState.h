@@ -195,7 +195,8 @@ struct RenderSession::DeviceVolume
   // The layers z [first, second) that the light pass's fields (LightField,
   // LightAbsorption, the Bragg shadows) hold: all, or a piece of a march
   // shared by processes and its halo (RenderSession::holdPiece, docs/
-  // design.md §8.1), addressed from the piece's first voxel.
+  // design.md §8.1), read from the piece's first voxel (an address shifted
+  // by it, or bound, an index less it: RenderSession::boundFirstVoxel).
   std::pair<int, int> LightLayers{ 0, 0 };
   std::size_t layerVoxels() const
   {

@@ -172,7 +172,7 @@ constexpr std::uint64_t ChunkBytes = std::uint64_t(4) << 20;
 
 // What a shared step computed: the fields it wrote, in the order a share
 // carries them, and the grid's shape (none where it failed first); whether
-// the shares hold their pieces of the fields (holdsPieceFieldsOf), so that each
+// the shares hold their pieces of the fields (holdsPieceOf), so that each
 // sends only the rows the pieces beside it hold.
 struct SlabShare
 {
@@ -314,31 +314,28 @@ bool RenderSession::needsLightPass(const ResolvedFrame& frame) const
 namespace
 {
 // A share's layout as the processes compare it: each field's bytes per
-// voxel, and the pieces held (`pieces`) and whether the fields are read by
-// address, which decide whether the walks go between the shares
-// (holdsPieceOf), and so the shares' rounds, and which rows they exchange
-// (holdsPieceFieldsOf, sentOf).
-std::string layoutOf(const Fields& fields, int pieces, bool addressed)
+// voxel, and the pieces held (`pieces`), which decide whether the walks go
+// between the shares (holdsPieceOf), and so the shares' rounds, and which
+// rows they exchange (sentOf).
+std::string layoutOf(const Fields& fields, int pieces)
 {
   std::string layout;
   for (const auto& field : fields)
   {
     layout += std::to_string(field.second) + " bytes per voxel; ";
   }
-  return layout + "pieces held: " + std::to_string(pieces) + (addressed ? " by address" : "");
+  return layout + "pieces held: " + std::to_string(pieces);
 }
 } // namespace
 
 std::string RenderSession::lightPassLayout(const ResolvedFrame& frame) const
 {
-  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{}, this->HeldPiece.second,
-    this->Volume && this->Volume->addressed());
+  return layoutOf(this->Volume ? this->lightPassFields(conservesEnergy(frame.Parameters)) : Fields{}, this->HeldPiece.second);
 }
 
 std::string RenderSession::scatteredFieldLayout() const
 {
-  return layoutOf(this->Volume ? this->scatteredFieldFields() : Fields{}, this->HeldPiece.second,
-    this->Volume && this->Volume->addressed());
+  return layoutOf(this->Volume ? this->scatteredFieldFields() : Fields{}, this->HeldPiece.second);
 }
 
 // The every-order field, the one field its shares carry.
