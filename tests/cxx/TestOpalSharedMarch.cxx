@@ -19,6 +19,9 @@
 // between the shares, each reading its piece's medium alone), and a frame
 // alone after it computes them whole again. A share aborting in the shares'
 // walks to the light stops every share's step, and each frame computes the
+// light alone. The same with the light fields bound by piece (a lone
+// session's layout), read at an index less the piece's first voxel, which
+// must follow the layers held into the march of a frame that computes the
 // light alone. A share aborting in its light pass or midway through its
 // march stops every share's frame (no hang, no image); bad shares are refused;
 // a piece's whole field refused by a memory limit leaves nothing stale.
@@ -65,6 +68,10 @@ struct ShareResult
 // piece of the light fields alone (holdPiece), computed by the shares
 // together (shareLightPass) before the frame, and renders alone after it;
 // share 1 then stops that step once its progress passes `Share1StopsLightAt`.
+// With `PiecesBound` the fields keep a lone session's layout (bound and
+// paired at this size) and the march reads them whole, the light fields
+// held by piece read at an index less the piece's first voxel; otherwise
+// each share reads its piece's fields alone, by address (MarchPieceFieldsOnly).
 struct SharedRun
 {
   double Share1StopsAt = 2.0;
@@ -72,6 +79,7 @@ struct SharedRun
   bool Staging = false;
   bool HeldPieces = false;
   double Share1StopsLightAt = 2.0;
+  bool PiecesBound = false;
 };
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
@@ -82,7 +90,7 @@ std::vector<ShareResult> sharedFrames(
   opaltest::Meeting meeting(shares);
   opal::VulkanOptions options;
   options.Validation = true;
-  options.MarchPieceFieldsOnly = true;
+  options.MarchPieceFieldsOnly = !run.PiecesBound;
   options.StagingTransfers = run.Staging;
   std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
   for (int share = 0; share < shares; ++share)
@@ -327,6 +335,13 @@ int TestOpalSharedMarch(int, char*[])
   single.LightPosition = side.LightPosition;
   checkShared(fireStone, single, 3, "fire-opal, lit from the side, share 1 aborting in the walks to the light",
     { 2.0, nullptr, false, true, 1e-9 });
+  // The light fields held by piece, bound: the shared frame, the frames that
+  // compute the light alone after share 1's abort (whole, after the frame's
+  // parameter block was written) and the frames alone after them.
+  checkShared(fireStone, side, 3, "fire-opal, every order, the light fields bound by piece",
+    { 2.0, nullptr, false, true, 2.0, true });
+  checkShared(fireStone, single, 3, "fire-opal, the light fields bound by piece, share 1 aborting in the walks to the light",
+    { 2.0, nullptr, false, true, 1e-9, true });
 
   // Share 1 aborting in its light pass (before any round) or midway through
   // its march: every share's frame stops, none hangs or throws.

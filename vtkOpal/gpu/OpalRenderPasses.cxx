@@ -512,7 +512,7 @@ bool RenderSession::marchRegion(const FrameSetup& setup, const MarchTarget& targ
   block.rectSize = gpu::ivec2(rect[2], rect[3]);
   block.writeSpectrum = target.Spectrum ? 1 : 0;
   block.pixelSamples = target.PixelSamples;
-  this->Buffers->Parameters->upload(&block, sizeof(block));
+  this->uploadParameterBlock(block);
   this->prepareRayStates(this->rayStateBytes(setup, rect));
   this->preparePieceFields(this->marchPieces());
   const ComputePipeline& march = this->marchPipeline(setup);

@@ -712,9 +712,18 @@ int RenderSession::boundFirstVoxel() const
   return v.addressed() ? 0 : static_cast<int>(v.lightFirstVoxel());
 }
 
-// The parameter block's heldFirstVoxel as the layers held now: they change
-// after a frame's block is written (a shared step holding its share's rows,
-// a frame computing the light alone), as the address table does (bindBuffers).
+// The parameter block the passes read, its heldFirstVoxel as the layers
+// held now: they change after a frame's block is written (a shared step
+// holding its share's rows, a frame computing the light alone).
+void RenderSession::uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const
+{
+  gpu::RenderParameterBlock block = frameBlock;
+  block.heldFirstVoxel = this->boundFirstVoxel();
+  this->Buffers->Parameters->upload(&block, sizeof(block));
+}
+
+// The block on the device likewise where the layers held change
+// (bindBuffers), as the address table does.
 void RenderSession::writeHeldFirstVoxel() const
 {
   if (this->Volume && this->Buffers && this->Buffers->Parameters)
@@ -887,8 +896,7 @@ void RenderSession::prepareFrameBuffers(const FrameSetup& setup)
   {
     this->bindBuffers();
   }
-  b.Parameters->upload(&setup.Block, sizeof(setup.Block));
-  this->writeHeldFirstVoxel(); // the layers held may have changed since the block was written
+  this->uploadParameterBlock(setup.Block);
 }
 
 RenderSession::ScatteredLightKey RenderSession::scatteredLightKey(const FrameSetup& setup)

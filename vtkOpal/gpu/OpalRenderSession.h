@@ -36,6 +36,7 @@ namespace gpu
 struct MarchWork;
 struct LightPassWork;
 struct VolumeAddresses;
+struct RenderParameterBlock;
 }
 class VulkanBuffer;
 struct ScatteredLight;
@@ -294,6 +295,7 @@ private:
   void writeParameterBlock(FrameSetup& setup) const;
   int boundFirstVoxel() const;
   void writeHeldFirstVoxel() const;
+  void uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightFields(DeviceVolume& v) const;
