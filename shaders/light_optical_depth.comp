@@ -75,18 +75,18 @@ layout(std430, set = 0, binding = LightAbsorptionBinding) buffer LightAbsorption
 layout(std430, set = 0, binding = LightShadowBinding) buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = LightEntryVoxelsBinding) buffer LightEntryVoxels { uint entryVoxels[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer ScatteredLight { vec4 scatteredLight[]; };
-// The fields a piece may hold (P.heldFirstVoxel) are read at an index less its first voxel.
-#define LIGHT_FIELD_AT(i) lightField[(i) - P.heldFirstVoxel]
-#define LIGHT_ABSORPTION_AT(i) lightAbsorption[(i) - P.heldFirstVoxel]
+// The fields a piece may hold are read at heldIndex.
+#define LIGHT_FIELD_AT(i) lightField[heldIndex(i)]
+#define LIGHT_ABSORPTION_AT(i) lightAbsorption[heldIndex(i)]
 // Bound fields are always paired (opal_volume_fields.glsl): these are the pair's first.
-#define LIGHT_FIELD_SINGLE_AT(i) lightField[(i) - P.heldFirstVoxel].voxel
-#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[(i) - P.heldFirstVoxel].voxel
-#define LIGHT_FIELD_FROM_AT(i) lightField[(i) - P.heldFirstVoxel]
-#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[(i) - P.heldFirstVoxel]
+#define LIGHT_FIELD_SINGLE_AT(i) lightField[heldIndex(i)].voxel
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[heldIndex(i)].voxel
+#define LIGHT_FIELD_FROM_AT(i) lightField[heldIndex(i)]
+#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[heldIndex(i)]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
-#define LIGHT_SHADOW_AT(i) lightShadow[(i) - P.heldFirstVoxel]
+#define LIGHT_SHADOW_AT(i) lightShadow[heldIndex(i)]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]
-#define SCATTERED_LIGHT_AT(i) scatteredLight[(i) - P.heldFirstVoxel]
+#define SCATTERED_LIGHT_AT(i) scatteredLight[heldIndex(i)]
 #endif
 #include "opal_scattered_light_grid.glsl"
 

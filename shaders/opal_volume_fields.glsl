@@ -39,6 +39,14 @@ int voxelIndex(ivec3 c)
   return c.x + P.gridDimensions.x * (c.y + P.gridDimensions.y * c.z);
 }
 
+// A voxel's place in a bound field that may hold a piece (the light fields,
+// the every-order field): its index less the piece's first voxel
+// (P.heldFirstVoxel, 0 where addressed; docs/design.md §8.1).
+int heldIndex(int index)
+{
+  return index - P.heldFirstVoxel;
+}
+
 // The voxel of index `index` (its bits unsigned, as voxelIndex says).
 ivec3 voxelOfIndex(int index)
 {

@@ -85,17 +85,17 @@ layout(std430, set = 0, binding = AbsorptionCellBinding) readonly buffer Absorpt
 layout(std430, set = 0, binding = LightAbsorptionBinding) readonly buffer LightAbsorption { LightFieldPairAsVec4 lightAbsorption[]; };
 layout(std430, set = 0, binding = LightShadowBinding) readonly buffer LightShadows { LightShadow lightShadow[]; };
 layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer ScatteredLight { vec4 scatteredLight[]; };
-// The fields a piece may hold (P.heldFirstVoxel) are read at an index less its first voxel.
-#define LIGHT_FIELD_AT(i) lightField[(i) - P.heldFirstVoxel]
-#define LIGHT_ABSORPTION_AT(i) lightAbsorption[(i) - P.heldFirstVoxel]
+// The fields a piece may hold are read at heldIndex.
+#define LIGHT_FIELD_AT(i) lightField[heldIndex(i)]
+#define LIGHT_ABSORPTION_AT(i) lightAbsorption[heldIndex(i)]
 // Bound fields are always paired (opal_volume_fields.glsl): these read the pair.
-#define LIGHT_FIELD_SINGLE_AT(i) lightField[(i) - P.heldFirstVoxel].xy
-#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[(i) - P.heldFirstVoxel].xy
-#define LIGHT_FIELD_FROM_AT(i) lightField[(i) - P.heldFirstVoxel]
-#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[(i) - P.heldFirstVoxel]
+#define LIGHT_FIELD_SINGLE_AT(i) lightField[heldIndex(i)].xy
+#define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[heldIndex(i)].xy
+#define LIGHT_FIELD_FROM_AT(i) lightField[heldIndex(i)]
+#define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[heldIndex(i)]
 #define ABSORPTION_CELL_AT(i) absorptionCells[i]
-#define LIGHT_SHADOW_AT(i) lightShadow[(i) - P.heldFirstVoxel]
-#define SCATTERED_LIGHT_AT(i) scatteredLight[(i) - P.heldFirstVoxel]
+#define LIGHT_SHADOW_AT(i) lightShadow[heldIndex(i)]
+#define SCATTERED_LIGHT_AT(i) scatteredLight[heldIndex(i)]
 #endif
 #include "opal_scattered_light_grid.glsl"
 layout(std430, set = 0, binding = DomainTableBinding) readonly buffer DomainTable { DomainRecord domains[]; };

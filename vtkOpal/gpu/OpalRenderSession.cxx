@@ -698,8 +698,7 @@ void RenderSession::writeParameterBlock(FrameSetup& setup) const
   const ScatteredLightGrid tallyGrid = scatteredLightGrid(geometry);
   block.scatteredLightNodes = tallyGrid.Nodes;
   block.scatteredLightStride = tallyGrid.Stride;
-  block.heldFirstVoxel = this->boundFirstVoxel();
-  setCoupledWave(block, p, shape);
+  setCoupledWave(block, p, shape); // heldFirstVoxel: at its upload (uploadParameterBlock)
 }
 
 // The first voxel the light fields hold where bound (a piece: holdPiece),
