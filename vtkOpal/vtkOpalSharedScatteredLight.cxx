@@ -47,7 +47,7 @@ Result Solve(vtkMultiProcessController* controller, opal::RenderSession* session
           }
           return scores;
         },
-        progress);
+        vtkOpalSharedLightField::ForSession(exchange).Round, progress);
     });
 }
 

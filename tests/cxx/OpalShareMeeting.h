@@ -6,8 +6,13 @@
 
 #include <algorithm>
 #include <condition_variable>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
 #include <mutex>
 #include <optional>
+#include <thread>
 #include <vector>
 
 namespace opaltest
@@ -54,6 +59,35 @@ public:
     return last ? whole : goesOn;
   }
 
+  // An every-order solve's scores (RenderSession::ScoresExchange) through
+  // its last exchange: every share's in share order, nullopt where one stopped.
+  std::optional<std::vector<std::vector<double>>> meetScores(int share, const std::optional<std::vector<double>>& mine)
+  {
+    std::optional<std::vector<char>> bytes;
+    if (mine)
+    {
+      bytes.emplace(mine->size() * sizeof(double));
+      std::memcpy(bytes->data(), mine->data(), bytes->size());
+    }
+    std::vector<std::vector<char>> arrived(this->Posts.size());
+    const bool whole = this->meet(share, true, bytes, [&arrived](int from, std::uint64_t first, std::uint64_t count, const char* b) {
+      std::vector<char>& into = arrived[static_cast<std::size_t>(from)];
+      into.resize(std::max<std::size_t>(into.size(), first + count));
+      std::memcpy(into.data() + first, b, count);
+    });
+    if (!whole)
+    {
+      return std::nullopt;
+    }
+    std::vector<std::vector<double>> scores;
+    for (const std::vector<char>& from : arrived)
+    {
+      scores.emplace_back(from.size() / sizeof(double));
+      std::memcpy(scores.back().data(), from.data(), from.size());
+    }
+    return scores;
+  }
+
 private:
   struct Post
   {
@@ -66,4 +100,41 @@ private:
   int Arrived = 0, Left = 0;
   bool Reading = false;
 };
+// The sessions solve every order's scattered light for `frame` together, one
+// share each on threads of their own (RenderSession::solveScatteredLightShared:
+// each reads back its slab of the medium, and the slabs go to every share);
+// the first reports to `progress`. Whether each holds the field (false where
+// its share threw, said on stderr).
+inline std::vector<bool> solveTogether(
+  const std::vector<opal::RenderSession*>& sessions, const opal::ResolvedFrame& frame, const opal::RenderProgress& progress)
+{
+  const int shares = static_cast<int>(sessions.size());
+  Meeting meeting(shares);
+  std::vector<char> solved(sessions.size(), 0);
+  std::vector<std::thread> threads;
+  for (int share = 0; share < shares; ++share)
+  {
+    threads.emplace_back([&, share] {
+      try
+      {
+        solved[static_cast<std::size_t>(share)] = sessions[static_cast<std::size_t>(share)]->solveScatteredLightShared(
+          frame, share, shares,
+          [&meeting, share](const std::optional<std::vector<double>>& mine) { return meeting.meetScores(share, mine); },
+          [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+            return meeting.meet(share, false, mine, sink);
+          },
+          share == 0 ? progress : nullptr);
+      }
+      catch (const std::exception& e)
+      {
+        std::fprintf(stderr, "share %d of the solve failed: %s\n", share, e.what());
+      }
+    });
+  }
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  return { solved.begin(), solved.end() };
+}
 } // namespace opaltest

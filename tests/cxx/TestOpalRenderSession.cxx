@@ -10,6 +10,7 @@
 // runs of bytes read and written together (readRuns, writeRuns) through
 // staging in batches.
 #include "OpalRenderScenes.h"
+#include "OpalShareMeeting.h"
 #include "OpalTestHarness.h"
 #include "OpalVolumeBuild.h"
 #include "OpalVulkanBuffer.h"
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -90,8 +92,9 @@ void checkScatteredLightStages(opal::RenderSession& session, opal::RenderParamet
   OPAL_CHECK(!single.ScatteredLight, "single scattering solves nothing (" + stages(single) + ")");
 }
 
-// The field solved ahead of its frame, in two shares put together (as MPI
-// ranks share the solve, docs/design.md §8.1), by a session that has rendered
+// The field solved ahead of its frame, in three shares put together (as MPI
+// ranks share the solve, docs/design.md §8.1: each reads back its slab of the
+// medium, and the slabs go to every share), by sessions that have rendered
 // nothing yet (a rank's first update), then the frame: the image a frame's
 // own solve gives, pixel for pixel. (Its field per voxel was once written
 // before the session's buffers were bound, so not at all.) Either way the
@@ -115,22 +118,28 @@ void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& v
   const opal::RenderImage own = rendered.render(p, record).Image;
   OPAL_CHECK(risesToOne(seen), "a frame's progress through its light pass and solve only rises, to 1");
   seen.clear();
-  opaltest::SceneRenderer fresh(opal::VulkanOptions{}); // a session that has rendered nothing, as a rank's first update
-  opal::RenderSession& session = fresh.Session;
-  session.setVolume(volume);
-  const opal::ResolvedFrame frame = opal::resolveFrame(p);
-  std::vector<std::vector<double>> shares(2);
-  for (int share : { 1, 0 }) // share 1 traces and keeps its scores; share 0 traces and puts both together
+  // Sessions that have rendered nothing, as ranks' first updates, on threads:
+  // each reads back its slab of the medium (share 1 through staging buffers,
+  // as a discrete GPU does) and the slabs go between them.
+  constexpr int Shares = 3;
+  std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
+  for (int share = 0; share < Shares; ++share)
   {
-    const bool solved = session.solveScatteredLightShared(frame, share, 2,
-      [&shares, share](const std::optional<std::vector<double>>& mine) {
-        shares[static_cast<std::size_t>(share)] = *mine;
-        return share == 0 ? std::optional<std::vector<std::vector<double>>>(shares) : std::nullopt;
-      },
-      share == 0 ? record : nullptr);
-    OPAL_CHECK(solved == (share == 0), "share " + std::to_string(share) + " of a solve ahead of its frame");
+    opal::VulkanOptions options;
+    options.StagingTransfers = share == 1;
+    sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
+    sessions.back()->Session.setVolume(volume);
   }
-  const opal::RenderFrame ahead = session.render(frame, record);
+  const opal::ResolvedFrame frame = opal::resolveFrame(p);
+  std::vector<opal::RenderSession*> shares;
+  for (const auto& session : sessions)
+  {
+    shares.push_back(&session->Session);
+  }
+  const std::vector<bool> solved = opaltest::solveTogether(shares, frame, record);
+  OPAL_CHECK(std::all_of(solved.begin(), solved.end(), [](bool s) { return s; }),
+    "every share of a solve ahead of its frame holds the field");
+  const opal::RenderFrame ahead = sessions.front()->Session.render(frame, record);
   OPAL_CHECK(opaltest::identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
   OPAL_CHECK(risesToOne(seen), "the progress of a solve ahead of its frame, then the frame's, only rises, to 1");
 }

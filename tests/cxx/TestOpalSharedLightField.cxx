@@ -16,7 +16,8 @@
 // is held, and the frame computes it alone, to the same image. With fewer
 // rows than shares, a share of none takes part all the same. The every-order
 // field per voxel, written from the tally grid each session holds, is shared
-// likewise, its slabs crossing the exchange's chunks.
+// likewise, its slabs crossing the exchange's chunks, as are the slabs of the
+// medium the sessions' shared solve of that grid reads.
 #include "OpalPresets.h"
 #include "OpalRenderFrame.h"
 #include "OpalRenderScenes.h"
@@ -57,15 +58,6 @@ bool needs(const opal::RenderSession& session, Field field, const opal::Resolved
   return field == Field::Light ? session.needsLightPass(frame) : session.needsScatteredField(frame);
 }
 
-// The session solves the every-order field's grid alone (one share of one).
-bool holdsGrid(opal::RenderSession& session, const opal::ResolvedFrame& frame)
-{
-  return session.solveScatteredLightShared(frame, 0, 1, [](const std::optional<std::vector<double>>& mine) {
-    return mine ? std::optional<std::vector<std::vector<double>>>(std::vector<std::vector<double>>{ *mine })
-                : std::nullopt;
-  });
-}
-
 // Three sessions compute their shares on three threads; share 0's session
 // then renders the frame.
 opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::VulkanOptions& options,
@@ -73,13 +65,21 @@ opal::RenderFrame sharedFrame(const opal::RenderVolume& volume, const opal::Vulk
 {
   constexpr int Shares = 3;
   std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
+  std::vector<opal::RenderSession*> shares;
   for (int share = 0; share < Shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
-    opal::RenderSession& session = sessions.back()->Session;
-    session.setVolume(volume);
-    OPAL_CHECK(field == Field::Light || holdsGrid(session, frame), what + ": the session holds the tally grid");
-    OPAL_CHECK(needs(session, field, frame), what + ": a fresh session would compute the field");
+    shares.push_back(&sessions.back()->Session);
+    shares.back()->setVolume(volume);
+  }
+  // The every-order field's tally grid, solved by the sessions together (their
+  // slabs of the medium crossing the exchange's chunks at 120 x 60 x 120).
+  const std::vector<bool> solved = field == Field::Scattered ? opaltest::solveTogether(shares, frame, nullptr)
+                                                              : std::vector<bool>(Shares, true);
+  for (int share = 0; share < Shares; ++share)
+  {
+    OPAL_CHECK(solved[static_cast<std::size_t>(share)], what + ": the session holds the tally grid");
+    OPAL_CHECK(needs(*shares[static_cast<std::size_t>(share)], field, frame), what + ": a fresh session would compute the field");
   }
   opaltest::Meeting meeting(Shares);
   std::vector<char> held(Shares, 0);

@@ -177,66 +177,6 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow, bool forwa
   return *pass;
 }
 
-namespace
-{
-// A value of each of a device field's `count` records, read back round by round.
-template <typename Record, typename Value>
-std::vector<float> readEach(const VulkanBuffer& buffer, std::size_t count, Value&& value)
-{
-  std::vector<float> values(count);
-  buffer.read(count * sizeof(Record), [&values, &value](std::uint64_t first, std::uint64_t bytes, const void* from) {
-    const auto* records = static_cast<const Record*>(from);
-    float* into = values.data() + first / sizeof(Record);
-    for (std::size_t i = 0; i < bytes / sizeof(Record); ++i) into[i] = value(records[i]);
-  });
-  return values;
-}
-} // namespace
-
-// The medium the every-order solve reads: its fields read back from the
-// device's cells (and absorption cells) and SurfaceDistance for each solve
-// and released after it (releaseScatteringMedium), so the host holds them (8
-// bytes per voxel, 16 with absorption) only while a solve runs, not beside the
-// frame's field; its tally nodes' volumes, a few MB, are kept for every later
-// light (docs/design.md §3.10).
-const ScatteringMedium& RenderSession::scatteringMedium()
-{
-  DeviceVolume& v = *this->Volume;
-  const std::size_t voxels = v.Shape.voxelCount();
-  // Read whole before it is kept: a read that throws (its staging round
-  // beyond the memory limit, say) leaves no half-read medium for a later solve.
-  std::vector<float> scattering =
-    readEach<gpu::VoxelCell>(*v.Cells, voxels, [](const gpu::VoxelCell& cell) { return cell.scattering; });
-  std::vector<glm::vec2> absorption(v.Absorbs ? voxels : 0);
-  v.AbsorptionCells->read(absorption.size() * sizeof(glm::vec2),
-    [&absorption](std::uint64_t first, std::uint64_t count, const void* from) {
-      std::memcpy(reinterpret_cast<char*>(absorption.data()) + first, from, count);
-    });
-  // Each voxel's own SurfaceDistance is its pair's first value (the second its +x neighbour's).
-  v.Medium.Geometry.setSurfaceDistance(v.PairedFields
-      ? readEach<gpu::vec2>(*v.SurfaceDistance, voxels, [](const gpu::vec2& pair) { return pair.x; })
-      : readEach<float>(*v.SurfaceDistance, voxels, [](float value) { return value; }));
-  if (v.Medium.NodeVolumes.empty())
-  {
-    v.Medium.NodeVolumes = scatteredLightNodeVolumes(v.Medium.Geometry);
-  }
-  v.Medium.Scattering = std::move(scattering);
-  v.Medium.Absorption = std::move(absorption);
-  return v.Medium;
-}
-
-void RenderSession::releaseScatteringMedium()
-{
-  if (!this->Volume)
-  {
-    return;
-  }
-  ScatteringMedium& medium = this->Volume->Medium;
-  std::vector<float>().swap(medium.Scattering);
-  std::vector<glm::vec2>().swap(medium.Absorption);
-  medium.Geometry.releaseSurfaceDistance();
-}
-
 // The light scattered more than once (docs/design.md §3.10), solved on the
 // host for the frame's light and uploaded; nothing is held while it runs, so
 // an aborted solve leaves no stale field.
@@ -359,13 +299,14 @@ bool RenderSession::needsScatteredLight(const ResolvedFrame& frame) const
 }
 
 bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares,
-  const ScoresExchange& exchange, const RenderProgress& callback)
+  const ScoresExchange& exchange, const LayerExchange& round, const RenderProgress& callback)
 {
   const auto start = Clock::now();
   std::optional<FrameSetup> setup;
   const ScatteringMedium* medium = nullptr;
   std::optional<std::vector<double>> mine;
   std::exception_ptr failure;
+  bool exchanging = true;
   const MediumRelease release(*this);
   try
   {
@@ -375,16 +316,18 @@ bool RenderSession::solveScatteredLightShared(const ResolvedFrame& frame, int sh
     // After a light field the processes marched (its first half), and the
     // frame's light pass then reports none (renderFrame).
     progress.stage(this->PendingLightSeconds >= 0 ? FrameLightShare * 0.5 : 0.0, FrameLightShare);
-    medium = &this->scatteringMedium();
-    mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares,
-      progress.stageCallback());
+    medium = this->shareScatteringMedium(share, shares, round, exchanging);
+    if (medium)
+    {
+      mine = traceScatteredLightShare(*medium, scatteredLightRequest(*setup), share, shares, progress.stageCallback());
+    }
   }
   catch (...)
   {
     failure = std::current_exception();
     mine.reset();
   }
-  const std::optional<std::vector<std::vector<double>>> scores = exchange(mine);
+  const std::optional<std::vector<std::vector<double>>> scores = exchanging ? exchange(mine) : std::nullopt;
   if (failure)
   {
     std::rethrow_exception(failure);

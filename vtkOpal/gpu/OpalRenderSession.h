@@ -120,19 +120,27 @@ public:
   // processes together, before their frames (§8.1). needsScatteredLight:
   // whether `frame` would solve it (every order, and no field held serves
   // it), having checked what render() checks before any work (the frame's
-  // settings and memory: it throws alike). solveScatteredLightShared traces share `share` of `shares` of the
-  // photons, hands its scores to `exchange`, which gives back every share's
-  // in share order (nullopt where any share failed), and holds the field for
-  // the frames that follow, which then reuse it. `exchange` is called exactly
-  // once whatever happens before it (a failed or aborted trace passes
-  // nullopt), so that no process waits in an exchange another left; an
+  // settings and memory: it throws alike). solveScatteredLightShared reads
+  // back share `share` of `shares` of the medium the solve reads (the light
+  // field's rows, shareLightPass), sends it to every share through `round`
+  // (as shareLightPass's fields: a chunk of each share a round) and holds
+  // theirs, traces its share of the photons, hands its scores to `exchange`,
+  // which gives back every share's in share order (nullopt where any share
+  // failed), and holds the field for the frames that follow, which then
+  // reuse it. `exchange` is called exactly once whatever happens before it
+  // (a failed or aborted trace passes nullopt) unless a round ended the
+  // exchange, so that no process waits in an exchange another left; an
   // exception met before it is rethrown after it. False if the trace was
   // aborted or a share failed: a frame then solves on its own.
+  // A shared step's exchanges (shareLightPass says how they go).
+  using ShareSink = std::function<void(int share, std::uint64_t first, std::uint64_t count, const char* bytes)>;
+  using FieldExchange = std::function<bool(const std::optional<std::vector<char>>& mine, const ShareSink& sink)>;
+  using LayerExchange = std::function<bool(const std::vector<char>& mine, const ShareSink& sink)>;
   using ScoresExchange =
     std::function<std::optional<std::vector<std::vector<double>>>(const std::optional<std::vector<double>>& mine)>;
   bool needsScatteredLight(const ResolvedFrame& frame) const;
   bool solveScatteredLightShared(const ResolvedFrame& frame, int share, int shares, const ScoresExchange& exchange,
-    const RenderProgress& progress = nullptr);
+    const LayerExchange& round, const RenderProgress& progress = nullptr);
 
   // The light field (§3.3) computed by several processes together, before
   // their frames (§8.1), as the solve above: needsLightPass, whether `frame`
@@ -151,9 +159,6 @@ public:
   // the frames that follow. `exchange` is called exactly once unless a round
   // ended the exchange; false if the pass was aborted or a share failed: a
   // frame then computes the field alone.
-  using ShareSink = std::function<void(int share, std::uint64_t first, std::uint64_t count, const char* bytes)>;
-  using FieldExchange = std::function<bool(const std::optional<std::vector<char>>& mine, const ShareSink& sink)>;
-  using LayerExchange = std::function<bool(const std::vector<char>& mine, const ShareSink& sink)>;
   bool needsLightPass(const ResolvedFrame& frame) const;
   // How a share's bytes are laid out (each field's bytes per voxel, which
   // follow the device: paired or not, §3.7): processes exchange shares only
@@ -332,6 +337,7 @@ private:
   void readFrame(const FrameSetup& setup, double exposure, RenderFrame& frame) const;
   bool runScatteredLight(const FrameSetup& setup, Progress& progress);
   const ScatteringMedium& scatteringMedium();
+  const ScatteringMedium* shareScatteringMedium(int share, int shares, const LayerExchange& round, bool& exchanging);
   void releaseScatteringMedium();
   // Releases the medium's fields when a solve ends, however it ends.
   struct MediumRelease

@@ -164,12 +164,6 @@ struct SharePlacer
   }
 };
 
-// A round of the slabs' exchange carries this much of each share's slab:
-// the slab whole in one exchange was a copy of it held beside the fields
-// (8 to 44 bytes per voxel of the share: 41 MB a rank on 4 ranks at 320 x
-// 160 x 400 with the light field alone).
-constexpr std::uint64_t ChunkBytes = std::uint64_t(4) << 20;
-
 // What a shared step computed: the fields it wrote, in the order a share
 // carries them, and the grid's shape (none where it failed first); whether
 // the shares hold their pieces of the fields (holdsPieceOf), so that each
@@ -244,7 +238,7 @@ bool exchangeSlabs(const SlabShare& step, int share, int shares, const RenderSes
   {
     voxelBytes += field.second;
   }
-  const std::size_t voxels = std::max<std::size_t>(1, ChunkBytes / std::max<std::uint64_t>(voxelBytes, 1));
+  const std::size_t voxels = std::max<std::size_t>(1, ShareChunkBytes / std::max<std::uint64_t>(voxelBytes, 1));
   std::vector<Runs> sent;
   std::size_t rounds = 0; // alike on every share: the most any sends
   for (int s = 0; s < shares; ++s)
