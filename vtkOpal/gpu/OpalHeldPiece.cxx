@@ -20,16 +20,11 @@ using namespace sessiondetail;
 
 namespace
 {
-// Layers `piece` of `layers` and `halo` beside them, within the grid.
-std::pair<int, int> withHalo(std::pair<int, int> piece, int halo, int layers)
-{
-  return { std::max(piece.first - halo, 0), std::min(piece.second + halo, layers) };
-}
-
 // Share `share`'s layers of `layers` and `halo` beside them, within the grid.
 std::pair<int, int> pieceWithHalo(int layers, int share, int shares, int halo)
 {
-  return withHalo(evenShare(layers, share, shares), halo, layers);
+  const std::pair<int, int> piece = evenShare(layers, share, shares);
+  return { std::max(piece.first - halo, 0), std::min(piece.second + halo, layers) };
 }
 
 bool holds(std::pair<int, int> held, std::pair<int, int> layers)
