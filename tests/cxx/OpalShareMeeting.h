@@ -44,7 +44,10 @@ public:
     for (std::size_t from = 0; from < this->Posts.size(); ++from)
     {
       const Post& post = this->Posts[from];
-      for (std::size_t first = 0; post.Bytes && (goesOn || post.Last) && first < post.Bytes->size(); first += 1000)
+      // A round hands on the rounds' bytes; a stopping share's last bytes
+      // reach only the last exchanges, as over MPI (vtkOpalRankShares).
+      for (std::size_t first = 0; post.Bytes && (goesOn || (post.Last && last)) && first < post.Bytes->size();
+           first += 1000)
       {
         sink(static_cast<int>(from), first, std::min<std::size_t>(1000, post.Bytes->size() - first),
           post.Bytes->data() + first);
@@ -128,6 +131,10 @@ inline std::vector<bool> solveTogether(
       catch (const std::exception& e)
       {
         std::fprintf(stderr, "share %d of the solve failed: %s\n", share, e.what());
+      }
+      catch (...)
+      {
+        std::fprintf(stderr, "share %d of the solve failed\n", share);
       }
     });
   }

@@ -20,8 +20,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -142,6 +142,25 @@ void checkSharedSolve(opal::RenderSession& rendered, const opal::RenderVolume& v
   const opal::RenderFrame ahead = sessions.front()->Session.render(frame, record);
   OPAL_CHECK(opaltest::identical(own, ahead.Image), "a field solved ahead of its frame gives the frame's own image");
   OPAL_CHECK(risesToOne(seen), "the progress of a solve ahead of its frame, then the frame's, only rises, to 1");
+  for (int share = 1; share < Shares; ++share)
+  {
+    OPAL_CHECK(opaltest::identical(own, sessions[static_cast<std::size_t>(share)]->Session.render(frame).Image),
+      "share " + std::to_string(share) + "'s field, from the slabs it received, gives the frame's own image");
+  }
+  // A share failing before the medium's rounds (its session holds no volume)
+  // sends its last instead: every share's rounds end, none waits, none holds a field.
+  opaltest::SceneRenderer empty(opal::VulkanOptions{});
+  std::vector<std::unique_ptr<opaltest::SceneRenderer>> again;
+  for (int held = 0; held < 2; ++held) // shares 0 and 2
+  {
+    again.push_back(std::make_unique<opaltest::SceneRenderer>(opal::VulkanOptions{}));
+    again.back()->Session.setVolume(volume);
+  }
+  const std::vector<bool> stopped =
+    opaltest::solveTogether({ &again[0]->Session, &empty.Session, &again[1]->Session }, frame, nullptr);
+  OPAL_CHECK(std::none_of(stopped.begin(), stopped.end(), [](bool s) { return s; }),
+    "a share failing before the medium's rounds ends every share's solve, none holding a field");
+  OPAL_CHECK(again[0]->Session.needsScatteredLight(frame), "the shares' frames then solve alone");
 }
 
 // Where the device's budget cannot hold the every-order field per voxel (16

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <exception>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -97,6 +98,17 @@ std::vector<char> bytesOf(MediumValues& values, VoxelRange voxels)
   return bytes;
 }
 
+// The bytes bytesOf gives for `voxels`.
+std::uint64_t bytesFor(MediumValues& values, VoxelRange voxels)
+{
+  std::uint64_t bytes = 0;
+  for (const auto& column : values.columns())
+  {
+    bytes += (voxels.second - voxels.first) * column.second;
+  }
+  return bytes;
+}
+
 // Bytes [first, first + count) of those bytesOf gives for `voxels`, copied into `values`.
 void place(MediumValues& values, VoxelRange voxels, std::uint64_t first, std::uint64_t count, const char* bytes)
 {
@@ -130,18 +142,21 @@ bool exchangeMedium(MediumValues& values, const std::array<int, 3>& dims, int sh
   for (std::size_t k = 0; k < rounds; ++k)
   {
     std::exception_ptr failure;
-    const auto placed = [&](int from, std::uint64_t first, std::uint64_t count, const char* bytes) {
+    std::vector<std::uint64_t> arrived(static_cast<std::size_t>(shares), 0);
+    const RenderSession::ShareSink placed = [&](int from, std::uint64_t first, std::uint64_t count, const char* bytes) {
       try
       {
         place(values, slabChunk(shareSlab(dims, from, shares), voxels, k), first, count, bytes);
+        arrived.at(static_cast<std::size_t>(from)) += count;
       }
       catch (...)
       {
         failure = std::current_exception(); // thrown once the round is over, not inside the exchange
       }
     };
+    const std::vector<char> mine = bytesOf(values, slabChunk(shareSlab(dims, share, shares), voxels, k));
     exchanging = false; // a throw ends it too
-    exchanging = round(bytesOf(values, slabChunk(shareSlab(dims, share, shares), voxels, k)), placed);
+    exchanging = round(mine, placed);
     if (failure)
     {
       std::rethrow_exception(failure);
@@ -149,6 +164,16 @@ bool exchangeMedium(MediumValues& values, const std::array<int, 3>& dims, int sh
     if (!exchanging)
     {
       return false;
+    }
+    for (int from = 0; from < shares; ++from)
+    {
+      const std::uint64_t expected = bytesFor(values, slabChunk(shareSlab(dims, from, shares), voxels, k));
+      if (from != share && arrived[static_cast<std::size_t>(from)] != expected)
+      {
+        throw std::runtime_error("Share " + std::to_string(from) + " sent " +
+          std::to_string(arrived[static_cast<std::size_t>(from)]) + " bytes of its chunk of the every-order solve's "
+          "medium, not its voxels' " + std::to_string(expected) + ".");
+      }
     }
   }
   return true;
