@@ -20,8 +20,9 @@ arrays). ARRAYS is the volume's OutputArrays: all (the default) or render
 (only what the render reads). SCHEME is whole (the default: each rank
 renders its piece of the image from the whole volume's fields, then the
 shared steps above) or pieces: every render, the footprint's too, with
-ShareMarch (each rank holding its piece of the light fields and the
-every-order field), the frame then every order, and the estimate from it.
+ShareMarch (each rank holding its piece of the light fields, the
+every-order field and the medium's cells), the frame then every order, and
+the estimate from it.
 Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS [SCHEME]]"""
 import os
 import resource

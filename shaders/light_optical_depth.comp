@@ -83,7 +83,7 @@ layout(std430, set = 0, binding = ScatteredLightBinding) writeonly buffer Scatte
 #define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[heldIndex(i)].voxel
 #define LIGHT_FIELD_FROM_AT(i) lightField[heldIndex(i)]
 #define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[heldIndex(i)]
-#define ABSORPTION_CELL_AT(i) absorptionCells[i]
+#define ABSORPTION_CELL_AT(i) absorptionCells[mediumIndex(i)]
 #define LIGHT_SHADOW_AT(i) lightShadow[heldIndex(i)]
 #define ENTRY_VOXEL_AT(i) entryVoxels[i]
 #define SCATTERED_LIGHT_AT(i) scatteredLight[heldIndex(i)]

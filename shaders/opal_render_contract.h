@@ -149,6 +149,9 @@ struct OPAL_ALIGNED RenderParameterBlock
   // bound (a piece of a march shared by processes, §8.1): an index less
   // it. 0 where they are addressed, whose addresses are shifted instead.
   int heldFirstVoxel;
+  // The same for the medium's cells and absorption cells, which hold a
+  // piece where it was uploaded by piece (a wider halo than the light fields').
+  int mediumFirstVoxel;
 };
 
 // One wavelength bin (core/colour/OpalSpectralSampling.h): its centre and width,

@@ -25,7 +25,7 @@ layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer Sur
 layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells { VoxelCell voxelCells[]; };
 layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { vec2 surfaceDistancePairs[]; };
 const bool PAIRED_FIELDS = true;
-#define VOXEL_CELL_AT(i) voxelCells[i]
+#define VOXEL_CELL_AT(i) voxelCells[mediumIndex(i)]
 #define SURFACE_DISTANCE_AT(i) surfaceDistancePairs[i]
 #define SURFACE_DISTANCE_SINGLE_AT(i) surfaceDistancePairs[i].x
 #define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[i]
@@ -45,6 +45,12 @@ int voxelIndex(ivec3 c)
 int heldIndex(int index)
 {
   return index - P.heldFirstVoxel;
+}
+
+// The same for the medium's cells and absorption cells (P.mediumFirstVoxel).
+int mediumIndex(int index)
+{
+  return index - P.mediumFirstVoxel;
 }
 
 // The voxel of index `index` (its bits unsigned, as voxelIndex says).

@@ -93,7 +93,7 @@ layout(std430, set = 0, binding = ScatteredLightBinding) readonly buffer Scatter
 #define LIGHT_ABSORPTION_SINGLE_AT(i) lightAbsorption[heldIndex(i)].xy
 #define LIGHT_FIELD_FROM_AT(i) lightField[heldIndex(i)]
 #define LIGHT_ABSORPTION_FROM_AT(i) lightAbsorption[heldIndex(i)]
-#define ABSORPTION_CELL_AT(i) absorptionCells[i]
+#define ABSORPTION_CELL_AT(i) absorptionCells[mediumIndex(i)]
 #define LIGHT_SHADOW_AT(i) lightShadow[heldIndex(i)]
 #define SCATTERED_LIGHT_AT(i) scatteredLight[heldIndex(i)]
 #endif

@@ -191,18 +191,28 @@ bool vtkOpalSpectralRender::HasSessionOfSettings() const
 bool vtkOpalSpectralRender::HoldsUploadedVolume(vtkImageData* volume) const
 {
   return volume && this->HasSessionOfSettings() && this->UploadedVolume == volume &&
-    this->UploadedVolumeTime == volume->GetMTime();
+    this->UploadedVolumeTime == volume->GetMTime() && this->RenderSession->holdsVolume();
+}
+
+// Whether the session's volume serves a frame of this rank, marched shared
+// by the ranks or not: its medium held whole, or for its piece (a volume
+// uploaded for another piece is uploaded again, its arrays gathered again).
+bool vtkOpalSpectralRender::MediumServes(bool marchShared) const
+{
+  return this->RenderSession->mediumServes(marchShared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
+    marchShared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
 }
 
 bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
-  // A march shared by the ranks reads the light fields only in the rank's
-  // piece: they hold it alone (docs/design.md §8.1), set before the upload
-  // makes them; any other frame (a background frame too) reads them whole.
+  // A march shared by the ranks reads the light fields and the medium only
+  // in the rank's piece: they hold it alone (docs/design.md §8.1), set before
+  // the upload makes them; any other frame (a background frame too) reads
+  // them whole, and drops a medium held by piece.
   session.holdPiece(marchShared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
     marchShared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
-  if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime())
+  if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime() && session.holdsVolume())
   {
     return true;
   }
@@ -293,8 +303,8 @@ int vtkOpalSpectralRender::RequestData(
 bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
 {
   const auto start = std::chrono::steady_clock::now();
-  const std::string error = this->Gathered.Update(
-    this->Controller, input, inputInformation, !this->HoldsUploadedVolume(this->VolumeOf(input)));
+  const bool held = this->HoldsUploadedVolume(this->VolumeOf(input)) && this->MediumServes(this->MarchesShared());
+  const std::string error = this->Gathered.Update(this->Controller, input, inputInformation, !held);
   this->LastGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!error.empty())
   {

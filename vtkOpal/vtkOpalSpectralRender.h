@@ -110,8 +110,9 @@ public:
   /// Under MPI, each rank marches the view rays only in its piece of the
   /// volume's layers z, handing those that leave it to the other ranks
   /// between rounds (docs/design.md §8.1); every rank renders the whole image
-  /// and outputs its piece. Off (default): each rank renders its piece of the
-  /// image from the whole volume. With one process it changes nothing.
+  /// and outputs its piece, its device holding only its piece of the light
+  /// fields and the medium's cells. Off (default): each rank renders its
+  /// piece of the image from the whole volume. With one process it changes nothing.
   vtkSetMacro(ShareMarch, bool);
   vtkGetMacro(ShareMarch, bool);
   vtkBooleanMacro(ShareMarch, bool);
@@ -210,12 +211,15 @@ private:
   // upload (the device holds their values; docs/design.md §8.1): an upload
   // that needs them again fails, saying that the render's update gathers them.
   // `marchShared`: the frames that follow march shared by the ranks
-  // (MarchesShared), whose light fields the session then holds by piece.
+  // (MarchesShared), whose light fields and medium the session then holds
+  // by piece; a medium held by piece that the frames do not serve is
+  // uploaded again (its arrays gathered again: GatherVolume, MediumServes).
   bool UploadVolume(vtkImageData* input, bool marchShared = false);
   // Whether a session exists for the current device settings (Session would keep it).
   bool HasSessionOfSettings() const;
   // Whether that session holds this version of `volume`.
   bool HoldsUploadedVolume(vtkImageData* volume) const;
+  bool MediumServes(bool marchShared) const;
   // `parameters` resolved against this input (GetResolvedFrame).
   opal::ResolvedFrame Resolve(
     const opal::RenderParameters& parameters, vtkInformation* inputInformation, vtkImageData* input) const;

@@ -70,6 +70,7 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("P.", RenderParameterBlock, scatteredLightNodes),
     OPAL_FIELD("P.", RenderParameterBlock, scatteredLightStride),
     OPAL_FIELD("P.", RenderParameterBlock, heldFirstVoxel),
+    OPAL_FIELD("P.", RenderParameterBlock, mediumFirstVoxel),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, lambda),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, width),
     OPAL_FIELD("bins[0].", WavelengthBinRecord, rayleighScale),

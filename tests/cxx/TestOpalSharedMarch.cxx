@@ -35,6 +35,7 @@
 #include "OpalVulkanError.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -58,6 +59,13 @@ struct ShareResult
   bool LightShared = false; // the light computed by the shares together
   opal::RenderFrame Alone;
   std::pair<int, int> HeldAlone;
+  // With MediumHeld: the layers its medium held, its device's memory peak
+  // through the shared frame, what its frame alone after it was refused with,
+  // and whether the whole piece's holding then dropped the volume.
+  std::pair<int, int> MediumLayers;
+  std::uint64_t SharedPeak = 0;
+  std::string AloneRefusal;
+  bool VolumeDropped = false;
 };
 
 // How the shares run: share 1 stops its frame once its progress passes
@@ -72,6 +80,11 @@ struct ShareResult
 // paired at this size) and the march reads them whole, the light fields
 // held by piece read at an index less the piece's first voxel; otherwise
 // each share reads its piece's fields alone, by address (MarchPieceFieldsOnly).
+// With `MediumHeld` each share holds its piece before its volume is set, so
+// that its medium's cells hold the piece alone too; the shares then solve
+// every order together as well (solveScatteredLightShared), and a frame
+// alone after the shared one is refused, and renders once the volume is set
+// again for the whole.
 struct SharedRun
 {
   double Share1StopsAt = 2.0;
@@ -80,6 +93,7 @@ struct SharedRun
   bool HeldPieces = false;
   double Share1StopsLightAt = 2.0;
   bool PiecesBound = false;
+  bool MediumHeld = false;
 };
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
@@ -97,6 +111,10 @@ std::vector<ShareResult> sharedFrames(
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
     opal::RenderSession& session = sessions.back()->Session;
+    if (run.MediumHeld)
+    {
+      session.holdPiece(share, shares);
+    }
     session.setVolume(stone);
     if (share == 1 && run.Share1Before)
     {
@@ -132,11 +150,36 @@ std::vector<ShareResult> sharedFrames(
             },
             [&](double done) { return share != 1 || done < run.Share1StopsLightAt; });
         }
+        if (run.MediumHeld && p.ScatteringOrders == opal::ScatteringOrdersKind::All)
+        {
+          session.solveScatteredLightShared(
+            opal::resolveFrame(p), share, shares,
+            [&](const std::optional<std::vector<double>>& mine) { return meeting.meetScores(share, mine); },
+            [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+              return meeting.meet(share, false, mine, sink);
+            });
+        }
         result.Frame = session.render(p, [&](double done) { return share != 1 || done < run.Share1StopsAt; });
         result.HeldLayers = session.heldLightLayers();
+        result.MediumLayers = session.heldMediumLayers();
+        result.SharedPeak = session.context().memoryPeak();
         if (run.HeldPieces)
         {
           session.shareMarch(std::nullopt);
+          if (run.MediumHeld)
+          {
+            try
+            {
+              session.render(p);
+            }
+            catch (const std::exception& e)
+            {
+              result.AloneRefusal = e.what();
+            }
+            session.holdPiece(0, 1); // the whole: a medium held by piece cannot serve it
+            result.VolumeDropped = !session.holdsVolume();
+            session.setVolume(stone);
+          }
           result.Alone = session.render(p);
           result.HeldAlone = session.heldLightLayers();
         }
@@ -156,13 +199,14 @@ std::vector<ShareResult> sharedFrames(
   return results;
 }
 
-// Share `share` of `shares`' layers of `stone` and the SweepHaloRows (2)
-// beside them, within the grid: what its light fields hold by piece.
-std::pair<int, int> heldPiece(const opal::RenderVolume& stone, int share, int shares)
+// Share `share` of `shares`' layers of `stone` and `halo` beside them, within
+// the grid: what its light fields hold by piece (SweepHaloRows, 2), and its
+// medium where held by piece (TraceStepLayers + 1, 5).
+std::pair<int, int> heldPiece(const opal::RenderVolume& stone, int share, int shares, int halo = 2)
 {
   const int layers = stone.Dimensions[2];
   const std::pair<int, int> piece = opal::evenShare(layers, share, shares);
-  return { std::max(piece.first - 2, 0), std::min(piece.second + 2, layers) };
+  return { std::max(piece.first - halo, 0), std::min(piece.second + halo, layers) };
 }
 
 // Every share of `shares` renders the lone session's image, value for value.
@@ -197,11 +241,52 @@ void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& 
           std::to_string(piece.second) + " (held " + std::to_string(result.HeldLayers.first) + " to " +
           std::to_string(result.HeldLayers.second) + ")");
       // A frame alone after it needs the whole light field: computed again
-      // where the shares computed it (by piece), kept where the frame had.
-      OPAL_CHECK(result.Alone.Status == opal::FrameStatus::Completed && result.Alone.Ran.LightPass == lightShared &&
-          opaltest::identical(result.Alone.Image, lone) && result.HeldAlone == std::make_pair(0, stone.Dimensions[2]),
+      // where the shares computed it (by piece), kept where the frame had;
+      // with the medium held by piece refused, and computed once the volume
+      // is set again for the whole.
+      OPAL_CHECK(result.Alone.Status == opal::FrameStatus::Completed &&
+          result.Alone.Ran.LightPass == (lightShared || run.MediumHeld) && opaltest::identical(result.Alone.Image, lone) &&
+          result.HeldAlone == std::make_pair(0, stone.Dimensions[2]),
         what + ": a frame alone after it holds the whole light field and gives the lone image");
     }
+    if (run.MediumHeld)
+    {
+      const std::pair<int, int> piece = heldPiece(stone, static_cast<int>(share), shares, 5);
+      OPAL_CHECK(result.MediumLayers == piece,
+        what + ": its medium held its piece and 5 layers beside it alone, layers " + std::to_string(piece.first) +
+          " to " + std::to_string(piece.second) + " (held " + std::to_string(result.MediumLayers.first) + " to " +
+          std::to_string(result.MediumLayers.second) + ")");
+      OPAL_CHECK(result.AloneRefusal.find("A frame marched by one process alone reads the medium anywhere") !=
+            std::string::npos &&
+          result.VolumeDropped,
+        what + ": a frame alone with the medium held by piece is refused, naming why (" + result.AloneRefusal +
+          "), and holding the whole drops the volume");
+    }
+  }
+}
+
+// Each share's medium held by piece (MediumHeld) takes the cells' and the
+// absorption cells' bytes beyond its piece and halo (16 per voxel: fire-opal
+// absorbs) off its device's peak through the shared frame, against the
+// same shares holding the medium whole.
+void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParameters& p)
+{
+  const SharedRun whole{ 2.0, nullptr, false, true, 2.0, true };
+  SharedRun byPiece = whole;
+  byPiece.MediumHeld = true;
+  const std::vector<ShareResult> wholes = sharedFrames(stone, p, 3, whole);
+  const std::vector<ShareResult> pieces = sharedFrames(stone, p, 3, byPiece);
+  const std::uint64_t layerVoxels = static_cast<std::uint64_t>(stone.Dimensions[0]) * stone.Dimensions[1];
+  for (int share = 0; share < 3; ++share)
+  {
+    const ShareResult& w = wholes[static_cast<std::size_t>(share)];
+    const ShareResult& h = pieces[static_cast<std::size_t>(share)];
+    const std::pair<int, int> held = heldPiece(stone, share, 3, 5);
+    const std::uint64_t unheld = layerVoxels * static_cast<std::uint64_t>(stone.Dimensions[2] - (held.second - held.first));
+    OPAL_CHECK(w.Failure.empty() && h.Failure.empty() && h.SharedPeak + unheld * 16 <= w.SharedPeak,
+      "share " + std::to_string(share) + ": the medium held by piece takes " + std::to_string(unheld * 16) +
+        " bytes off the device's peak (" + std::to_string(h.SharedPeak) + " against " + std::to_string(w.SharedPeak) +
+        " bytes)");
   }
 }
 
@@ -218,8 +303,8 @@ void checkWholeFieldRefused(const opal::RenderVolume& stone, const opal::RenderP
   std::uint64_t limit = 0;
   {
     opal::RenderSession probe(options);
+    probe.setVolume(stone); // its medium whole: a piece set after holds the light fields alone
     probe.holdPiece(0, 3);
-    probe.setVolume(stone);
     const std::pair<int, int> held = probe.heldLightLayers();
     probe.render(p);
     const std::uint64_t unheld = static_cast<std::uint64_t>(stone.Dimensions[0]) * stone.Dimensions[1] *
@@ -228,8 +313,8 @@ void checkWholeFieldRefused(const opal::RenderVolume& stone, const opal::RenderP
   }
   options.MemoryLimitBytes = limit;
   opal::RenderSession session(options);
-  session.holdPiece(0, 3);
   session.setVolume(stone);
+  session.holdPiece(0, 3);
   for (int attempt = 1; attempt <= 2; ++attempt)
   {
     std::string message;
@@ -342,6 +427,17 @@ int TestOpalSharedMarch(int, char*[])
     { 2.0, nullptr, false, true, 2.0, true });
   checkShared(fireStone, single, 3, "fire-opal, the light fields bound by piece, share 1 aborting in the walks to the light",
     { 2.0, nullptr, false, true, 1e-9, true });
+  // The medium held by piece too, read by address (each dispatch's reads
+  // beyond its piece landing outside its buffers) and bound (read at an
+  // index less the piece's first voxel): fig12 lit from above (the sweep and
+  // its queued walks), fire-opal from the side with every order (the walks,
+  // the shared solve reading each share's slab).
+  checkShared(paperStone, p, 3, "fig12, the medium held by piece", { 2.0, nullptr, false, true, 2.0, false, true });
+  checkShared(fireStone, side, 3, "fire-opal, every order, the medium held by piece",
+    { 2.0, nullptr, false, true, 2.0, false, true });
+  checkShared(fireStone, side, 3, "fire-opal, every order, the medium bound by piece",
+    { 2.0, nullptr, false, true, 2.0, true, true });
+  checkMediumMemory(fireStone, single);
 
   // Share 1 aborting in its light pass (before any round) or midway through
   // its march: every share's frame stops, none hangs or throws.

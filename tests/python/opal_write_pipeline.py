@@ -8,9 +8,11 @@ has the ranks march the view rays together, each through its piece of the
 volume's layers (ShareMarch); --again renders
 once more with a new device session, which holds no volume (under MPI the
 render gathers the arrays it released after the first upload), into
-OUTPUT-again.pvti.
+OUTPUT-again.pvti; --unshared-again renders once more with ShareMarch off
+(each rank's device held only its piece of the medium: the ranks gather the
+volume again and upload it whole) into the same file.
 Usage: pvbatch opal_write_pipeline.py OUTPUT NX NY NZ [WIDTH HEIGHT] [--voronoi] [--preset NAME] [--side-light]
-       [--share-march] [--again]"""
+       [--share-march] [--again | --unshared-again]"""
 import sys
 
 from paraview.simple import LoadPlugin, SaveData
@@ -21,13 +23,14 @@ arguments = list(sys.argv)
 voronoi = "--voronoi" in arguments
 side_light = "--side-light" in arguments
 again = "--again" in arguments
+unshared_again = "--unshared-again" in arguments
 share_march = "--share-march" in arguments
 preset = {}
 if "--preset" in arguments:
     at = arguments.index("--preset")
     preset = dict(Preset=arguments[at + 1])
     del arguments[at:at + 2]
-arguments = [a for a in arguments if a not in ("--voronoi", "--side-light", "--share-march", "--again")]
+arguments = [a for a in arguments if a not in ("--voronoi", "--side-light", "--share-march", "--again", "--unshared-again")]
 output, dimensions = arguments[1], [int(v) for v in arguments[2:5]]
 LoadPlugin(config.PLUGIN, remote=True, ns=globals())
 grains = dict(DomainLayout="voronoi", VoronoiCellCount=150, DiameterCorrelationLength=0.8) if voronoi else {}
@@ -46,6 +49,9 @@ if len(arguments) > 6:
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")
     print("light field computed by", result.GetProperty("LastLightFieldShares").GetElement(0), "rank(s)")
     print("view march shared by", result.GetProperty("LastMarchShares").GetElement(0), "rank(s)")
-if again:
-    result.DeviceMemoryLimit = 16000  # MB: a new session
+if again or unshared_again:
+    if again:
+        result.DeviceMemoryLimit = 16000  # MB: a new session
+    else:
+        result.ShareMarch = 0
     SaveData(output.replace(".pvti", "-again.pvti"), proxy=result, DataMode="Binary")

@@ -24,13 +24,6 @@ namespace opal
 
 using namespace sessiondetail;
 
-namespace
-{
-// The layers beyond a piece a forwarded walk to the light reads cells in:
-// where a trace's bisection puts its start behind the piece (walkLayerHeld).
-constexpr int LightCellsHalo = gpu::TraceStepLayers + 1;
-} // namespace
-
 // Records the march's `work` over groupsX x groupsY workgroups: one
 // dispatch, or, forwarded (MarchPieces above 1, docs/design.md §8.1), one
 // per pass of recordPiecePasses. A ray's points move along z one way while
@@ -150,10 +143,10 @@ std::vector<RenderSession::PieceField> RenderSession::marchFields() const
   {
     fields = this->pieceHeldFields();
   }
-  fields.emplace_back(v.Cells.get(), sizeof(gpu::VoxelCell));
-  if (v.Absorbs)
+  if (v.mediumWhole())
   {
-    fields.emplace_back(v.AbsorptionCells.get(), sizeof(gpu::vec2));
+    const auto medium = this->mediumFields();
+    fields.insert(fields.end(), medium.begin(), medium.end());
   }
   std::vector<PieceField> pieceFields;
   for (const auto& [field, bytes] : fields)
@@ -191,7 +184,7 @@ void RenderSession::preparePieceFields(int pieces)
   const int layers = this->Volume->Shape.Dimensions[2];
   for (PieceField field : this->marchFields())
   {
-    field.Halo = std::max(field.Halo, LightCellsHalo); // the walks to the light's too (lightPieceFields)
+    field.Halo = std::max(field.Halo, MediumHaloLayers); // the walks to the light's too (lightPieceFields)
     std::uint64_t bytes = 0;
     for (int piece = 0; piece < pieces; ++piece)
     {
@@ -254,7 +247,7 @@ std::vector<RenderSession::PieceField> RenderSession::lightPassPieceFields(
 // march reads it; its light at its own voxel, in its voxel's piece.
 std::vector<RenderSession::PieceField> RenderSession::lightPieceFields(int pieces) const
 {
-  return this->lightPassPieceFields(pieces, LightCellsHalo, gpu::TraceStepLayers + 2, 0);
+  return this->lightPassPieceFields(pieces, MediumHaloLayers, gpu::TraceStepLayers + 2, 0);
 }
 
 // The sweep from above's through `pieces`: the halo of the ranks' shared

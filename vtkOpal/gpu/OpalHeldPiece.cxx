@@ -2,7 +2,9 @@
 // processes holds of its light fields and every-order field (docs/design.md
 // §8.1): its march reads them only in its piece and one layer beside it, and
 // the light's sweep, shared by the same shares, only SweepHaloRows rows
-// beside it.
+// beside it; and where the volume is set after the piece, of the medium's
+// cells and absorption cells, which the march and the walks to the light
+// read only within MediumHaloLayers of it.
 #include "OpalRenderSession.h"
 
 #include "OpalParallel.h"
@@ -25,6 +27,13 @@ std::pair<int, int> pieceWithHalo(int layers, int share, int shares, int halo)
 {
   const std::pair<int, int> piece = evenShare(layers, share, shares);
   return { std::max(piece.first - halo, 0), std::min(piece.second + halo, layers) };
+}
+
+// The layers a field of `layers` holds for the piece `held` (share, shares)
+// with `halo` beside it: all where one share is held.
+std::pair<int, int> layersHeld(int layers, std::pair<int, int> held, int halo)
+{
+  return held.second > 1 ? pieceWithHalo(layers, held.first, held.second, halo) : std::make_pair(0, layers);
 }
 
 bool holds(std::pair<int, int> held, std::pair<int, int> layers)
@@ -50,10 +59,68 @@ void RenderSession::holdPiece(int share, int shares)
     return;
   }
   this->cancelFrame(); // a background frame reads the fields and the piece
+  const bool served = this->mediumServes(share, shares);
   this->HeldPiece = { share, shares };
+  if (this->Volume && !served)
+  {
+    // Its medium holds another piece: only the volume's arrays give the
+    // layers this one needs (the VTK filter sets it again).
+    this->Volume.reset();
+    this->LightField.reset();
+    this->ScatteredLight.reset();
+  }
   if (this->Volume)
   {
     this->holdLightLayers(this->lightLayersOf(*this->Volume));
+  }
+}
+
+bool RenderSession::mediumServes(int share, int shares) const
+{
+  if (!this->Volume || this->Volume->mediumWhole())
+  {
+    return true; // none to serve, or whole
+  }
+  const int layers = this->Volume->Shape.Dimensions[2];
+  return holds(this->Volume->MediumLayers, layersHeld(layers, { share, shares }, MediumHaloLayers));
+}
+
+std::pair<int, int> RenderSession::heldMediumLayers() const
+{
+  return this->Volume ? this->Volume->MediumLayers : std::pair<int, int>{ 0, 0 };
+}
+
+// The layers the medium's cells of a volume set now hold: for a piece held
+// (holdPiece) the piece and MediumHaloLayers beside it, else all.
+std::pair<int, int> RenderSession::mediumLayersOf(const DeviceVolume& v) const
+{
+  return layersHeld(v.Shape.Dimensions[2], this->HeldPiece, MediumHaloLayers);
+}
+
+// The medium's fields held from DeviceVolume::MediumLayers, with their bytes
+// per voxel: the cells and, where the volume absorbs, the absorption cells.
+std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::mediumFields() const
+{
+  const DeviceVolume& v = *this->Volume;
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields{ { v.Cells.get(), sizeof(gpu::VoxelCell) } };
+  if (v.Absorbs)
+  {
+    fields.emplace_back(v.AbsorptionCells.get(), sizeof(gpu::vec2));
+  }
+  return fields;
+}
+
+// Refuses `reader`, which reads the medium anywhere in the grid, where the
+// medium is held by piece (docs/design.md §8.1): it would read beyond it.
+void RenderSession::requireWholeMedium(const std::string& reader) const
+{
+  const DeviceVolume& v = *this->Volume;
+  if (!v.mediumWhole())
+  {
+    throw std::runtime_error(reader + " reads the medium anywhere in the volume, but this process holds only layers " +
+      std::to_string(v.MediumLayers.first) + " to " + std::to_string(v.MediumLayers.second) + " of its " +
+      std::to_string(v.Shape.Dimensions[2]) + " (a march shared by processes, each holding its piece): no image is "
+      "given; the processes compute it together, or render again with the march unshared.");
   }
 }
 
@@ -67,9 +134,7 @@ std::pair<int, int> RenderSession::heldLightLayers() const
 // or from an address shifted by it (addressed: volumeAddresses); else all.
 std::pair<int, int> RenderSession::lightLayersOf(const DeviceVolume& v) const
 {
-  const int layers = v.Shape.Dimensions[2];
-  const auto [share, shares] = this->HeldPiece;
-  return shares > 1 ? pieceWithHalo(layers, share, shares, HeldPieceHalo) : std::make_pair(0, layers);
+  return layersHeld(v.Shape.Dimensions[2], this->HeldPiece, HeldPieceHalo);
 }
 
 // The light fields made anew for `layers` where they hold others, the light
@@ -133,7 +198,7 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::pieceHeldFie
 // piece's layers, made anew where it held others
 // (a refused allocation left none); else the whole fields where the layers
 // held lack the rows (the processes sharing the step are not those that
-// share the march), and false.
+// share the march), and false; refused where the medium is held by piece.
 bool RenderSession::holdShareRows(int share, int shares, int halo)
 {
   if (this->holdsPieceOf(share, shares))
@@ -141,6 +206,8 @@ bool RenderSession::holdShareRows(int share, int shares, int halo)
     this->holdLightLayers(this->lightLayersOf(*this->Volume));
     return true;
   }
+  // Its walks and its rows read the medium wherever they lead.
+  this->requireWholeMedium("A step shared by other processes than the march's");
   const int layers = this->Volume->Shape.Dimensions[2];
   if (!holds(this->Volume->LightLayers, pieceWithHalo(layers, share, shares, halo)))
   {

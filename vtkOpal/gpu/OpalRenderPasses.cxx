@@ -25,6 +25,7 @@ using namespace sessiondetail;
 // stale behind: not the new light, nor the old one it half overwrote.
 bool RenderSession::runLightPass(const FrameSetup& setup, Progress& progress)
 {
+  this->requireWholeMedium("A light field computed by one process alone");
   this->LightField.reset();
   this->holdLightLayers({ 0, this->Volume->Shape.Dimensions[2] }); // alone it computes the whole field
   const bool braggShadow = conservesEnergy(setup.Parameters);
@@ -182,6 +183,7 @@ ComputePipeline& RenderSession::lightPass(int mode, bool braggShadow, bool forwa
 // an aborted solve leaves no stale field.
 bool RenderSession::runScatteredLight(const FrameSetup& setup, Progress& progress)
 {
+  this->requireWholeMedium("The every-order solve of one process alone");
   this->ScatteredLight.reset();
   const MediumRelease release(*this);
   const ScatteringMedium& medium = this->scatteringMedium();

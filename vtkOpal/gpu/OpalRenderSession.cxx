@@ -133,16 +133,19 @@ std::unique_ptr<VulkanBuffer> deviceLocalBuffer(VulkanContext& context, std::uin
   return buffer;
 }
 
-// A per-voxel field of T on the device, `placement`, written round by round
-// (VulkanBuffer::fill), so the whole field is never built on the host
+// A per-voxel field of T on the device, `placement`, of voxels [first,
+// second) of the grid (all, or a piece's layers: holdPiece), written round by
+// round (VulkanBuffer::fill), so the whole field is never built on the host
 // (docs/design.md §3.7).
 template <typename T, typename Value>
-std::unique_ptr<VulkanBuffer> deviceVoxelField(VulkanContext& context, std::size_t voxels, const char* what,
-  BufferPlacement placement, const std::vector<SkinCell>& skin, Value&& value)
+std::unique_ptr<VulkanBuffer> deviceVoxelField(VulkanContext& context, std::pair<std::size_t, std::size_t> voxels,
+  const char* what, BufferPlacement placement, const std::vector<SkinCell>& skin, Value&& value)
 {
-  auto buffer = deviceLocalBuffer(context, voxels * sizeof(T), what, nullptr, placement);
-  buffer->fill(voxels * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
-    writeVoxels(static_cast<T*>(into), first / sizeof(T), (first + count) / sizeof(T), skin, value);
+  const std::uint64_t bytes = std::max<std::uint64_t>((voxels.second - voxels.first) * sizeof(T), 16);
+  auto buffer = deviceLocalBuffer(context, bytes, what, nullptr, placement);
+  buffer->fill((voxels.second - voxels.first) * sizeof(T), [&](std::uint64_t first, std::uint64_t count, void* into) {
+    writeVoxels(static_cast<T*>(into), voxels.first + first / sizeof(T), voxels.first + (first + count) / sizeof(T),
+      skin, value);
   });
   return buffer;
 }
@@ -151,15 +154,15 @@ std::unique_ptr<VulkanBuffer> deviceVoxelField(VulkanContext& context, std::size
 // (AbsorptionCellBinding): per voxel (coloured, grey) mu_a at 550 nm, a voxel
 // of exponent 0 grey, the skin filled like the cells (docs/design.md §3.9).
 // Without absorption a placeholder, bound but never read (the passes without ABSORPTION).
-std::unique_ptr<VulkanBuffer> absorptionBuffer(
-  VulkanContext& context, const RenderVolume& volume, const std::vector<SkinCell>& skin, BufferPlacement placement)
+std::unique_ptr<VulkanBuffer> absorptionBuffer(VulkanContext& context, const RenderVolume& volume,
+  std::pair<std::size_t, std::size_t> voxels, const std::vector<SkinCell>& skin, BufferPlacement placement)
 {
   if (!volume.absorbs())
   {
     return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
   }
   return deviceVoxelField<gpu::vec2>(
-    context, volume.voxelCount(), "AbsorptionCoefficient volume", placement, skin, [&volume](std::size_t i) {
+    context, voxels, "AbsorptionCoefficient volume", placement, skin, [&volume](std::size_t i) {
       const float absorption = volume.AbsorptionCoefficient[i];
       return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
     });
@@ -216,7 +219,7 @@ RenderVolume shapeOf(const RenderVolume& volume)
 // on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7).
 void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v)
 {
-  const std::size_t voxels = volume.voxelCount();
+  const std::pair<std::size_t, std::size_t> voxels{ 0, volume.voxelCount() };
   v.SurfaceDistance = v.PairedFields
     ? deviceVoxelField<gpu::vec2>(*this->Context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
         v.FieldPlacement, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); })
@@ -375,19 +378,24 @@ void RenderSession::setVolume(const RenderVolume& volume)
     fieldLayout(context, volume, this->pairedFieldsFit(voxels, absorbs) && !this->MarchPieceFieldsOnly);
   uploaded->Shape = shapeOf(volume);
   uploaded->LightLayers = this->lightLayersOf(*uploaded);
-  const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels(); // the light fields' layers beyond the piece held
+  uploaded->MediumLayers = this->mediumLayersOf(*uploaded);
+  // The light fields' and the medium's layers beyond the piece held.
+  const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels();
+  const std::uint64_t unheldMedium = voxels - uploaded->mediumVoxels();
   this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields) -
-      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields),
+      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
   const std::vector<SkinCell> skin = skinCells(volume);
-  uploaded->Cells = deviceVoxelField<gpu::VoxelCell>(context, voxels, "ScatteringCoefficient and DomainId volume",
+  const std::pair<std::size_t, std::size_t> medium{ uploaded->mediumFirstVoxel(),
+    uploaded->mediumFirstVoxel() + uploaded->mediumVoxels() };
+  uploaded->Cells = deviceVoxelField<gpu::VoxelCell>(context, medium, "ScatteringCoefficient and DomainId volume",
     placement, skin,
     [&volume](std::size_t i) { return gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
-  uploaded->AbsorptionCells = absorptionBuffer(context, volume, skin, placement);
+  uploaded->AbsorptionCells = absorptionBuffer(context, volume, medium, skin, placement);
   this->uploadSurfaceAndLightFields(volume, *uploaded);
   this->allocateLightPassBuffers(volume, *uploaded);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
@@ -491,6 +499,10 @@ RenderFrame RenderSession::renderFrame(const ResolvedFrame& resolved, const Rend
 {
   const FrameRounds rounds(*this); // a shared march's (shareMarch)
   this->requireVolume();
+  if (!this->SharedMarch)
+  {
+    this->requireWholeMedium("A frame marched by one process alone");
+  }
   RenderFrame frame;
   RenderTimings& timings = frame.Image.Timings;
   // The processes' solve for this frame, if any (solveScatteredLightShared): this frame's alone, used or not.
@@ -711,6 +723,13 @@ int RenderSession::boundFirstVoxel() const
   return v.addressed() ? 0 : static_cast<int>(v.lightFirstVoxel());
 }
 
+// The same for the medium's cells and absorption cells (MediumLayers).
+int RenderSession::boundMediumVoxel() const
+{
+  const DeviceVolume& v = *this->Volume;
+  return v.addressed() ? 0 : static_cast<int>(v.mediumFirstVoxel());
+}
+
 // The parameter block the passes read, its heldFirstVoxel as the layers
 // held now: they change after a frame's block is written (a shared step
 // holding its share's rows, a frame computing the light alone).
@@ -718,6 +737,7 @@ void RenderSession::uploadParameterBlock(const gpu::RenderParameterBlock& frameB
 {
   gpu::RenderParameterBlock block = frameBlock;
   block.heldFirstVoxel = this->boundFirstVoxel();
+  block.mediumFirstVoxel = this->boundMediumVoxel();
   this->Buffers->Parameters->upload(&block, sizeof(block));
 }
 
@@ -727,7 +747,9 @@ void RenderSession::writeHeldFirstVoxel() const
 {
   if (this->Volume && this->Buffers && this->Buffers->Parameters)
   {
-    this->Buffers->Parameters->as<gpu::RenderParameterBlock>()->heldFirstVoxel = this->boundFirstVoxel();
+    auto* block = this->Buffers->Parameters->as<gpu::RenderParameterBlock>();
+    block->heldFirstVoxel = this->boundFirstVoxel();
+    block->mediumFirstVoxel = this->boundMediumVoxel();
   }
 }
 
@@ -745,8 +767,8 @@ bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
   const DeviceVolume& v = *this->Volume;
   const std::uint64_t keptShadows =
     v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.lightVoxels() * sizeof(gpu::LightShadow) : 0;
-  return volumeDeviceBytes(v.Shape.Dimensions, this->framedVoxels(), v.Absorbs, setup.Parameters, true,
-           v.PairedFields) +
+  return volumeDeviceBytes(v.Shape.Dimensions, this->framedVoxels(), v.mediumVoxels(), v.Absorbs, setup.Parameters,
+           true, v.PairedFields) +
     keptShadows +
     this->frameImageBytes(setup, true) > this->Context->memoryBudget();
 }
@@ -780,7 +802,7 @@ void RenderSession::checkVolumeFits(
   this->context(); // throws once released
   const std::uint64_t voxels = static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
     static_cast<std::uint64_t>(dimensions[2]);
-  this->requireDeviceMemory(volumeDeviceBytes(dimensions, voxels, absorbs, parameters, false, false),
+  this->requireDeviceMemory(volumeDeviceBytes(dimensions, voxels, voxels, absorbs, parameters, false, false),
     "the volume's fields for this render need", "", "use fewer voxels");
 }
 
@@ -801,8 +823,8 @@ void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
   const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->framedVoxels(), this->Volume->Absorbs, setup.Parameters,
-      fieldPerVoxel, this->Volume->PairedFields);
+    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->framedVoxels(), this->Volume->mediumVoxels(),
+      this->Volume->Absorbs, setup.Parameters, fieldPerVoxel, this->Volume->PairedFields);
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
@@ -999,14 +1021,21 @@ gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanB
 {
   const DeviceVolume& v = *this->Volume;
   std::map<const VulkanBuffer*, std::uint64_t> at = shifted;
+  // A field held by piece (holdPiece): the passes index the whole grid.
+  // Unsigned and modulo 2^64, as the shaders add an index's bytes (voxelAddress).
+  const auto shift = [&at](const VulkanBuffer* buffer, std::uint64_t firstVoxel, std::uint64_t record) {
+    if (firstVoxel > 0 && at.find(buffer) == at.end())
+    {
+      at[buffer] = buffer->address() - firstVoxel * record;
+    }
+  };
   for (const auto& [buffer, record] : this->pieceHeldFields())
   {
-    // A field held by piece (holdPiece): the passes index the whole grid.
-    // Unsigned and modulo 2^64, as the shaders add an index's bytes (voxelAddress).
-    if (v.LightLayers.first > 0 && at.find(buffer) == at.end())
-    {
-      at[buffer] = buffer->address() - v.lightFirstVoxel() * record;
-    }
+    shift(buffer, v.lightFirstVoxel(), record);
+  }
+  for (const auto& [buffer, record] : this->mediumFields())
+  {
+    shift(buffer, v.mediumFirstVoxel(), record);
   }
   gpu::VolumeAddresses addresses;
   const std::pair<gpu::uvec2*, const VulkanBuffer*> fields[] = { { &addresses.voxelCells, v.Cells.get() },

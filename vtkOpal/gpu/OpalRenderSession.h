@@ -193,12 +193,24 @@ public:
   // the same shares and serves only the march shared so; a frame that
   // computes the light alone computes it whole. The every-order field is
   // written at the voxels held. A new piece drops the light field held and
-  // the every-order field (not its grid). Refuses (std::invalid_argument) a
+  // the every-order field (not its grid). A volume set after it uploads the
+  // medium's cells and absorption cells for the piece and MediumHaloLayers
+  // beside it alone; then what would read them beyond (a frame not marched
+  // shared, a light pass or solve computed alone or by other shares) is
+  // refused, and a later piece they do not cover drops the volume, to be set
+  // again (mediumServes). Refuses (std::invalid_argument) a
   // share not among the shares, and more shares than one with
   // VulkanOptions::MarchPieces.
   void holdPiece(int share, int shares);
   // The layers z [first, second) the fields holdPiece names hold (none without a volume).
   std::pair<int, int> heldLightLayers() const;
+  // The layers z the medium's cells and absorption cells hold (none without a volume).
+  std::pair<int, int> heldMediumLayers() const;
+  // Whether the volume held would serve frames after holdPiece(share, shares):
+  // its medium held whole, or for that piece (false: it is set again).
+  bool mediumServes(int share, int shares) const;
+  // Whether a volume is held (setVolume; a piece it does not serve drops it).
+  bool holdsVolume() const { return this->Volume != nullptr; }
 
   // The view march of the frames that follow shared by `Shares` processes,
   // each holding share `Share` of the volume's layers z (docs/design.md
@@ -299,12 +311,16 @@ private:
   bool pairedFieldsFit(std::size_t voxels, bool absorbs) const;
   void writeParameterBlock(FrameSetup& setup) const;
   int boundFirstVoxel() const;
+  int boundMediumVoxel() const;
   void writeHeldFirstVoxel() const;
   void uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
+  std::pair<int, int> mediumLayersOf(const DeviceVolume& v) const;
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> mediumFields() const;
+  void requireWholeMedium(const std::string& reader) const;
   void holdLightLayers(std::pair<int, int> layers);
   bool holdShareRows(int share, int shares, int halo);
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;

@@ -48,6 +48,12 @@ constexpr int SweepHaloRows = 2;
 // read, one layer, within them). The shares holding their pieces exchange
 // only the rows the pieces beside hold of theirs.
 constexpr int HeldPieceHalo = SweepHaloRows;
+// The layers beside a piece the medium's cells and absorption cells hold
+// where uploaded by piece (RenderSession::holdPiece before setVolume): a walk
+// to the light reads the cells of TraceStepLayers + 1 layers behind its piece
+// where it starts behind it (walkLayerHeld, docs/design.md §8.1); the march
+// one, the sweep SweepHaloRows.
+constexpr int MediumHaloLayers = gpu::TraceStepLayers + 1;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // The works of a march shared by processes (docs/design.md §8.1) are alike on
 // every share, so its bands and refined pixels per dispatch are fixed (the
@@ -81,11 +87,15 @@ inline std::uint64_t lightBytesPerVoxel(bool absorbs, bool pairedFields)
   const std::uint64_t lightField = pairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
   return lightField * (absorbs ? 2 : 1);
 }
+// The medium's cells and absorption cells, which a piece may hold alone.
+inline std::uint64_t mediumBytesPerVoxel(bool absorbs)
+{
+  return sizeof(gpu::VoxelCell) + (absorbs ? sizeof(gpu::vec2) : 0);
+}
 inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
 {
   const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
-  return sizeof(gpu::VoxelCell) + surfaceDistance + (absorbs ? sizeof(gpu::vec2) : 0) +
-    lightBytesPerVoxel(absorbs, pairedFields);
+  return surfaceDistance + mediumBytesPerVoxel(absorbs) + lightBytesPerVoxel(absorbs, pairedFields);
 }
 // A frame's progress before its march: the light pass and the every-order
 // solve (renderFrame), then the exposure's thumbnail up to 0.25.
@@ -108,9 +118,9 @@ inline std::uint64_t scatteredLightGridBytes(const std::array<int, 3>& dimension
 // voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10),
 // its fields paired where `pairedFields` (§3.7); the light fields, the
 // Bragg shadows and the every-order field for `heldVoxels` of them (all, or
-// a piece: RenderSession::holdPiece).
-inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std::uint64_t heldVoxels, bool absorbs,
-  const RenderParameters& p, bool fieldPerVoxel, bool pairedFields)
+// a piece: RenderSession::holdPiece), the medium's cells for `mediumVoxels`.
+inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std::uint64_t heldVoxels,
+  std::uint64_t mediumVoxels, bool absorbs, const RenderParameters& p, bool fieldPerVoxel, bool pairedFields)
 {
   const bool everyOrder = scattersEveryOrder(p);
   const std::uint64_t voxels =
@@ -118,7 +128,8 @@ inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std
     static_cast<std::uint64_t>(dimensions[2]);
   const std::uint64_t gridBytes = everyOrder ? scatteredLightGridBytes(dimensions) : 0;
   const std::uint64_t light = lightBytesPerVoxel(absorbs, pairedFields);
-  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) - light) +
+  const std::uint64_t medium = mediumBytesPerVoxel(absorbs);
+  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) - light - medium) + mediumVoxels * medium +
     heldVoxels * (light + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                    (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     gridBytes;
@@ -198,6 +209,18 @@ struct RenderSession::DeviceVolume
   // design.md §8.1), read from the piece's first voxel (an address shifted
   // by it, or bound, an index less it: RenderSession::boundFirstVoxel).
   std::pair<int, int> LightLayers{ 0, 0 };
+  // The layers z the medium's cells and absorption cells hold: all, or where
+  // uploaded for a piece held (holdPiece before setVolume) the piece and
+  // MediumHaloLayers beside it, read likewise from their first voxel
+  // (RenderSession::boundMediumVoxel). What would read them beyond is refused
+  // (RenderSession::requireWholeMedium).
+  std::pair<int, int> MediumLayers{ 0, 0 };
+  bool mediumWhole() const { return this->MediumLayers == std::make_pair(0, this->Shape.Dimensions[2]); }
+  std::size_t mediumFirstVoxel() const { return this->layerVoxels() * static_cast<std::size_t>(this->MediumLayers.first); }
+  std::size_t mediumVoxels() const
+  {
+    return this->layerVoxels() * static_cast<std::size_t>(this->MediumLayers.second - this->MediumLayers.first);
+  }
   std::size_t layerVoxels() const
   {
     return static_cast<std::size_t>(this->Shape.Dimensions[0]) * static_cast<std::size_t>(this->Shape.Dimensions[1]);

@@ -50,11 +50,11 @@ struct MediumValues
 };
 
 // A value of each of a device field's records of `voxels`, read back round by
-// round into `into` at the voxels' places.
+// round into `into` at the voxels' places; the field holds voxels from `held` on.
 template <typename Record, typename Value>
-void readEach(const VulkanBuffer& buffer, VoxelRange voxels, float* into, Value&& value)
+void readEach(const VulkanBuffer& buffer, std::size_t held, VoxelRange voxels, float* into, Value&& value)
 {
-  buffer.readRange(voxels.first * sizeof(Record), (voxels.second - voxels.first) * sizeof(Record),
+  buffer.readRange((voxels.first - held) * sizeof(Record), (voxels.second - voxels.first) * sizeof(Record),
     [into, voxels, &value](std::uint64_t first, std::uint64_t bytes, const void* from) {
       const auto* records = static_cast<const Record*>(from);
       float* to = into + voxels.first + first / sizeof(Record);
@@ -63,24 +63,25 @@ void readEach(const VulkanBuffer& buffer, VoxelRange voxels, float* into, Value&
 }
 
 // The device's medium of `voxels`: the cells' scattering coefficients, the
-// absorption cells and SurfaceDistance, each voxel's its pair's first value
-// where `paired` (the second is its +x neighbour's).
-void readMedium(const VulkanBuffer& cells, const VulkanBuffer& absorption, const VulkanBuffer& surface, bool paired,
-  VoxelRange voxels, MediumValues& into)
+// absorption cells (both held from voxel `held` on) and SurfaceDistance,
+// each voxel's its pair's first value where `paired` (the second is its +x
+// neighbour's).
+void readMedium(const VulkanBuffer& cells, const VulkanBuffer& absorption, std::size_t held, const VulkanBuffer& surface,
+  bool paired, VoxelRange voxels, MediumValues& into)
 {
   readEach<gpu::VoxelCell>(
-    cells, voxels, into.Scattering.data(), [](const gpu::VoxelCell& cell) { return cell.scattering; });
+    cells, held, voxels, into.Scattering.data(), [](const gpu::VoxelCell& cell) { return cell.scattering; });
   if (paired)
   {
-    readEach<gpu::vec2>(surface, voxels, into.SurfaceDistance.data(), [](const gpu::vec2& pair) { return pair.x; });
+    readEach<gpu::vec2>(surface, 0, voxels, into.SurfaceDistance.data(), [](const gpu::vec2& pair) { return pair.x; });
   }
   else
   {
-    readEach<float>(surface, voxels, into.SurfaceDistance.data(), [](float value) { return value; });
+    readEach<float>(surface, 0, voxels, into.SurfaceDistance.data(), [](float value) { return value; });
   }
   if (!into.Absorption.empty())
   {
-    absorption.readRange(voxels.first * sizeof(glm::vec2), (voxels.second - voxels.first) * sizeof(glm::vec2),
+    absorption.readRange((voxels.first - held) * sizeof(glm::vec2), (voxels.second - voxels.first) * sizeof(glm::vec2),
       [&into, voxels](std::uint64_t first, std::uint64_t count, const void* from) {
         std::memcpy(reinterpret_cast<char*>(into.Absorption.data() + voxels.first) + first, from, count);
       });
@@ -202,8 +203,13 @@ const ScatteringMedium* RenderSession::shareScatteringMedium(
   const std::array<int, 3> dims = v.Shape.Dimensions;
   // Read whole before it is kept: a read that throws (its staging round
   // beyond the memory limit, say) leaves no half-read medium for a later solve.
+  const VoxelRange slab = shareSlab(dims, share, shares);
+  if (slab.first < v.mediumFirstVoxel() || slab.second > v.mediumFirstVoxel() + v.mediumVoxels())
+  {
+    this->requireWholeMedium("An every-order solve shared by other processes than the march's");
+  }
   MediumValues values(v.Shape.voxelCount(), v.Absorbs);
-  readMedium(*v.Cells, *v.AbsorptionCells, *v.SurfaceDistance, v.PairedFields, shareSlab(dims, share, shares), values);
+  readMedium(*v.Cells, *v.AbsorptionCells, v.mediumFirstVoxel(), *v.SurfaceDistance, v.PairedFields, slab, values);
   if (shares > 1 && !exchangeMedium(values, dims, share, shares, round, exchanging))
   {
     return nullptr;
