@@ -128,7 +128,7 @@ def estimate(volume_seconds, bytes_per_voxel, device_bytes_per_voxel):
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
           f"{bytes_per_voxel:.0f} bytes per voxel here beyond the process's own footprint "
           f"({device_bytes_per_voxel:.0f} of them device buffers), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
-          + ("(each rank its piece of the light fields, the medium whole)" if pieces
+          + ("(each rank its piece of the light fields and the medium, SurfaceDistance whole)" if pieces
              else "(the device fields of the whole volume on every rank)"), flush=True)
 
 
