@@ -206,6 +206,14 @@ bool vtkOpalSpectralRender::MediumServes(bool marchShared) const
 bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
+  if (!this->MediumServes(marchShared) && this->Gathered.Released())
+  {
+    // Kept as it is: only the render's update gathers the arrays again.
+    this->SayError("The render's device holds only this rank's piece of the medium (ShareMarch), and under MPI only "
+                   "the render's update gathers the volume's arrays again: a frame of the whole volume (a background "
+                   "frame) needs the render updated with ShareMarch off.");
+    return false;
+  }
   // A march shared by the ranks reads the light fields and the medium only
   // in the rank's piece: they hold it alone (docs/design.md §8.1), set before
   // the upload makes them; any other frame (a background frame too) reads

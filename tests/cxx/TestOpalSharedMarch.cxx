@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -290,6 +291,53 @@ void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParame
   }
 }
 
+// The message `call` throws, "" where it throws none.
+std::string thrown(const std::function<void()>& call)
+{
+  try
+  {
+    call();
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// A session whose medium holds piece 1 of 3 (layers 16 to 33 of 50 and 5
+// beside them) refuses, naming why, what would read the medium beyond it: a
+// background frame, a light field shared by other shares than its piece's,
+// an every-order solve whose slab it lacks. A piece within its layers keeps
+// the volume; one beyond them drops it.
+void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderParameters& p)
+{
+  opal::RenderSession session(opal::VulkanOptions{});
+  session.holdPiece(1, 3);
+  session.setVolume(stone);
+  const opal::ResolvedFrame frame = opal::resolveFrame(p);
+  const auto ended = [](const std::optional<std::vector<char>>&, const opal::RenderSession::ShareSink&) { return false; };
+  const auto round = [](const std::vector<char>&, const opal::RenderSession::ShareSink&) { return false; };
+  const auto noScores = [](const std::optional<std::vector<double>>&) {
+    return std::optional<std::vector<std::vector<double>>>();
+  };
+  const std::string background = thrown([&] { session.startFrame(frame); });
+  const std::string light = thrown([&] { session.shareLightPass(frame, 0, 2, ended, round); });
+  const std::string solve = thrown([&] { session.solveScatteredLightShared(frame, 2, 3, noScores, round); });
+  OPAL_CHECK(background.find("A background frame reads the medium anywhere") != std::string::npos &&
+      background.find("layers 11 to 38 of its 50") != std::string::npos,
+    "a background frame refused, naming the layers held (" + background + ")");
+  OPAL_CHECK(light.find("A light field shared by other processes than the march's") != std::string::npos,
+    "a light field shared by other shares refused (" + light + ")");
+  OPAL_CHECK(solve.find("An every-order solve shared by other processes than the march's") != std::string::npos,
+    "a solve whose slab is not held refused (" + solve + ")");
+  session.holdPiece(2, 5); // layers 20 to 30 and 5 beside: within 11 to 38
+  OPAL_CHECK(session.holdsVolume() && session.heldMediumLayers() == std::make_pair(11, 38),
+    "a piece within the medium's layers keeps the volume");
+  session.holdPiece(0, 3);
+  OPAL_CHECK(!session.holdsVolume(), "a piece beyond the medium's layers drops the volume, to be set again");
+}
+
 // A session holding a piece (0 of 3) whose frame alone must make the light
 // fields whole, under a device memory limit that holds the piece's frame
 // and not the whole field: the allocation refuses it, naming the limit,
@@ -438,6 +486,7 @@ int TestOpalSharedMarch(int, char*[])
   checkShared(fireStone, side, 3, "fire-opal, every order, the medium bound by piece",
     { 2.0, nullptr, false, true, 2.0, true, true });
   checkMediumMemory(fireStone, single);
+  checkMediumRefusals(paperStone, p);
 
   // Share 1 aborting in its light pass (before any round) or midway through
   // its march: every share's frame stops, none hangs or throws.

@@ -110,6 +110,17 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::mediumFields
   return fields;
 }
 
+// Refuses `reader`, which reads the medium of voxels [first, second) alone,
+// where the medium held lacks them.
+void RenderSession::requireMediumOf(std::pair<std::size_t, std::size_t> voxels, const std::string& reader) const
+{
+  const DeviceVolume& v = *this->Volume;
+  if (voxels.first < v.mediumFirstVoxel() || voxels.second > v.mediumFirstVoxel() + v.mediumVoxels())
+  {
+    this->requireWholeMedium(reader);
+  }
+}
+
 // Refuses `reader`, which reads the medium anywhere in the grid, where the
 // medium is held by piece (docs/design.md §8.1): it would read beyond it.
 void RenderSession::requireWholeMedium(const std::string& reader) const
@@ -198,7 +209,7 @@ std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::pieceHeldFie
 // piece's layers, made anew where it held others
 // (a refused allocation left none); else the whole fields where the layers
 // held lack the rows (the processes sharing the step are not those that
-// share the march), and false; refused where the medium is held by piece.
+// share the march), and false.
 bool RenderSession::holdShareRows(int share, int shares, int halo)
 {
   if (this->holdsPieceOf(share, shares))
@@ -206,8 +217,6 @@ bool RenderSession::holdShareRows(int share, int shares, int halo)
     this->holdLightLayers(this->lightLayersOf(*this->Volume));
     return true;
   }
-  // Its walks and its rows read the medium wherever they lead.
-  this->requireWholeMedium("A step shared by other processes than the march's");
   const int layers = this->Volume->Shape.Dimensions[2];
   if (!holds(this->Volume->LightLayers, pieceWithHalo(layers, share, shares, halo)))
   {

@@ -434,6 +434,10 @@ void RenderSession::startFrame(const ResolvedFrame& frame)
     // Its rounds would run on the worker, beside the processes' exchange.
     throw std::logic_error("startFrame: a march shared by processes (shareMarch) renders with render() alone.");
   }
+  if (this->Volume)
+  {
+    this->requireWholeMedium("A background frame"); // as its renderFrame would, before any work
+  }
   if (!frame.Error.empty())
   {
     throw std::invalid_argument(frame.Error); // as render() would, before any work

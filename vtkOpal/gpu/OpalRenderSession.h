@@ -321,6 +321,7 @@ private:
   std::pair<int, int> mediumLayersOf(const DeviceVolume& v) const;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> mediumFields() const;
   void requireWholeMedium(const std::string& reader) const;
+  void requireMediumOf(std::pair<std::size_t, std::size_t> voxels, const std::string& reader) const;
   void holdLightLayers(std::pair<int, int> layers);
   bool holdShareRows(int share, int shares, int halo);
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> pieceHeldFields() const;

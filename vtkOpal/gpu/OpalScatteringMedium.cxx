@@ -204,10 +204,7 @@ const ScatteringMedium* RenderSession::shareScatteringMedium(
   // Read whole before it is kept: a read that throws (its staging round
   // beyond the memory limit, say) leaves no half-read medium for a later solve.
   const VoxelRange slab = shareSlab(dims, share, shares);
-  if (slab.first < v.mediumFirstVoxel() || slab.second > v.mediumFirstVoxel() + v.mediumVoxels())
-  {
-    this->requireWholeMedium("An every-order solve shared by other processes than the march's");
-  }
+  this->requireMediumOf(slab, "An every-order solve shared by other processes than the march's");
   MediumValues values(v.Shape.voxelCount(), v.Absorbs);
   readMedium(*v.Cells, *v.AbsorptionCells, v.mediumFirstVoxel(), *v.SurfaceDistance, v.PairedFields, slab, values);
   if (shares > 1 && !exchangeMedium(values, dims, share, shares, round, exchanging))

@@ -365,6 +365,11 @@ bool RenderSession::shareLightPass(const ResolvedFrame& frame, int share, int sh
   const bool shared = shareSlabs(
     [&](SlabShare& step, bool& exchanging) {
       setup = this->setUpSharedStep(frame);
+      if (!this->holdsPieceOf(share, shares))
+      {
+        // Each walk to the light goes through the medium wherever it leads.
+        this->requireWholeMedium("A light field shared by other processes than the march's");
+      }
       this->LightField.reset();
       const bool piecesHeld = this->holdShareRows(share, shares, SweepHaloRows);
       this->prepareFrameBuffers(*setup); // the parameter block the pass reads
@@ -442,6 +447,8 @@ bool RenderSession::shareScatteredField(const ResolvedFrame& frame, int share, i
     [&](SlabShare& step, bool&) {
       const FrameSetup setup = this->setUpSharedStep(frame);
       const std::array<int, 3> dims = this->Volume->Shape.Dimensions;
+      // Each voxel's field reads its own cell alone.
+      this->requireMediumOf(shareSlab(dims, share, shares), "The every-order field's writing of a slab");
       const bool piecesHeld = this->holdShareRows(share, shares, 0);
       this->placeScatteredField(setup);
       this->prepareFrameBuffers(setup); // the parameter block the pass reads (the tally grid's shape)
