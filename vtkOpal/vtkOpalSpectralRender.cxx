@@ -199,8 +199,16 @@ bool vtkOpalSpectralRender::HoldsUploadedVolume(vtkImageData* volume) const
 // uploaded for another piece is uploaded again, its arrays gathered again).
 bool vtkOpalSpectralRender::MediumServes(bool marchShared) const
 {
-  return this->RenderSession->mediumServes(marchShared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
-    marchShared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
+  const auto [share, shares] = this->PieceHeld(marchShared);
+  return this->RenderSession->mediumServes(share, shares);
+}
+
+// The piece of the volume's layers a rank's session holds: its own where the
+// ranks march shared, else the whole (one share).
+std::pair<int, int> vtkOpalSpectralRender::PieceHeld(bool marchShared) const
+{
+  return marchShared ? std::make_pair(vtkOpalRankAgreement::Rank(this->Controller), vtkOpalRankAgreement::Ranks(this->Controller))
+                     : std::make_pair(0, 1);
 }
 
 bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
@@ -218,8 +226,8 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
   // in the rank's piece: they hold it alone (docs/design.md §8.1), set before
   // the upload makes them; any other frame (a background frame too) reads
   // them whole, and drops a medium held by piece.
-  session.holdPiece(marchShared ? vtkOpalRankAgreement::Rank(this->Controller) : 0,
-    marchShared ? vtkOpalRankAgreement::Ranks(this->Controller) : 1);
+  const auto [share, shares] = this->PieceHeld(marchShared);
+  session.holdPiece(share, shares);
   if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime() && session.holdsVolume())
   {
     return true;

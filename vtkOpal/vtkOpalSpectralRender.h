@@ -61,6 +61,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 class vtkMultiProcessController;
 
@@ -220,6 +221,7 @@ private:
   // Whether that session holds this version of `volume`.
   bool HoldsUploadedVolume(vtkImageData* volume) const;
   bool MediumServes(bool marchShared) const;
+  std::pair<int, int> PieceHeld(bool marchShared) const;
   // `parameters` resolved against this input (GetResolvedFrame).
   opal::ResolvedFrame Resolve(
     const opal::RenderParameters& parameters, vtkInformation* inputInformation, vtkImageData* input) const;

@@ -65,9 +65,7 @@ void RenderSession::holdPiece(int share, int shares)
   {
     // Its medium holds another piece: only the volume's arrays give the
     // layers this one needs (the VTK filter sets it again).
-    this->Volume.reset();
-    this->LightField.reset();
-    this->ScatteredLight.reset();
+    this->dropVolume();
   }
   if (this->Volume)
   {

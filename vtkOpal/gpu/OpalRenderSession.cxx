@@ -353,6 +353,17 @@ void RenderSession::release()
   this->WavelengthSampling.reset();
 }
 
+// The volume and what was computed for it: its light field, its every-order
+// light and the shared steps' results pending for its next frame.
+void RenderSession::dropVolume()
+{
+  this->Volume.reset();
+  this->LightField.reset();
+  this->ScatteredLight.reset();
+  this->PendingScatteredSeconds = -1;
+  this->PendingLightSeconds = -1;
+}
+
 void RenderSession::setVolume(const RenderVolume& volume)
 {
   this->cancelFrame();
@@ -363,11 +374,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
     throw std::invalid_argument(error);
   }
   const auto start = Clock::now();
-  this->Volume.reset();
-  this->LightField.reset();
-  this->ScatteredLight.reset();
-  this->PendingScatteredSeconds = -1;
-  this->PendingLightSeconds = -1;
+  this->dropVolume();
   const std::size_t voxels = volume.voxelCount();
   const bool absorbs = volume.absorbs();
   // Fields and light field, laid out (fieldLayout), refused up front if too

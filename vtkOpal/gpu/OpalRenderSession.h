@@ -312,6 +312,7 @@ private:
   void writeParameterBlock(FrameSetup& setup) const;
   int boundFirstVoxel() const;
   int boundMediumVoxel() const;
+  void dropVolume();
   void writeHeldFirstVoxel() const;
   void uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const;
   void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);

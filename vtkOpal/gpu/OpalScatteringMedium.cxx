@@ -137,8 +137,7 @@ void place(MediumValues& values, VoxelRange voxels, std::uint64_t first, std::ui
 bool exchangeMedium(MediumValues& values, const std::array<int, 3>& dims, int share, int shares,
   const RenderSession::LayerExchange& round, bool& exchanging)
 {
-  const std::size_t voxelBytes = 2 * sizeof(float) + (values.Absorption.empty() ? 0 : sizeof(glm::vec2));
-  const std::size_t voxels = ShareChunkBytes / voxelBytes;
+  const std::size_t voxels = ShareChunkBytes / bytesFor(values, { 0, 1 });
   const std::size_t rounds = slabChunks(dims, shares, voxels); // alike on every share
   for (std::size_t k = 0; k < rounds; ++k)
   {
