@@ -193,11 +193,12 @@ vtkOpalRenderInput::VolumeSettings settingsFromFieldData(vtkFieldData* fields)
 
 namespace vtkOpalRenderInput
 {
-std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage)
+std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage, const MediumPiece* medium)
 {
   std::string error;
-  vtkDataArray* scattering = pointArray(input, "ScatteringCoefficient", true, error);
-  vtkDataArray* domainIds = pointArray(input, "DomainId", true, error, Expected::Values::Id);
+  vtkImageData* mediumArrays = medium ? medium->Arrays : input;
+  vtkDataArray* scattering = pointArray(mediumArrays, "ScatteringCoefficient", true, error);
+  vtkDataArray* domainIds = pointArray(mediumArrays, "DomainId", true, error, Expected::Values::Id);
   vtkDataArray* distance = pointArray(input, "SurfaceDistance", true, error);
   if (!error.empty())
   {
@@ -218,7 +219,13 @@ std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& stora
   volume.ScatteringCoefficient = contiguousValues(scattering, storage.Scattering);
   volume.DomainId = contiguousValues(domainIds, storage.DomainId);
   volume.SurfaceDistance = contiguousValues(distance, storage.SurfaceDistance);
-  for (const std::string& step : { readAbsorption(input, volume, storage), readIndices(input->GetFieldData(), volume) })
+  volume.Held.reset();
+  if (medium)
+  {
+    volume.Held = medium->Held;
+  }
+  for (const std::string& step :
+    { readAbsorption(mediumArrays, volume, storage), readIndices(input->GetFieldData(), volume) })
   {
     if (!step.empty())
     {

@@ -28,9 +28,19 @@ struct Storage
   std::vector<std::int32_t> DomainId;
 };
 
-// Fills `volume` from the input image; returns an empty string or the reason
-// it cannot (naming the array).
-std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage);
+// The medium's arrays of some layers z alone (a rank of a march shared by
+// the ranks, docs/design.md §8.1): `Arrays`, an image of the whole's x and y
+// and those layers, holds ScatteringCoefficient, DomainId and the absorption
+// pair; `Held` names the layers and the whole medium's sums.
+struct MediumPiece
+{
+  vtkImageData* Arrays = nullptr;
+  opal::HeldMedium Held;
+};
+
+// Fills `volume` from the input image (the medium's arrays from `medium`
+// where given); returns an empty string or the reason it cannot (naming the array).
+std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage, const MediumPiece* medium = nullptr);
 
 // What the volume implies for its render (opal::renderHints): the upstream
 // vtkOpalSource's RENDER_HINTS in the input information. Without it (a

@@ -214,7 +214,8 @@ std::pair<int, int> vtkOpalSpectralRender::PieceHeld(bool marchShared) const
 bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
-  if (!this->MediumServes(marchShared) && this->Gathered.Released())
+  const auto [share, shares] = this->PieceHeld(marchShared);
+  if (!this->MediumServes(marchShared) && !this->Gathered.Serves({ share, shares }))
   {
     // Kept as it is: only the render's update gathers the arrays again.
     this->SayError("The render's device holds only this rank's piece of the medium (ShareMarch), and under MPI only "
@@ -226,13 +227,12 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
   // in the rank's piece: they hold it alone (docs/design.md §8.1), set before
   // the upload makes them; any other frame (a background frame too) reads
   // them whole, and drops a medium held by piece.
-  const auto [share, shares] = this->PieceHeld(marchShared);
   session.holdPiece(share, shares);
   if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime() && session.holdsVolume())
   {
     return true;
   }
-  if (this->Gathered.Released())
+  if (!this->Gathered.Serves({ share, shares }))
   {
     this->SayError("The render's device no longer holds the volume, whose arrays under MPI only the render's "
                    "update gathers again: update the render.");
@@ -240,7 +240,7 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
   }
   opal::RenderVolume volume;
   vtkOpalRenderInput::Storage storage;
-  const std::string error = vtkOpalRenderInput::Read(input, volume, storage);
+  const std::string error = vtkOpalRenderInput::Read(input, volume, storage, this->Gathered.Medium());
   if (!error.empty())
   {
     this->SayError(error);
@@ -313,14 +313,30 @@ int vtkOpalSpectralRender::RequestData(
   {
     this->LastFailure = request;
   }
+  this->NoteMediumLayers(input);
   return outcome == RenderOutcome::Rendered ? 1 : 0;
+}
+
+void vtkOpalSpectralRender::NoteMediumLayers(vtkImageData* input)
+{
+  const vtkOpalRenderInput::MediumPiece* medium = this->Gathered.Medium();
+  vtkImageData* volume = this->VolumeOf(input);
+  const bool held = this->HoldsUploadedVolume(volume);
+  const std::pair<int, int> gathered =
+    medium ? medium->Held.Layers : std::make_pair(0, held ? volume->GetDimensions()[2] : 0);
+  const std::pair<int, int> device = held ? this->RenderSession->heldMediumLayers() : std::make_pair(0, 0);
+  this->LastGatheredLayers[0] = held ? gathered.first : 0;
+  this->LastGatheredLayers[1] = held ? gathered.second : 0;
+  this->LastMediumLayers[0] = device.first;
+  this->LastMediumLayers[1] = device.second;
 }
 
 bool vtkOpalSpectralRender::GatherVolume(vtkImageData* input, vtkInformation* inputInformation)
 {
   const auto start = std::chrono::steady_clock::now();
   const bool held = this->HoldsUploadedVolume(this->VolumeOf(input)) && this->MediumServes(this->MarchesShared());
-  const std::string error = this->Gathered.Update(this->Controller, input, inputInformation, !held);
+  const std::string error =
+    this->Gathered.Update(this->Controller, input, inputInformation, !held, this->PieceHeld(this->MarchesShared()));
   this->LastGatherSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!error.empty())
   {

@@ -141,6 +141,13 @@ public:
   /// How many ranks marched the view rays of this rank's last data request
   /// together (ShareMarch; docs/design.md §8.1); 0 where it marched alone.
   vtkGetMacro(LastMarchShares, int);
+  /// The layers z [first, end) of the volume's medium (its arrays but
+  /// SurfaceDistance) that this rank's last data request gathered on the host
+  /// and that its device held for the render (docs/design.md §8.1): all of
+  /// them with one process or a march unshared; under ShareMarch the rank's
+  /// piece with the halo its reads need. {0, 0} where it rendered none.
+  vtkGetVector2Macro(LastGatheredLayers, int);
+  vtkGetVector2Macro(LastMediumLayers, int);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).
@@ -333,6 +340,10 @@ private:
   int LastScatteredLightShares = 0;
   int LastLightFieldShares = 0;
   int LastMarchShares = 0;
+  int LastGatheredLayers[2] = { 0, 0 };
+  int LastMediumLayers[2] = { 0, 0 };
+  // Records the layers of the medium gathered and held (LastGatheredLayers, LastMediumLayers).
+  void NoteMediumLayers(vtkImageData* input);
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);
   std::string LastErrorText;

@@ -1,7 +1,10 @@
 #include "vtkOpalVolumePieces.h"
 
 #include "OpalMemory.h"
+#include "OpalParallel.h"
+#include "OpalRenderSession.h"
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalRenderInput.h"
 
 #include "vtkDataArray.h"
 #include "vtkExtentTranslator.h"
@@ -77,25 +80,25 @@ std::string coverageError(const std::vector<int>& extents, const int whole[6])
   return {};
 }
 
-// Copies each rank's rows of one array (`bytes`, the ranks' pieces one after
-// another) into `whole` at their extents.
-void placeRows(const std::vector<char>& bytes, const std::vector<int>& extents, const int* w, vtkDataArray* whole)
+// Copies bytes [first, first + count) of a rank's piece of one array (its
+// extent `e`, rows x of `tupleBytes` each, y then z) into `target`, whose
+// extent `t` spans the whole x and y, at the rows within `t`'s layers z (a
+// rank of a shared march holds only some, docs/design.md §8.1).
+void placeBytes(const int* e, const int* t, vtkIdType tupleBytes, vtkIdType first, vtkIdType count, const char* data,
+  char* target)
 {
-  const vtkIdType tupleBytes = whole->GetNumberOfComponents() * whole->GetDataTypeSize();
-  char* target = static_cast<char*>(whole->GetVoidPointer(0));
-  const vtkIdType nx = w[1] - w[0] + 1, ny = w[3] - w[2] + 1;
-  std::size_t at = 0;
-  for (std::size_t r = 0; r < extents.size() / 6; ++r)
+  const vtkIdType row = (e[1] - e[0] + 1) * tupleBytes, rowsPerLayer = e[3] - e[2] + 1;
+  const vtkIdType nx = t[1] - t[0] + 1, ny = t[3] - t[2] + 1;
+  for (vtkIdType at = first; at < first + count;)
   {
-    const int* e = &extents[6 * r];
-    const vtkIdType row = std::max(e[1] - e[0] + 1, 0) * tupleBytes;
-    for (int k = e[4]; k <= e[5] && row > 0; ++k)
+    const vtkIdType q = at / row, within = at % row, n = std::min(row - within, first + count - at);
+    const vtkIdType j = e[2] + q % rowsPerLayer, k = e[4] + q / rowsPerLayer;
+    if (k >= t[4] && k <= t[5])
     {
-      for (int j = e[2]; j <= e[3]; ++j, at += row)
-      {
-        std::memcpy(target + (((k - w[4]) * ny + (j - w[2])) * nx + (e[0] - w[0])) * tupleBytes, &bytes[at], row);
-      }
+      std::memcpy(target + (((k - t[4]) * ny + (j - t[2])) * nx + (e[0] - t[0])) * tupleBytes + within,
+        data + (at - first), static_cast<std::size_t>(n));
     }
+    at += n;
   }
 }
 
@@ -112,10 +115,11 @@ vtkSmartPointer<vtkDataArray> contiguous(vtkDataArray* array)
   return copy;
 }
 
-// One array of every rank's piece into `volume`: empty, or the reason it
-// cannot be (alike on every rank).
+// One array of every rank's piece into `volume` at its extent (the whole, or
+// the whole's x and y and some layers z): empty, or the reason it cannot be
+// (alike on every rank).
 std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* piece, const char* name,
-  const std::vector<int>& extents, const int whole[6], vtkImageData* volume)
+  const std::vector<int>& extents, vtkImageData* volume)
 {
   const int ranks = controller->GetNumberOfProcesses();
   // Its type and components (0: absent; -1: an empty piece takes the others').
@@ -151,42 +155,69 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
       return "Rank " + std::to_string(r) + "'s " + name + " does not hold one value per point of its piece.";
     }
   }
-  std::vector<char> bytes;
-  if (!vtkOpalRankAgreement::GatherBytes(controller, mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr,
-        lengths, bytes))
+  array->SetName(name);
+  array->SetNumberOfTuples(pointsIn(volume->GetExtent()));
+  char* target = static_cast<char*>(array->GetVoidPointer(0));
+  const int* t = volume->GetExtent();
+  // Placed as each round arrives: no copy of every rank's bytes is held.
+  if (!vtkOpalRankAgreement::GatherBytesTo(controller,
+        mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr, lengths,
+        [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
+          placeBytes(&extents[6 * rank], t, tupleBytes, first, count, data, target);
+        }))
   {
     return std::string("The ranks could not exchange the volume's ") + name + ".";
   }
-  array->SetName(name);
-  array->SetNumberOfTuples(pointsIn(whole));
-  placeRows(bytes, extents, whole, array);
   volume->GetPointData()->AddArray(array);
   return {};
 }
 
-// Empty where the arrays the render reads of the whole volume `whole` (an
-// extent) fit in this machine's memory, else the sentence refusing them.
-std::string MemoryError(const int whole[6])
+// The layers z [first, end) of the medium's arrays a rank gathers for
+// `heldPiece` (share, shares) of a volume of extent `whole`: those its device
+// reads (opal::mediumLayersRead), all for one share.
+std::pair<int, int> mediumLayers(const int whole[6], std::pair<int, int> heldPiece)
 {
-  // The render's arrays with the absorption pair, and one array's exchange.
-  const std::uint64_t needed = static_cast<std::uint64_t>(pointsIn(whole)) * (opal::RenderVolumeBytesPerVoxel + 8 + 4);
+  return opal::mediumLayersRead(whole[5] - whole[4] + 1, heldPiece.first, heldPiece.second);
+}
+
+// Empty where the arrays the render reads fit in this machine's memory:
+// SurfaceDistance of the whole volume `whole` (an extent) and the others,
+// the absorption pair among them, of its `layers`; else the sentence refusing them.
+std::string MemoryError(const int whole[6], std::pair<int, int> layers)
+{
+  const auto layer = static_cast<std::uint64_t>(whole[1] - whole[0] + 1) * static_cast<std::uint64_t>(whole[3] - whole[2] + 1);
+  const std::uint64_t needed = static_cast<std::uint64_t>(pointsIn(whole)) * 4 +
+    layer * static_cast<std::uint64_t>(layers.second - layers.first) * (opal::RenderVolumeBytesPerVoxel - 4 + 8);
   const std::uint64_t available = opal::physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {
     return {};
   }
-  return "The whole volume's arrays that the render reads need about " + opal::formatBytes(needed) +
-    " on every rank, more than this machine's " + opal::formatBytes(available) + " of memory.";
+  return "The volume's arrays that the render reads need about " + opal::formatBytes(needed) +
+    " on this rank, more than this machine's " + opal::formatBytes(available) + " of memory.";
+}
+
+// An empty image of `extent`, placed as `like`.
+vtkSmartPointer<vtkImageData> imageOf(const int extent[6], vtkImageData* like)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetExtent(const_cast<int*>(extent));
+  image->SetOrigin(like->GetOrigin());
+  image->SetSpacing(like->GetSpacing());
+  return image;
 }
 
 // Collective: the whole volume from every rank's piece (GatheredVolume::Update).
-std::string Gather(
-  vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], vtkSmartPointer<vtkImageData>& volume)
+// Where `layers` are fewer than the whole's, the medium's arrays go into
+// `medium`, an image of the whole's x and y and those layers; else all into `volume`.
+std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], std::pair<int, int> layers,
+  vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium)
 {
-  volume = vtkSmartPointer<vtkImageData>::New();
+  medium = nullptr;
   vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
+    volume = vtkSmartPointer<vtkImageData>::New();
     volume->ShallowCopy(piece);
     return {};
   }
@@ -197,19 +228,82 @@ std::string Gather(
   {
     return uncovered;
   }
-  volume->SetExtent(const_cast<int*>(whole));
-  volume->SetOrigin(piece->GetOrigin());
-  volume->SetSpacing(piece->GetSpacing());
+  volume = imageOf(whole, piece);
   volume->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  if (layers != std::make_pair(0, whole[5] - whole[4] + 1))
+  {
+    const int extent[6] = { whole[0], whole[1], whole[2], whole[3], whole[4] + layers.first, whole[4] + layers.second - 1 };
+    medium = imageOf(extent, piece);
+  }
   for (const char* name : RenderArrays)
   {
-    const std::string error = gatherArray(controller, piece, name, extents, whole, volume);
+    vtkImageData* into = medium && std::strcmp(name, "SurfaceDistance") != 0 ? medium.Get() : volume.Get();
+    const std::string error = gatherArray(controller, piece, name, extents, into);
     if (!error.empty())
     {
       return error;
     }
   }
   return {};
+}
+
+// The sums as sent: absorbs, the coloured exponent, then per domain its
+// index sums and its count (whole numbers, exact in a double).
+std::vector<double> packed(const opal::MediumSums& sums)
+{
+  std::vector<double> words{ sums.Absorbs ? 1.0 : 0.0, sums.ColouredAbsorptionExponent };
+  for (std::size_t d = 0; d < sums.DomainVoxels.size(); ++d)
+  {
+    words.insert(words.end(), sums.DomainIndexSums[d].begin(), sums.DomainIndexSums[d].end());
+    words.push_back(static_cast<double>(sums.DomainVoxels[d]));
+  }
+  return words;
+}
+
+opal::MediumSums unpacked(const double* words, std::size_t count)
+{
+  opal::MediumSums sums;
+  sums.Absorbs = count >= 2 && words[0] != 0.0;
+  sums.ColouredAbsorptionExponent = count >= 2 ? static_cast<float>(words[1]) : 0.0f;
+  for (std::size_t at = 2; at + 4 <= count; at += 4)
+  {
+    sums.DomainIndexSums.push_back({ words[at], words[at + 1], words[at + 2] });
+    sums.DomainVoxels.push_back(static_cast<std::uint64_t>(words[at + 3]));
+  }
+  return sums;
+}
+
+// Collective: the whole medium's sums, each rank summing its share's layers
+// (`heldPiece`'s, which cover the whole one after another in rank order) of
+// the medium it gathered (`medium.Held.Layers`), added up in rank order. A
+// rank whose arrays the render cannot read adds none (its upload says why).
+opal::MediumSums SumMedium(vtkMultiProcessController* controller, vtkImageData* volume,
+  const vtkOpalRenderInput::MediumPiece& medium, std::pair<int, int> heldPiece)
+{
+  opal::RenderVolume read;
+  vtkOpalRenderInput::Storage storage;
+  opal::MediumSums mine;
+  if (vtkOpalRenderInput::Read(volume, read, storage, &medium).empty())
+  {
+    mine = opal::sumMedium(read, opal::evenShare(read.Dimensions[2], heldPiece.first, heldPiece.second));
+  }
+  const std::vector<double> words = packed(mine);
+  const std::vector<vtkIdType> lengths = vtkOpalRankAgreement::GatherLengths(
+    controller, static_cast<vtkIdType>(words.size() * sizeof(double)));
+  std::vector<char> bytes;
+  opal::MediumSums whole;
+  if (!vtkOpalRankAgreement::GatherBytes(controller, reinterpret_cast<const char*>(words.data()), lengths, bytes))
+  {
+    return whole;
+  }
+  const std::vector<vtkIdType> offsets = vtkOpalRankAgreement::RankOffsets(lengths);
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+  {
+    std::vector<double> theirs(static_cast<std::size_t>(lengths[r]) / sizeof(double));
+    std::memcpy(theirs.data(), bytes.data() + offsets[r], theirs.size() * sizeof(double));
+    whole.add(unpacked(theirs.data(), theirs.size()));
+  }
+  return whole;
 }
 
 } // namespace
@@ -229,31 +323,40 @@ void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformat
   inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
 }
 
-std::string GatheredVolume::Update(
-  vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation, bool needsArrays)
+std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkImageData* piece,
+  vtkInformation* pieceInformation, bool needsArrays, std::pair<int, int> heldPiece)
 {
   const bool changed = this->From != piece || this->Time != piece->GetMTime();
   if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
-    !vtkOpalRankAgreement::AnyRank(controller, changed || (this->ArraysReleased && needsArrays)))
+    !vtkOpalRankAgreement::AnyRank(controller, changed || (needsArrays && !this->Serves(heldPiece))))
   {
     return {};
   }
   this->From = nullptr;
   this->Volume = nullptr;
+  this->MediumArrays = nullptr;
   this->ArraysReleased = false;
   int whole[6];
   pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  // The gathered arrays (and one array's exchange) must fit on every rank.
-  const std::string memory = MemoryError(whole);
+  const std::pair<int, int> layers = mediumLayers(whole, heldPiece);
+  // The gathered arrays must fit on every rank.
+  const std::string memory = MemoryError(whole, layers);
   if (vtkOpalRankAgreement::AnyRank(controller, !memory.empty()))
   {
-    return memory.empty() ? "Another rank cannot hold the whole volume the render reads." : memory;
+    return memory.empty() ? "Another rank cannot hold the volume's arrays the render reads." : memory;
   }
-  const std::string error = Gather(controller, piece, whole, this->Volume);
+  const std::string error = Gather(controller, piece, whole, layers, this->Volume, this->MediumArrays);
   if (!error.empty())
   {
     this->Volume = nullptr;
+    this->MediumArrays = nullptr;
     return error;
+  }
+  if (this->MediumArrays)
+  {
+    this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>();
+    *this->MediumLayers = { this->MediumArrays.Get(), { layers, {} } };
+    this->MediumLayers->Held.Whole = SumMedium(controller, this->Volume, *this->MediumLayers, heldPiece);
   }
   this->From = piece;
   this->Time = piece->GetMTime();
@@ -265,8 +368,24 @@ void GatheredVolume::ReleaseArrays()
   if (this->From) // set by a gather only: nothing with one process
   {
     this->Volume->GetPointData()->Initialize();
+    if (this->MediumArrays)
+    {
+      this->MediumArrays->GetPointData()->Initialize();
+    }
     this->ArraysReleased = true;
   }
+}
+
+bool GatheredVolume::Serves(std::pair<int, int> heldPiece) const
+{
+  if (!this->From)
+  {
+    return true; // one process reads its input; under MPI nothing was gathered to serve
+  }
+  const int* whole = this->Volume->GetExtent();
+  const std::pair<int, int> read = mediumLayers(whole, heldPiece);
+  const std::pair<int, int> held = this->MediumArrays ? this->MediumLayers->Held.Layers : std::make_pair(0, whole[5] - whole[4] + 1);
+  return !this->ArraysReleased && held.first <= read.first && read.second <= held.second;
 }
 
 vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImageData* piece) const
@@ -276,5 +395,10 @@ vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImage
     return piece;
   }
   return piece && this->From == piece && this->Time == piece->GetMTime() ? this->Volume.Get() : nullptr;
+}
+
+const vtkOpalRenderInput::MediumPiece* GatheredVolume::Medium() const
+{
+  return this->MediumArrays ? this->MediumLayers.get() : nullptr;
 }
 } // namespace vtkOpalVolumePieces

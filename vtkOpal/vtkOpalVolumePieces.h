@@ -9,11 +9,17 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <memory>
 #include <string>
+#include <utility>
 
 class vtkImageData;
 class vtkInformation;
 class vtkMultiProcessController;
+namespace vtkOpalRenderInput
+{
+struct MediumPiece;
+}
 
 namespace vtkOpalVolumePieces
 {
@@ -28,32 +34,48 @@ VTKOPAL_EXPORT void AskForPiece(vtkMultiProcessController* controller, vtkInform
 // The whole volume gathered from the ranks' pieces, kept until a rank's piece
 // changes: its owner's data request updates it, its frames read it. Its
 // point arrays may be released once a device holds their values
-// (docs/design.md §8.1).
+// (docs/design.md §8.1). A rank of a march shared by the ranks holds only
+// the layers of the medium's arrays its device reads (its piece and halo).
 class VTKOPAL_EXPORT GatheredVolume
 {
 public:
   // Collective (every rank calls it together): gathers again where any
   // rank's piece (not null; `pieceInformation` its pipeline information,
   // which gives the whole extent) changed since the last Update, or any rank
-  // `needsArrays` whose arrays were released, after
-  // checking that the whole fits on every rank: the render's point arrays
-  // (ScatteringCoefficient, DomainId, SurfaceDistance and, where present,
-  // the absorption pair) placed at each piece's extent, with this piece's
-  // field data. Nothing to do with one process. Empty, else (alike on every
-  // rank) the reason: the whole does not fit, or the pieces differ in an array.
-  std::string Update(
-    vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation, bool needsArrays);
+  // `needsArrays` that were released or lack the layers `heldPiece` reads,
+  // after checking that what it gathers fits on every rank: the render's
+  // point arrays (ScatteringCoefficient, DomainId, SurfaceDistance and, where
+  // present, the absorption pair) placed at each piece's extent, with this
+  // piece's field data. `heldPiece` (share, shares) is the piece of the
+  // volume's layers this rank's device holds (its rank of the ranks for a
+  // march shared by them, else one share): for more shares than one the
+  // medium's arrays (all but SurfaceDistance) are gathered only for the
+  // layers opal::mediumLayersRead names, with the whole medium's sums
+  // added up over the ranks. Nothing to do with one process. Empty, else
+  // (alike on every rank) the reason: it does not fit, or the pieces differ in an array.
+  std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation,
+    bool needsArrays, std::pair<int, int> heldPiece = { 0, 1 });
   // Drops the gathered point arrays, keeping the geometry and field data (Of
   // still gives the volume, without them); nothing with one process.
   void ReleaseArrays();
-  // Whether the volume's arrays were released since it was gathered.
-  bool Released() const { return this->ArraysReleased; }
+  // Whether the arrays the render reads for `heldPiece` are held: with one
+  // process always; else not once released, nor where the medium's layers
+  // gathered lack those the piece reads.
+  bool Serves(std::pair<int, int> heldPiece) const;
   // The whole volume of `piece`: the piece itself with one process; nullptr
-  // where the last Update failed or was given another piece.
+  // where the last Update failed or was given another piece. Where the
+  // medium was gathered by layers it holds SurfaceDistance alone.
   vtkImageData* Of(vtkMultiProcessController* controller, vtkImageData* piece) const;
+  // The medium's arrays gathered by layers (nullptr where the volume holds
+  // them whole): the layers' image and the whole medium's sums.
+  const vtkOpalRenderInput::MediumPiece* Medium() const;
 
 private:
   vtkSmartPointer<vtkImageData> Volume;
+  // Where gathered by layers: the medium's arrays' image (its extent the
+  // layers) and the whole medium's sums.
+  vtkSmartPointer<vtkImageData> MediumArrays;
+  std::shared_ptr<vtkOpalRenderInput::MediumPiece> MediumLayers;
   vtkImageData* From = nullptr; // the piece it was gathered from, in its version
   vtkMTimeType Time = 0;
   bool ArraysReleased = false;

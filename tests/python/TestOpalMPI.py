@@ -86,6 +86,15 @@ else:
         check("view march shared by 0 rank(s)" in alone, "one process marches alone:\n" + alone)
         check(f"view march shared by {ranks} rank(s)" in together,
               f"the {ranks} ranks march the view rays together:\n" + together)
+        # Rank 0's host gathered the medium's arrays (all but SurfaceDistance)
+        # for its piece of the 60 layers and 6 beside it, and its device held
+        # its cells for the piece and 5 beside it (docs/design.md §8.1); one
+        # process holds all of them.
+        piece = 60 // ranks
+        for what, alone_layers, rank0_layers in (("gathered", 60, piece + 6), ("held on the device", 60, piece + 5)):
+            check(f"medium {what} for layers 0 to {alone_layers}" in alone, f"one process's medium {what} whole:\n" + alone)
+            check(f"medium {what} for layers 0 to {rank0_layers}" in together,
+                  f"rank 0's medium {what} for its piece of {ranks}:\n" + together)
     if kind.startswith("fire"):
         # Every order: the ranks share the photon solve (each traces a share,
         # all build the field from every share's scores, docs/design.md §8.1).

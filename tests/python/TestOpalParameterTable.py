@@ -38,6 +38,8 @@ PROXIES = {
         "LastGatherSeconds": "what the last update measured (information only), not a setting",
         "LastScatteredLightShares": "what the last update did (information only), not a setting",
         "LastLightFieldShares": "what the last update did (information only), not a setting",
+        "LastGatheredLayers": "what the last update held (information only), not a setting",
+        "LastMediumLayers": "what the last update held (information only), not a setting",
     }),
     "OpalVolume": ("sources", "model", "OpalVolume.xml", {
         "Preset": "chooses the parameters a preset sets, not a parameter",

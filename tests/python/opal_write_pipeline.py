@@ -49,6 +49,9 @@ if len(arguments) > 6:
     print("every-order field traced by", result.GetProperty("LastScatteredLightShares").GetElement(0), "rank(s)")
     print("light field computed by", result.GetProperty("LastLightFieldShares").GetElement(0), "rank(s)")
     print("view march shared by", result.GetProperty("LastMarchShares").GetElement(0), "rank(s)")
+    for what, name in (("gathered", "LastGatheredLayers"), ("held on the device", "LastMediumLayers")):
+        layers = result.GetProperty(name)
+        print(f"medium {what} for layers", layers.GetElement(0), "to", layers.GetElement(1))
 if again or unshared_again:
     if again:
         result.DeviceMemoryLimit = 16000  # MB: a new session

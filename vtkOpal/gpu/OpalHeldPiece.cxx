@@ -42,6 +42,25 @@ bool holds(std::pair<int, int> held, std::pair<int, int> layers)
 }
 } // namespace
 
+std::pair<int, int> mediumLayersRead(int layers, int share, int shares)
+{
+  return layersHeld(layers, { share, shares }, MediumHaloLayers + 1);
+}
+
+// Refuses a volume whose medium lacks layers the piece held reads.
+void RenderSession::requireMediumArrays(const RenderVolume& volume) const
+{
+  const std::pair<int, int> read = mediumLayersRead(volume.Dimensions[2], this->HeldPiece.first, this->HeldPiece.second);
+  const std::pair<int, int> given = volume.mediumLayers();
+  if (!holds(given, read))
+  {
+    throw std::invalid_argument("The volume's medium arrays (ScatteringCoefficient, DomainId, absorption) hold layers z " +
+      std::to_string(given.first) + " to " + std::to_string(given.second) + ", but the piece held (share " +
+      std::to_string(this->HeldPiece.first) + " of " + std::to_string(this->HeldPiece.second) + ") reads layers " +
+      std::to_string(read.first) + " to " + std::to_string(read.second) + ": set the volume with those layers.");
+  }
+}
+
 void RenderSession::holdPiece(int share, int shares)
 {
   if (shares < 1 || share < 0 || share >= shares)

@@ -162,9 +162,9 @@ std::unique_ptr<VulkanBuffer> absorptionBuffer(VulkanContext& context, const Ren
     return deviceLocalBuffer(context, sizeof(gpu::LightFieldPair), "absorption placeholder", nullptr, placement);
   }
   return deviceVoxelField<gpu::vec2>(
-    context, voxels, "AbsorptionCoefficient volume", placement, skin, [&volume](std::size_t i) {
-      const float absorption = volume.AbsorptionCoefficient[i];
-      return volume.AbsorptionExponent[i] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
+    context, voxels, "AbsorptionCoefficient volume", placement, skin, [&volume, given = volume.mediumFirstVoxel()](std::size_t i) {
+      const float absorption = volume.AbsorptionCoefficient[i - given];
+      return volume.AbsorptionExponent[i - given] != 0.0f ? gpu::vec2(absorption, 0.0f) : gpu::vec2(0.0f, absorption);
     });
 }
 
@@ -373,6 +373,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   {
     throw std::invalid_argument(error);
   }
+  this->requireMediumArrays(volume); // before the volume held is dropped
   const auto start = Clock::now();
   this->dropVolume();
   const std::size_t voxels = volume.voxelCount();
@@ -394,12 +395,14 @@ void RenderSession::setVolume(const RenderVolume& volume)
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
-  const std::vector<SkinCell> skin = skinCells(volume);
+  const std::vector<SkinCell> skin = skinCells(volume, uploaded->MediumLayers);
   const std::pair<std::size_t, std::size_t> medium{ uploaded->mediumFirstVoxel(),
     uploaded->mediumFirstVoxel() + uploaded->mediumVoxels() };
+  const std::size_t given = volume.mediumFirstVoxel(); // the arrays' first value (RenderVolume::Held)
   uploaded->Cells = deviceVoxelField<gpu::VoxelCell>(context, medium, "ScatteringCoefficient and DomainId volume",
-    placement, skin,
-    [&volume](std::size_t i) { return gpu::VoxelCell{ volume.ScatteringCoefficient[i], volume.DomainId[i] }; });
+    placement, skin, [&volume, given](std::size_t i) {
+      return gpu::VoxelCell{ volume.ScatteringCoefficient[i - given], volume.DomainId[i - given] };
+    });
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->AbsorptionCells = absorptionBuffer(context, volume, medium, skin, placement);

@@ -89,6 +89,13 @@ enum class BackgroundState
   Finished,
 };
 
+// The layers z of the medium's arrays (ScatteringCoefficient, DomainId, the
+// absorption pair) of a volume of `layers` layers that setVolume reads with
+// share `share` of `shares` held (RenderSession::holdPiece): the layers the
+// medium's cells hold and the one beside them whose voxels fill their skin
+// (skinCells); all for one share. The rest a caller need not hold (docs/design.md §8.1).
+std::pair<int, int> mediumLayersRead(int layers, int share, int shares);
+
 class RenderSession
 {
 public:
@@ -101,6 +108,8 @@ public:
   // Uploads the volume's fields and domain table to the device; the caller's
   // arrays are not needed afterwards. Throws std::invalid_argument for an
   // unusable volume (naming what is wrong) and VulkanError if it does not fit.
+  // A medium held by layers (RenderVolume::Held) must hold at least the
+  // layers mediumLayersRead names for the piece held (holdPiece).
   void setVolume(const RenderVolume& volume);
 
   // Refuses, before any volume exists, a volume of `dimensions` whose device
@@ -320,6 +329,7 @@ private:
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
   std::pair<int, int> mediumLayersOf(const DeviceVolume& v) const;
+  void requireMediumArrays(const RenderVolume& volume) const;
   std::vector<std::pair<VulkanBuffer*, std::uint64_t>> mediumFields() const;
   void requireWholeMedium(const std::string& reader) const;
   void requireMediumOf(std::pair<std::size_t, std::size_t> voxels, const std::string& reader) const;

@@ -18,18 +18,38 @@ std::size_t RenderVolume::voxelCount() const
     static_cast<std::size_t>(this->Dimensions[2]);
 }
 
+std::size_t RenderVolume::layerVoxels() const
+{
+  return static_cast<std::size_t>(this->Dimensions[0]) * static_cast<std::size_t>(this->Dimensions[1]);
+}
+
+std::pair<int, int> RenderVolume::mediumLayers() const
+{
+  return this->Held ? this->Held->Layers : std::make_pair(0, this->Dimensions[2]);
+}
+
+std::size_t RenderVolume::mediumFirstVoxel() const
+{
+  return this->layerVoxels() * static_cast<std::size_t>(this->mediumLayers().first);
+}
+
 bool RenderVolume::absorbs() const
 {
-  if (!this->AbsorptionCoefficient)
+  if (this->Held)
   {
-    return false;
+    return this->Held->Whole.Absorbs;
   }
-  return std::any_of(this->AbsorptionCoefficient, this->AbsorptionCoefficient + this->voxelCount(),
-    [](float absorption) { return absorption > 0.0f; });
+  return this->AbsorptionCoefficient &&
+    std::any_of(this->AbsorptionCoefficient, this->AbsorptionCoefficient + this->voxelCount(),
+      [](float absorption) { return absorption > 0.0f; });
 }
 
 float RenderVolume::colouredAbsorptionExponent() const
 {
+  if (this->Held)
+  {
+    return this->Held->Whole.ColouredAbsorptionExponent;
+  }
   for (std::size_t i = 0; this->AbsorptionCoefficient && i < this->voxelCount(); ++i)
   {
     if (this->AbsorptionCoefficient[i] > 0.0f && this->AbsorptionExponent[i] != 0.0f)
@@ -42,35 +62,69 @@ float RenderVolume::colouredAbsorptionExponent() const
 
 std::vector<std::array<double, 3>> RenderVolume::domainCentres() const
 {
-  std::vector<std::array<double, 3>> sums(this->Domains.size(), std::array<double, 3>{});
-  std::vector<std::size_t> counts(this->Domains.size(), 0);
+  const MediumSums sums = this->Held ? this->Held->Whole : sumMedium(*this, this->mediumLayers());
   const std::array<int, 3>& n = this->Dimensions;
-  for (std::size_t i = 0; i < this->voxelCount(); ++i)
-  {
-    const std::int32_t domain = this->DomainId[i];
-    if (domain < 0)
-    {
-      continue;
-    }
-    const std::array<std::size_t, 3> index{ i % static_cast<std::size_t>(n[0]),
-      i / static_cast<std::size_t>(n[0]) % static_cast<std::size_t>(n[1]),
-      i / (static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1])) };
-    for (std::size_t a = 0; a < 3; ++a)
-    {
-      sums[static_cast<std::size_t>(domain)][a] += static_cast<double>(index[a]);
-    }
-    ++counts[static_cast<std::size_t>(domain)];
-  }
   std::vector<std::array<double, 3>> centres(this->Domains.size());
   for (std::size_t d = 0; d < centres.size(); ++d)
   {
+    const std::uint64_t count = d < sums.DomainVoxels.size() ? sums.DomainVoxels[d] : 0;
     for (std::size_t a = 0; a < 3; ++a)
     {
-      const double index = counts[d] > 0 ? sums[d][a] / static_cast<double>(counts[d]) : 0.5 * (n[a] - 1);
+      const double index = count > 0 ? sums.DomainIndexSums[d][a] / static_cast<double>(count) : 0.5 * (n[a] - 1);
       centres[d][a] = this->Origin[a] + index * this->Spacing[a];
     }
   }
   return centres;
+}
+
+void MediumSums::add(const MediumSums& later)
+{
+  this->Absorbs = this->Absorbs || later.Absorbs;
+  if (this->ColouredAbsorptionExponent == 0.0f)
+  {
+    this->ColouredAbsorptionExponent = later.ColouredAbsorptionExponent;
+  }
+  this->DomainIndexSums.resize(std::max(this->DomainIndexSums.size(), later.DomainIndexSums.size()));
+  this->DomainVoxels.resize(this->DomainIndexSums.size());
+  for (std::size_t d = 0; d < later.DomainVoxels.size(); ++d)
+  {
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      this->DomainIndexSums[d][a] += later.DomainIndexSums[d][a];
+    }
+    this->DomainVoxels[d] += later.DomainVoxels[d];
+  }
+}
+
+MediumSums sumMedium(const RenderVolume& volume, std::pair<int, int> layers)
+{
+  MediumSums sums;
+  sums.DomainIndexSums.assign(volume.Domains.size(), std::array<double, 3>{});
+  sums.DomainVoxels.assign(volume.Domains.size(), 0);
+  const std::size_t first = volume.mediumFirstVoxel(), layer = volume.layerVoxels();
+  const auto nx = static_cast<std::size_t>(volume.Dimensions[0]);
+  for (std::size_t i = layer * static_cast<std::size_t>(layers.first); i < layer * static_cast<std::size_t>(layers.second); ++i)
+  {
+    const std::size_t held = i - first;
+    if (volume.AbsorptionCoefficient && volume.AbsorptionCoefficient[held] > 0.0f)
+    {
+      sums.Absorbs = true;
+      const float exponent = volume.AbsorptionExponent[held];
+      sums.ColouredAbsorptionExponent = sums.ColouredAbsorptionExponent == 0.0f ? exponent : sums.ColouredAbsorptionExponent;
+    }
+    const std::int32_t domain = volume.DomainId[held];
+    if (domain < 0 || static_cast<std::size_t>(domain) >= volume.Domains.size())
+    {
+      continue;
+    }
+    const std::array<std::size_t, 3> index{ i % nx, i % layer / nx, i / layer };
+    for (std::size_t a = 0; a < 3; ++a)
+    {
+      sums.DomainIndexSums[static_cast<std::size_t>(domain)][a] += static_cast<double>(index[a]);
+    }
+    ++sums.DomainVoxels[static_cast<std::size_t>(domain)];
+  }
+  return sums;
 }
 
 RenderDomain renderDomain(
@@ -101,19 +155,31 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
 
 namespace
 {
+// The whole-grid voxels [first, end) whose medium the volume's arrays hold.
+std::pair<std::size_t, std::size_t> heldVoxels(const RenderVolume& volume)
+{
+  const std::pair<int, int> layers = volume.mediumLayers();
+  return { volume.layerVoxels() * static_cast<std::size_t>(layers.first),
+    volume.layerVoxels() * static_cast<std::size_t>(layers.second) };
+}
+
 // The first voxel whose ScatteringCoefficient is not a finite value >= 0, or
 // whose SurfaceDistance is not finite, named; empty if none.
 std::string checkVoxelValues(const RenderVolume& volume)
 {
-  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+  const auto [begin, end] = heldVoxels(volume);
+  for (std::size_t i = begin; i < end; ++i)
   {
-    const float mus = volume.ScatteringCoefficient[i], distance = volume.SurfaceDistance[i];
+    const float mus = volume.ScatteringCoefficient[i - begin];
     if (!std::isfinite(mus) || mus < 0.0f)
     {
       return "ScatteringCoefficient " + std::to_string(mus) + " at voxel " + std::to_string(i) +
         " is not a finite value >= 0 (1/mm).";
     }
-    if (!std::isfinite(distance))
+  }
+  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+  {
+    if (!std::isfinite(volume.SurfaceDistance[i]))
     {
       return "SurfaceDistance at voxel " + std::to_string(i) + " is not finite.";
     }
@@ -130,9 +196,10 @@ std::string checkAbsorption(const RenderVolume& volume)
     return {};
   }
   const float coloured = volume.colouredAbsorptionExponent();
-  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+  const auto [begin, end] = heldVoxels(volume);
+  for (std::size_t i = begin; i < end; ++i)
   {
-    const float absorption = volume.AbsorptionCoefficient[i], exponent = volume.AbsorptionExponent[i];
+    const float absorption = volume.AbsorptionCoefficient[i - begin], exponent = volume.AbsorptionExponent[i - begin];
     if (!std::isfinite(absorption) || absorption < 0.0f)
     {
       return "AbsorptionCoefficient " + std::to_string(absorption) + " at voxel " + std::to_string(i) +
@@ -151,16 +218,40 @@ std::string checkAbsorption(const RenderVolume& volume)
   return {};
 }
 
+// A medium held by layers: within the grid, its sums one per domain.
+std::string checkHeldMedium(const RenderVolume& volume)
+{
+  if (!volume.Held)
+  {
+    return {};
+  }
+  const auto [first, end] = volume.Held->Layers;
+  if (first < 0 || end > volume.Dimensions[2] || first >= end)
+  {
+    return "The medium held by layers (" + std::to_string(first) + " to " + std::to_string(end) +
+      ") is not a range of the volume's " + std::to_string(volume.Dimensions[2]) + " layers z.";
+  }
+  const MediumSums& whole = volume.Held->Whole;
+  if (whole.DomainVoxels.size() != volume.Domains.size() || whole.DomainIndexSums.size() != volume.Domains.size())
+  {
+    return "The whole medium's sums of a medium held by layers give " + std::to_string(whole.DomainVoxels.size()) +
+      " domains, not the table's " + std::to_string(volume.Domains.size()) + ".";
+  }
+  return {};
+}
+
 // Every DomainId -1 or within the table, every domain a finite unit-ish
 // normal and a positive finite plane spacing; empty if so.
 std::string checkDomains(const RenderVolume& volume)
 {
   const auto domains = static_cast<std::int64_t>(volume.Domains.size());
-  for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+  const auto [begin, end] = heldVoxels(volume);
+  for (std::size_t i = begin; i < end; ++i)
   {
-    if (volume.DomainId[i] < -1 || volume.DomainId[i] >= domains)
+    const std::int32_t domain = volume.DomainId[i - begin];
+    if (domain < -1 || domain >= domains)
     {
-      return "DomainId " + std::to_string(volume.DomainId[i]) + " at voxel " + std::to_string(i) +
+      return "DomainId " + std::to_string(domain) + " at voxel " + std::to_string(i) +
         " is outside the domain table (" + std::to_string(domains) + " domains).";
     }
   }
@@ -216,6 +307,11 @@ std::string validate(const RenderVolume& volume)
     return "The input volume has one of AbsorptionCoefficient and AbsorptionExponent without the other.";
   }
   const ColloidalCrystal crystal{ volume.SphereRefractiveIndex, volume.MatrixRefractiveIndex };
+  const std::string held = checkHeldMedium(volume);
+  if (!held.empty())
+  {
+    return held;
+  }
   for (const std::string& error : { checkVoxelValues(volume), checkAbsorption(volume), crystalError(crystal) })
   {
     if (!error.empty())

@@ -6,7 +6,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace opal
@@ -32,6 +34,33 @@ constexpr std::uint64_t MostRenderedVoxels = 0xffffffffu;
 // reaches it within MostRenderedVoxels).
 constexpr std::uint64_t MostLayerVoxels = 0x7fffffffu;
 
+// The sums the render takes over every voxel of the medium: whether any
+// voxel absorbs, the coloured absorption exponent and each domain's voxels.
+// Where a process holds only some layers of the medium, each sums its own
+// layers and the processes add them up (docs/design.md §8.1).
+struct MediumSums
+{
+  bool Absorbs = false;
+  float ColouredAbsorptionExponent = 0.0f; // the first absorbing voxel's not 0, in voxel order
+  // Per domain: its voxels' indices (i, j, k) summed (whole numbers, exact
+  // in double in any order below 2^53), and their count.
+  std::vector<std::array<double, 3>> DomainIndexSums;
+  std::vector<std::uint64_t> DomainVoxels;
+
+  // Adds the sums of layers that follow these (the first coloured exponent stays).
+  void add(const MediumSums& later);
+};
+
+// The medium of some layers z alone: ScatteringCoefficient, DomainId and the
+// absorption pair hold layers [first, end), from their first value, while
+// SurfaceDistance is whole. A process of a march shared by processes reads
+// no more (docs/design.md §8.1); `Whole` gives the whole medium's sums.
+struct HeldMedium
+{
+  std::pair<int, int> Layers{ 0, 0 };
+  MediumSums Whole;
+};
+
 struct RenderVolume
 {
   std::array<int, 3> Dimensions{};
@@ -48,9 +77,17 @@ struct RenderVolume
   // SphereRefractiveIndex and MatrixRefractiveIndex.
   double SphereRefractiveIndex = 1.45;
   double MatrixRefractiveIndex = 1.33;
+  // Where set, the medium's arrays hold only these layers (else all).
+  std::optional<HeldMedium> Held;
 
   std::size_t voxelCount() const;
-  // True if any voxel absorbs.
+  std::size_t layerVoxels() const;
+  // The layers z the medium's arrays hold: Held's, else all.
+  std::pair<int, int> mediumLayers() const;
+  // The whole-grid index of the medium's arrays' first value: a voxel i's
+  // ScatteringCoefficient is ScatteringCoefficient[i - mediumFirstVoxel()].
+  std::size_t mediumFirstVoxel() const;
+  // True if any voxel absorbs (of the whole medium, as every process below).
   bool absorbs() const;
   // The exponent of the absorbing voxels whose exponent is not 0 (the body's
   // colour), or 0 if all are grey. The render carries two absorption depths,
@@ -72,6 +109,10 @@ RenderDomain renderDomain(
 // Domain i of the layout as RenderDomain i.
 std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 
+// The medium's sums over layers z [first, end) of `volume`, which holds
+// them; domains outside the table are left out (validate refuses them).
+MediumSums sumMedium(const RenderVolume& volume, std::pair<int, int> layers);
+
 // Empty if the render can read the volume, else one sentence naming what is
 // wrong: dimensions and spacing positive, origin finite, at most
 // MostRenderedVoxels voxels and MostLayerVoxels a layer y (checked before any
@@ -81,7 +122,9 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout);
 // finite, and at most one exponent other than 0 among the absorbing voxels,
 // every DomainId -1 or within the domain table, every domain a finite unit
 // normal, a positive plane spacing and a finite unit orientation, the
-// crystal's indices within [1, 4).
+// crystal's indices within [1, 4). Of a medium held by layers (Held), its
+// layers within the grid and the checks of the medium's arrays over them
+// alone (each process checks its own; the exponent against the whole's).
 std::string validate(const RenderVolume& volume);
 
 } // namespace opal

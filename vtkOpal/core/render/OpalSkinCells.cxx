@@ -2,6 +2,7 @@
 
 #include "OpalParallel.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace opal
@@ -34,24 +35,26 @@ std::int64_t deepestInsideNeighbour(const RenderVolume& volume, int i, int j, in
 }
 } // namespace
 
-std::vector<SkinCell> skinCells(const RenderVolume& volume)
+std::vector<SkinCell> skinCells(const RenderVolume& volume, std::pair<int, int> layers)
 {
   const auto& s = volume.Spacing;
   const auto diagonal = static_cast<float>(std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
   const auto& n = volume.Dimensions;
-  std::vector<std::vector<SkinCell>> perSlice(static_cast<std::size_t>(n[2]));
-  parallelFor(0, n[2], [&](int kBegin, int kEnd) {
+  const auto first = static_cast<std::int64_t>(volume.mediumFirstVoxel());
+  std::vector<std::vector<SkinCell>> perSlice(static_cast<std::size_t>(std::max(layers.second - layers.first, 0)));
+  parallelFor(layers.first, layers.second, [&](int kBegin, int kEnd) {
     for (int k = kBegin; k < kEnd; ++k)
       for (int j = 0; j < n[1]; ++j)
         for (int i = 0; i < n[0]; ++i)
         {
           const std::int64_t index = i + static_cast<std::int64_t>(n[0]) * (j + static_cast<std::int64_t>(n[1]) * k);
           const float d = volume.SurfaceDistance[index];
-          if (d <= 0.0f || d > diagonal || volume.ScatteringCoefficient[index] != 0.0f || volume.DomainId[index] >= 0)
+          if (d <= 0.0f || d > diagonal || volume.ScatteringCoefficient[index - first] != 0.0f ||
+            volume.DomainId[index - first] >= 0)
             continue;
           const std::int64_t source = deepestInsideNeighbour(volume, i, j, k);
           if (source >= 0)
-            perSlice[static_cast<std::size_t>(k)].push_back({ index, source });
+            perSlice[static_cast<std::size_t>(k - layers.first)].push_back({ index, source });
         }
   });
   std::vector<SkinCell> cells;

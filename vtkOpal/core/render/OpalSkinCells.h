@@ -29,7 +29,10 @@ struct SkinCell
 // DomainId -1, with a neighbour of SurfaceDistance <= 0; the neighbour with
 // the smallest SurfaceDistance is the source (the first in z, y, x order on a
 // tie). Sources lie inside, so no source is itself a skin cell. Few: the
-// caller applies them to its copy of the fields.
-std::vector<SkinCell> skinCells(const RenderVolume& volume);
+// caller applies them to its copy of the fields. Those of layers z
+// [first, end) alone, whose medium and the layer beside them the volume
+// holds (RenderVolume::mediumLayers: a process of a march shared by
+// processes holds its piece's, docs/design.md §8.1).
+std::vector<SkinCell> skinCells(const RenderVolume& volume, std::pair<int, int> layers);
 
 } // namespace opal
