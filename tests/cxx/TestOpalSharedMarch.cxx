@@ -310,6 +310,50 @@ std::string thrown(const std::function<void()>& call)
 // background frame, a light field shared by other shares than its piece's,
 // an every-order solve whose slab it lacks. A piece within its layers keeps
 // the volume; one beyond them drops it.
+// `stone` as a rank's gather holds it (docs/design.md §8.1): the medium's
+// arrays of `layers` alone, with the whole medium's sums added up from two
+// ranks' layers (0 to 20, 20 to the last).
+opal::RenderVolume mediumOfLayers(const opal::RenderVolume& stone, std::pair<int, int> layers)
+{
+  opal::RenderVolume v = stone;
+  const std::size_t first = stone.layerVoxels() * static_cast<std::size_t>(layers.first);
+  v.ScatteringCoefficient += first;
+  v.DomainId += first;
+  if (v.AbsorptionCoefficient)
+  {
+    v.AbsorptionCoefficient += first;
+    v.AbsorptionExponent += first;
+  }
+  opal::MediumSums whole = opal::sumMedium(stone, { 0, 20 });
+  whole.add(opal::sumMedium(stone, { 20, stone.Dimensions[2] }));
+  v.Held = opal::HeldMedium{ layers, whole };
+  return v;
+}
+
+// A medium held by layers: the layers a piece reads (its cells' and the
+// skin's one beside) are enough, one fewer is refused naming both and keeps
+// the volume held; the whole's sums added up from the ranks' layers give the
+// whole's domain centres; layers beyond the grid are refused.
+void checkMediumOfLayers(opal::RenderSession& session, const opal::RenderVolume& stone)
+{
+  const opal::RenderVolume enough = mediumOfLayers(stone, { 10, 39 }); // share 1 of 3 of 50: 16 to 33, and 6 beside
+  OPAL_CHECK(opal::mediumLayersRead(50, 1, 3) == std::make_pair(10, 39), "share 1 of 3 of 50 layers reads layers 10 to 39");
+  OPAL_CHECK(enough.domainCentres() == stone.domainCentres() && enough.absorbs() == stone.absorbs() &&
+      enough.colouredAbsorptionExponent() == stone.colouredAbsorptionExponent(),
+    "the ranks' sums added up give the whole medium's domain centres and absorption");
+  const std::string fewer = thrown([&] { session.setVolume(mediumOfLayers(stone, { 11, 39 })); });
+  OPAL_CHECK(fewer.find("hold layers z 11 to 39") != std::string::npos &&
+      fewer.find("reads layers 10 to 39") != std::string::npos && session.holdsVolume() &&
+      session.heldMediumLayers() == std::make_pair(11, 38),
+    "a medium lacking a layer the piece reads refused, the volume held kept (" + fewer + ")");
+  session.setVolume(enough);
+  OPAL_CHECK(session.heldMediumLayers() == std::make_pair(11, 38), "a medium of the layers the piece reads uploaded");
+  opal::RenderVolume beyond = enough;
+  beyond.Held->Layers = { 10, 51 };
+  OPAL_CHECK(opal::validate(beyond).find("is not a range of the volume's 50 layers z") != std::string::npos,
+    "a medium held beyond the grid's layers refused (" + opal::validate(beyond) + ")");
+}
+
 void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderParameters& p)
 {
   opal::RenderSession session(opal::VulkanOptions{});
@@ -331,6 +375,7 @@ void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderPara
     "a light field shared by other shares refused (" + light + ")");
   OPAL_CHECK(solve.find("An every-order solve shared by other processes than the march's") != std::string::npos,
     "a solve whose slab is not held refused (" + solve + ")");
+  checkMediumOfLayers(session, stone);
   session.holdPiece(2, 5); // layers 20 to 30 and 5 beside: within 11 to 38
   OPAL_CHECK(session.holdsVolume() && session.heldMediumLayers() == std::make_pair(11, 38),
     "a piece within the medium's layers keeps the volume");
