@@ -208,10 +208,11 @@ vtkSmartPointer<vtkImageData> imageOf(const int extent[6], vtkImageData* like)
 }
 
 // Collective: the whole volume from every rank's piece (GatheredVolume::Update).
-// Where `layers` are fewer than the whole's, the medium's arrays go into
-// `medium`, an image of the whole's x and y and those layers; else all into `volume`.
-std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], std::pair<int, int> layers,
-  vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium)
+// Where `byLayers`, the medium's arrays go into `medium`, an image of the
+// whole's x and y and its `layers` (all of them for a rank whose piece and
+// halo span the grid); else all into `volume`.
+std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], bool byLayers,
+  std::pair<int, int> layers, vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium)
 {
   medium = nullptr;
   vtkMultiProcessController* controller = ranksController(given);
@@ -230,7 +231,7 @@ std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const 
   }
   volume = imageOf(whole, piece);
   volume->GetFieldData()->ShallowCopy(piece->GetFieldData());
-  if (layers != std::make_pair(0, whole[5] - whole[4] + 1))
+  if (byLayers)
   {
     const int extent[6] = { whole[0], whole[1], whole[2], whole[3], whole[4] + layers.first, whole[4] + layers.second - 1 };
     medium = imageOf(extent, piece);
@@ -345,7 +346,9 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   {
     return memory.empty() ? "Another rank cannot hold the volume's arrays the render reads." : memory;
   }
-  const std::string error = Gather(controller, piece, whole, layers, this->Volume, this->MediumArrays);
+  // Every rank alike (the sums below are collective), whatever its layers.
+  const bool byLayers = heldPiece.second > 1;
+  const std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, this->MediumArrays);
   if (!error.empty())
   {
     this->Volume = nullptr;

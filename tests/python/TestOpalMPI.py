@@ -11,7 +11,8 @@ The voronoi case is the volume of Voronoi grains with correlated diameters
 (CellId too). The grains case renders the pinfire preset's grains; the fire
 case the fire-opal preset (an absorbing body, coupled-wave fcc, every order)
 lit low from the side, its light field's march from every voxel and its
-every-order photon solve shared by the ranks. The march and fire-march cases
+every-order photon solve shared by the ranks. The march, fire-march and
+thin-march (fig12 on 12 layers, which some ranks' pieces and halos span) cases
 render fig12 and fire-opal with ShareMarch: each rank marches the view rays
 only through its piece of the volume's layers, handing them to the others,
 each rank's device holding only its piece of the medium, and every rank
@@ -21,7 +22,7 @@ The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
 alone, and the screenshot equals the one-process one.
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|pvti|view"""
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|thin-march|pvti|view"""
 import os
 import sys
 
@@ -68,8 +69,9 @@ if kind in ("pvti", "view"):
 else:
     fire = ["--preset", "fire-opal", "--side-light"]
     renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": fire,
-               "march": ["--share-march"], "fire-march": fire + ["--share-march"]}
-    arguments = ["48", "24", "60"] + (["96", "72"] + renders[kind] if kind in renders else []) + \
+               "march": ["--share-march"], "fire-march": fire + ["--share-march"], "thin-march": ["--share-march"]}
+    grid = ["16", "8", "12"] if kind == "thin-march" else ["48", "24", "60"]
+    arguments = grid + (["96", "72"] + renders[kind] if kind in renders else []) + \
         (["--voronoi"] if kind == "voronoi" else [])
     writer = os.path.join(here, "opal_write_pipeline.py")
     alone = run([config.PVBATCH, writer, serial] + arguments).stdout
@@ -90,8 +92,9 @@ else:
         # for its piece of the 60 layers and 6 beside it, and its device held
         # its cells for the piece and 5 beside it (docs/design.md §8.1); one
         # process holds all of them.
-        piece = 60 // ranks
-        for what, alone_layers, rank0_layers in (("gathered", 60, piece + 6), ("held on the device", 60, piece + 5)):
+        layers = int(grid[2])
+        piece = layers // ranks
+        for what, alone_layers, rank0_layers in (("gathered", layers, piece + 6), ("held on the device", layers, piece + 5)):
             check(f"medium {what} for layers 0 to {alone_layers}" in alone, f"one process's medium {what} whole:\n" + alone)
             check(f"medium {what} for layers 0 to {rank0_layers}" in together,
                   f"rank 0's medium {what} for its piece of {ranks}:\n" + together)
