@@ -82,14 +82,15 @@ bool GatherBytes(vtkMultiProcessController* controller, const char* mine, const 
 }
 
 bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine, const std::vector<vtkIdType>& lengths,
-  const ByteSink& sink, vtkIdType roundBytes)
+  const ByteSink& sink, vtkIdType roundBytes, int destination)
 {
+  const bool receives = destination < 0 || destination == controller->GetLocalProcessId();
   const int ranks = controller->GetNumberOfProcesses();
   const vtkIdType longest = *std::max_element(lengths.begin(), lengths.end());
   // The window holds a round of every rank: no larger than the longest bytes need.
   const vtkIdType round =
     std::max<vtkIdType>(1, std::min<vtkIdType>({ roundBytes, (VTK_INT_MAX - 1) / ranks, longest }));
-  std::vector<char> window(static_cast<std::size_t>(round * ranks));
+  std::vector<char> window(receives ? static_cast<std::size_t>(round * ranks) : 0);
   const vtkIdType mineLength = lengths[controller->GetLocalProcessId()];
   for (vtkIdType start = 0; start < longest; start += round)
   {
@@ -100,11 +101,13 @@ bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine, cons
       places[r] = r * round;
     }
     const vtkIdType count = std::clamp<vtkIdType>(mineLength - start, 0, round);
-    if (!controller->AllGatherV(count > 0 ? mine + start : mine, window.data(), count, counts.data(), places.data()))
+    const char* sent = count > 0 ? mine + start : mine;
+    if (!(destination < 0 ? controller->AllGatherV(sent, window.data(), count, counts.data(), places.data())
+                          : controller->GatherV(sent, window.data(), count, counts.data(), places.data(), destination)))
     {
       return false;
     }
-    for (int r = 0; r < ranks; ++r)
+    for (int r = 0; r < ranks && receives; ++r)
     {
       if (counts[r] > 0)
       {

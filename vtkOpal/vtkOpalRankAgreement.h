@@ -43,10 +43,12 @@ VTKOPAL_EXPORT bool GatherBytes(vtkMultiProcessController* controller, const cha
   const std::vector<vtkIdType>& lengths, std::vector<char>& bytes, vtkIdType roundBytes = RoundBytes);
 // GatherBytes with each round handed to `sink` as it arrives (rank r's bytes
 // [first, first + count) at `data`) instead of kept: a caller that places
-// them holds one round, not every rank's bytes.
+// them holds one round, not every rank's bytes. To every rank, or where
+// `destination` is a rank to it alone (the others' sinks are not called).
 using ByteSink = std::function<void(int rank, vtkIdType first, vtkIdType count, const char* data)>;
 VTKOPAL_EXPORT bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine,
-  const std::vector<vtkIdType>& lengths, const ByteSink& sink, vtkIdType roundBytes = RoundBytes);
+  const std::vector<vtkIdType>& lengths, const ByteSink& sink, vtkIdType roundBytes = RoundBytes,
+  int destination = -1);
 // Where each rank's bytes begin in GatherBytes's `bytes`, from its `lengths`.
 std::vector<vtkIdType> RankOffsets(const std::vector<vtkIdType>& lengths);
 

@@ -102,6 +102,36 @@ void placeBytes(const int* e, const int* t, vtkIdType tupleBytes, vtkIdType firs
   }
 }
 
+// Collective: every rank's rows within the layers z of `target`, rank
+// `to`'s extent, into that rank's `array` of `volume` (its extent `target`);
+// a rank's rows in some layers are one run of its piece's bytes (z slowest).
+bool sendLayers(vtkMultiProcessController* controller, const char* values, vtkIdType tupleBytes,
+  const std::vector<int>& extents, const int* target, int to, vtkImageData* volume, vtkDataArray* array)
+{
+  const int ranks = controller->GetNumberOfProcesses(), me = controller->GetLocalProcessId();
+  std::vector<std::array<int, 6>> runs(static_cast<std::size_t>(ranks));
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks));
+  for (int r = 0; r < ranks; ++r)
+  {
+    std::array<int, 6>& run = runs[static_cast<std::size_t>(r)];
+    std::copy_n(&extents[6 * r], 6, run.begin());
+    run[4] = std::max(run[4], target[4]);
+    run[5] = std::min(run[5], target[5]);
+    lengths[static_cast<std::size_t>(r)] = pointsIn(run.data()) * tupleBytes;
+  }
+  const int* e = &extents[6 * me];
+  const vtkIdType from = lengths[static_cast<std::size_t>(me)] > 0
+    ? static_cast<vtkIdType>(runs[static_cast<std::size_t>(me)][4] - e[4]) * (e[3] - e[2] + 1) * (e[1] - e[0] + 1) * tupleBytes
+    : 0;
+  char* into = static_cast<char*>(array->GetVoidPointer(0));
+  return vtkOpalRankAgreement::GatherBytesTo(
+    controller, values ? values + from : nullptr, lengths,
+    [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
+      placeBytes(runs[static_cast<std::size_t>(rank)].data(), volume->GetExtent(), tupleBytes, first, count, data, into);
+    },
+    vtkOpalRankAgreement::RoundBytes, to);
+}
+
 // The array as sent: itself where its values lie in one block, else an
 // ordinary copy (a numpy or implicit array).
 vtkSmartPointer<vtkDataArray> contiguous(vtkDataArray* array)
@@ -157,16 +187,17 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   }
   array->SetName(name);
   array->SetNumberOfTuples(pointsIn(volume->GetExtent()));
-  char* target = static_cast<char*>(array->GetVoidPointer(0));
-  const int* t = volume->GetExtent();
-  // Placed as each round arrives: no copy of every rank's bytes is held.
-  if (!vtkOpalRankAgreement::GatherBytesTo(controller,
-        mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr, lengths,
-        [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
-          placeBytes(&extents[6 * rank], t, tupleBytes, first, count, data, target);
-        }))
+  // Each rank receives only the rows within its extent's layers z (all of
+  // them, or a rank's piece and halo of the medium, docs/design.md §8.1).
+  std::vector<int> targets(6 * ranks);
+  controller->AllGather(volume->GetExtent(), targets.data(), 6);
+  const char* values = mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr;
+  for (int to = 0; to < ranks; ++to)
   {
-    return std::string("The ranks could not exchange the volume's ") + name + ".";
+    if (!sendLayers(controller, values, tupleBytes, extents, &targets[6 * to], to, volume, array))
+    {
+      return std::string("The ranks could not exchange the volume's ") + name + ".";
+    }
   }
   volume->GetPointData()->AddArray(array);
   return {};

@@ -150,6 +150,27 @@ int main(int argc, char* argv[])
                  rank) &&
         passed;
     }
+    // To one rank alone: each rank in turn receives every rank's bytes, the others nothing.
+    const std::vector<vtkIdType> offsets = vtkOpalRankAgreement::RankOffsets(lengths);
+    for (int to = 0; to < ranks; ++to)
+    {
+      for (const vtkIdType round : { vtkIdType(7), vtkOpalRankAgreement::RoundBytes })
+      {
+        std::vector<char> bytes(expected.size(), 0);
+        bool called = false;
+        const bool exchanged = vtkOpalRankAgreement::GatherBytesTo(controller, mine.data(), lengths,
+          [&](int from, vtkIdType first, vtkIdType count, const char* data) {
+            called = true;
+            std::copy_n(data, count, bytes.data() + offsets[from] + first);
+          },
+          round, to);
+        passed = check(exchanged && (rank == to ? bytes == expected : !called),
+                   "to rank " + std::to_string(to) + " alone in rounds of " + std::to_string(round) +
+                     ": every rank's bytes there, none elsewhere",
+                   rank) &&
+          passed;
+      }
+    }
   }
   const std::vector<vtkOpalRankAgreement::RankView> views = vtkOpalRankAgreement::Gather(
     controller, { "Setting " + std::to_string(rank) + "\n", rank + 10, "message of rank " + std::to_string(rank) });
