@@ -264,6 +264,7 @@ int vtkOpalSpectralRender::RequestData(
   vtkImageData* output = vtkImageData::GetData(outInfo);
   FailedRequest request{ input, input ? input->GetMTime() : 0, this->GetMTime(), {} };
   outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), request.Extent.data());
+  this->NoteMediumLayers(nullptr); // none until this request renders
   // Under MPI every rank takes part in both agreements, whatever it found:
   // nothing returns before the first.
   if (!this->AgreeToRender(input, request))
@@ -313,14 +314,14 @@ int vtkOpalSpectralRender::RequestData(
   {
     this->LastFailure = request;
   }
-  this->NoteMediumLayers(input);
+  this->NoteMediumLayers(outcome == RenderOutcome::Rendered ? input : nullptr);
   return outcome == RenderOutcome::Rendered ? 1 : 0;
 }
 
 void vtkOpalSpectralRender::NoteMediumLayers(vtkImageData* input)
 {
   const vtkOpalRenderInput::MediumPiece* medium = this->Gathered.Medium();
-  vtkImageData* volume = this->VolumeOf(input);
+  vtkImageData* volume = input ? this->VolumeOf(input) : nullptr;
   const bool held = this->HoldsUploadedVolume(volume);
   const std::pair<int, int> gathered =
     medium ? medium->Held.Layers : std::make_pair(0, held ? volume->GetDimensions()[2] : 0);

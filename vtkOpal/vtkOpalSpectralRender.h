@@ -342,7 +342,8 @@ private:
   int LastMarchShares = 0;
   int LastGatheredLayers[2] = { 0, 0 };
   int LastMediumLayers[2] = { 0, 0 };
-  // Records the layers of the medium gathered and held (LastGatheredLayers, LastMediumLayers).
+  // Records the layers of the medium gathered and held for `input` (LastGatheredLayers,
+  // LastMediumLayers): none for nullptr (a request that did not render).
   void NoteMediumLayers(vtkImageData* input);
   // An error of the data request, kept for the outcome's agreement.
   void SayError(const std::string& message);

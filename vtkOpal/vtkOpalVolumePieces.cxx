@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <new>
 #include <vector>
 
 namespace vtkOpalVolumePieces
@@ -213,12 +214,16 @@ std::pair<int, int> mediumLayers(const int whole[6], std::pair<int, int> heldPie
 
 // Empty where the arrays the render reads fit in this machine's memory:
 // SurfaceDistance of the whole volume `whole` (an extent) and the others,
-// the absorption pair among them, of its `layers`; else the sentence refusing them.
-std::string MemoryError(const int whole[6], std::pair<int, int> layers)
+// the absorption pair among them, of its `layers`, and the exchange's
+// window of `ranks` ranks; else the sentence refusing them.
+std::string MemoryError(const int whole[6], std::pair<int, int> layers, int ranks)
 {
   const auto layer = static_cast<std::uint64_t>(whole[1] - whole[0] + 1) * static_cast<std::uint64_t>(whole[3] - whole[2] + 1);
+  // A round of every rank, MPI's int counts bounding them together (GatherBytesTo).
+  const std::uint64_t window =
+    std::min<std::uint64_t>(static_cast<std::uint64_t>(ranks) * vtkOpalRankAgreement::RoundBytes, VTK_INT_MAX);
   const std::uint64_t needed = static_cast<std::uint64_t>(pointsIn(whole)) * 4 +
-    layer * static_cast<std::uint64_t>(layers.second - layers.first) * (opal::RenderVolumeBytesPerVoxel - 4 + 8);
+    layer * static_cast<std::uint64_t>(layers.second - layers.first) * (opal::RenderVolumeBytesPerVoxel - 4 + 8) + window;
   const std::uint64_t available = opal::physicalMemoryBytes();
   if (available == 0 || needed <= available)
   {
@@ -305,28 +310,45 @@ opal::MediumSums unpacked(const double* words, std::size_t count)
   return sums;
 }
 
-// Collective: the whole medium's sums, each rank summing its share's layers
-// (`heldPiece`'s, which cover the whole one after another in rank order) of
-// the medium it gathered (`medium.Held.Layers`), added up in rank order. A
-// rank whose arrays the render cannot read adds none (its upload says why).
-opal::MediumSums SumMedium(vtkMultiProcessController* controller, vtkImageData* volume,
-  const vtkOpalRenderInput::MediumPiece& medium, std::pair<int, int> heldPiece)
+// This rank's sums of its share's layers (`heldPiece`'s, which cover the
+// whole one after another in rank order) of the medium it gathered: none
+// where the render cannot read its arrays (its upload says why); false
+// where it could not sum them (memory), which fails every rank's gather.
+bool sumShare(vtkImageData* volume, const vtkOpalRenderInput::MediumPiece& medium, std::pair<int, int> heldPiece,
+  opal::MediumSums& mine)
 {
-  opal::RenderVolume read;
-  vtkOpalRenderInput::Storage storage;
-  opal::MediumSums mine;
-  if (vtkOpalRenderInput::Read(volume, read, storage, &medium).empty())
+  try
   {
-    mine = opal::sumMedium(read, opal::evenShare(read.Dimensions[2], heldPiece.first, heldPiece.second));
+    opal::RenderVolume read;
+    vtkOpalRenderInput::Storage storage;
+    if (vtkOpalRenderInput::Read(volume, read, storage, &medium).empty())
+    {
+      mine = opal::sumMedium(read, opal::evenShare(read.Dimensions[2], heldPiece.first, heldPiece.second));
+    }
+    return true;
   }
+  catch (const std::bad_alloc&)
+  {
+    return false;
+  }
+}
+
+// Collective: the whole medium's sums, every rank's share (sumShare) added
+// up in rank order; empty, else (alike on every rank) why there are none.
+std::string SumMedium(vtkMultiProcessController* controller, vtkImageData* volume,
+  const vtkOpalRenderInput::MediumPiece& medium, std::pair<int, int> heldPiece, opal::MediumSums& whole)
+{
+  opal::MediumSums mine;
+  const bool summed = sumShare(volume, medium, heldPiece, mine);
   const std::vector<double> words = packed(mine);
   const std::vector<vtkIdType> lengths = vtkOpalRankAgreement::GatherLengths(
     controller, static_cast<vtkIdType>(words.size() * sizeof(double)));
   std::vector<char> bytes;
-  opal::MediumSums whole;
-  if (!vtkOpalRankAgreement::GatherBytes(controller, reinterpret_cast<const char*>(words.data()), lengths, bytes))
+  const bool exchanged =
+    vtkOpalRankAgreement::GatherBytes(controller, reinterpret_cast<const char*>(words.data()), lengths, bytes);
+  if (vtkOpalRankAgreement::AnyRank(controller, !summed || !exchanged))
   {
-    return whole;
+    return "The ranks could not sum the medium's absorption and domains over their layers (memory, or the exchange).";
   }
   const std::vector<vtkIdType> offsets = vtkOpalRankAgreement::RankOffsets(lengths);
   for (std::size_t r = 0; r < lengths.size(); ++r)
@@ -335,7 +357,7 @@ opal::MediumSums SumMedium(vtkMultiProcessController* controller, vtkImageData* 
     std::memcpy(theirs.data(), bytes.data() + offsets[r], theirs.size() * sizeof(double));
     whole.add(unpacked(theirs.data(), theirs.size()));
   }
-  return whole;
+  return {};
 }
 
 } // namespace
@@ -367,30 +389,32 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   this->From = nullptr;
   this->Volume = nullptr;
   this->MediumArrays = nullptr;
+  this->MediumLayers = nullptr;
   this->ArraysReleased = false;
   int whole[6];
   pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   const std::pair<int, int> layers = mediumLayers(whole, heldPiece);
   // The gathered arrays must fit on every rank.
-  const std::string memory = MemoryError(whole, layers);
+  const std::string memory = MemoryError(whole, layers, vtkOpalRankAgreement::Ranks(controller));
   if (vtkOpalRankAgreement::AnyRank(controller, !memory.empty()))
   {
     return memory.empty() ? "Another rank cannot hold the volume's arrays the render reads." : memory;
   }
   // Every rank alike (the sums below are collective), whatever its layers.
   const bool byLayers = heldPiece.second > 1;
-  const std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, this->MediumArrays);
+  std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, this->MediumArrays);
+  if (error.empty() && this->MediumArrays)
+  {
+    this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>();
+    *this->MediumLayers = { this->MediumArrays.Get(), { layers, {} } };
+    error = SumMedium(controller, this->Volume, *this->MediumLayers, heldPiece, this->MediumLayers->Held.Whole);
+  }
   if (!error.empty())
   {
     this->Volume = nullptr;
     this->MediumArrays = nullptr;
+    this->MediumLayers = nullptr;
     return error;
-  }
-  if (this->MediumArrays)
-  {
-    this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>();
-    *this->MediumLayers = { this->MediumArrays.Get(), { layers, {} } };
-    this->MediumLayers->Held.Whole = SumMedium(controller, this->Volume, *this->MediumLayers, heldPiece);
   }
   this->From = piece;
   this->Time = piece->GetMTime();
@@ -433,6 +457,6 @@ vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImage
 
 const vtkOpalRenderInput::MediumPiece* GatheredVolume::Medium() const
 {
-  return this->MediumArrays ? this->MediumLayers.get() : nullptr;
+  return this->From && this->MediumArrays ? this->MediumLayers.get() : nullptr;
 }
 } // namespace vtkOpalVolumePieces

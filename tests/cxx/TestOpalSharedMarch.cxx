@@ -305,11 +305,6 @@ std::string thrown(const std::function<void()>& call)
   return "";
 }
 
-// A session whose medium holds piece 1 of 3 (layers 16 to 33 of 50 and 5
-// beside them) refuses, naming why, what would read the medium beyond it: a
-// background frame, a light field shared by other shares than its piece's,
-// an every-order solve whose slab it lacks. A piece within its layers keeps
-// the volume; one beyond them drops it.
 // `stone` as a rank's gather holds it (docs/design.md §8.1): the medium's
 // arrays of `layers` alone, with the whole medium's sums added up from two
 // ranks' layers (0 to 20, 20 to the last).
@@ -354,6 +349,11 @@ void checkMediumOfLayers(opal::RenderSession& session, const opal::RenderVolume&
     "a medium held beyond the grid's layers refused (" + opal::validate(beyond) + ")");
 }
 
+// A session whose medium holds piece 1 of 3 (layers 16 to 33 of 50 and 5
+// beside them) refuses, naming why, what would read the medium beyond it: a
+// background frame, a light field shared by other shares than its piece's,
+// an every-order solve whose slab it lacks. A medium held by layers (checkMediumOfLayers).
+// A piece within its layers keeps the volume; one beyond them drops it.
 void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderParameters& p)
 {
   opal::RenderSession session(opal::VulkanOptions{});

@@ -43,7 +43,8 @@ struct MediumSums
   bool Absorbs = false;
   float ColouredAbsorptionExponent = 0.0f; // the first absorbing voxel's not 0, in voxel order
   // Per domain: its voxels' indices (i, j, k) summed (whole numbers, exact
-  // in double in any order below 2^53), and their count.
+  // in double in any order below 2^53, as every grid of at most
+  // MostRenderedVoxels voxels keeps them while its axes are below 2^21), and their count.
   std::vector<std::array<double, 3>> DomainIndexSums;
   std::vector<std::uint64_t> DomainVoxels;
 
