@@ -196,7 +196,7 @@ namespace vtkOpalRenderInput
 std::string Read(vtkImageData* input, opal::RenderVolume& volume, Storage& storage, const MediumPiece* medium)
 {
   std::string error;
-  vtkImageData* mediumArrays = medium ? medium->Arrays : input;
+  vtkImageData* mediumArrays = medium ? medium->Arrays.Get() : input;
   vtkDataArray* scattering = pointArray(mediumArrays, "ScatteringCoefficient", true, error);
   vtkDataArray* domainIds = pointArray(mediumArrays, "DomainId", true, error, Expected::Values::Id);
   vtkDataArray* distance = pointArray(input, "SurfaceDistance", true, error);

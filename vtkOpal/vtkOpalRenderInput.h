@@ -11,6 +11,9 @@
 #include "OpalRenderParameters.h"
 #include "OpalRenderVolume.h"
 
+#include "vtkImageData.h" // for the medium's arrays' image
+#include "vtkSmartPointer.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -34,7 +37,7 @@ struct Storage
 // pair; `Held` names the layers and the whole medium's sums.
 struct MediumPiece
 {
-  vtkImageData* Arrays = nullptr;
+  vtkSmartPointer<vtkImageData> Arrays;
   opal::HeldMedium Held;
 };
 

@@ -215,7 +215,8 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
 {
   opal::RenderSession& session = this->Session(); // a new session holds no volume
   const auto [share, shares] = this->PieceHeld(marchShared);
-  if (!this->MediumServes(marchShared) && !this->Gathered.Serves({ share, shares }))
+  const bool arraysHeld = this->Gathered.Serves({ share, shares });
+  if (!session.mediumServes(share, shares) && !arraysHeld)
   {
     // Kept as it is: only the render's update gathers the arrays again.
     this->SayError("The render's device holds only this rank's piece of the medium (ShareMarch), and under MPI only "
@@ -228,11 +229,11 @@ bool vtkOpalSpectralRender::UploadVolume(vtkImageData* input, bool marchShared)
   // the upload makes them; any other frame (a background frame too) reads
   // them whole, and drops a medium held by piece.
   session.holdPiece(share, shares);
-  if (this->UploadedVolume == input && this->UploadedVolumeTime == input->GetMTime() && session.holdsVolume())
+  if (this->HoldsUploadedVolume(input))
   {
     return true;
   }
-  if (!this->Gathered.Serves({ share, shares }))
+  if (!arraysHeld)
   {
     this->SayError("The render's device no longer holds the volume, whose arrays under MPI only the render's "
                    "update gathers again: update the render.");
@@ -320,14 +321,16 @@ int vtkOpalSpectralRender::RequestData(
 
 void vtkOpalSpectralRender::NoteMediumLayers(vtkImageData* input)
 {
-  const vtkOpalRenderInput::MediumPiece* medium = this->Gathered.Medium();
   vtkImageData* volume = input ? this->VolumeOf(input) : nullptr;
-  const bool held = this->HoldsUploadedVolume(volume);
-  const std::pair<int, int> gathered =
-    medium ? medium->Held.Layers : std::make_pair(0, held ? volume->GetDimensions()[2] : 0);
-  const std::pair<int, int> device = held ? this->RenderSession->heldMediumLayers() : std::make_pair(0, 0);
-  this->LastGatheredLayers[0] = held ? gathered.first : 0;
-  this->LastGatheredLayers[1] = held ? gathered.second : 0;
+  std::pair<int, int> gathered{ 0, 0 }, device{ 0, 0 };
+  if (this->HoldsUploadedVolume(volume))
+  {
+    const vtkOpalRenderInput::MediumPiece* medium = this->Gathered.Medium();
+    gathered = medium ? medium->Held.Layers : std::make_pair(0, volume->GetDimensions()[2]);
+    device = this->RenderSession->heldMediumLayers();
+  }
+  this->LastGatheredLayers[0] = gathered.first;
+  this->LastGatheredLayers[1] = gathered.second;
   this->LastMediumLayers[0] = device.first;
   this->LastMediumLayers[1] = device.second;
 }

@@ -104,8 +104,9 @@ void placeBytes(const int* e, const int* t, vtkIdType tupleBytes, vtkIdType firs
 }
 
 // Collective: every rank's rows within the layers z of `target`, rank
-// `to`'s extent, into that rank's `array` of `volume` (its extent `target`);
-// a rank's rows in some layers are one run of its piece's bytes (z slowest).
+// `to`'s extent (every rank's where `to` is -1), into that rank's `array` of
+// `volume` (its extent `target`); a rank's rows in some layers are one run
+// of its piece's bytes (z slowest).
 bool sendLayers(vtkMultiProcessController* controller, const char* values, vtkIdType tupleBytes,
   const std::vector<int>& extents, const int* target, int to, vtkImageData* volume, vtkDataArray* array)
 {
@@ -189,16 +190,27 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   array->SetName(name);
   array->SetNumberOfTuples(pointsIn(volume->GetExtent()));
   // Each rank receives only the rows within its extent's layers z (all of
-  // them, or a rank's piece and halo of the medium, docs/design.md §8.1).
+  // them, or a rank's piece and halo of the medium, docs/design.md §8.1):
+  // to every rank at once where their extents are alike, else to each in turn.
   std::vector<int> targets(6 * ranks);
   controller->AllGather(volume->GetExtent(), targets.data(), 6);
-  const char* values = mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr;
-  for (int to = 0; to < ranks; ++to)
+  bool alike = true;
+  for (int r = 1; r < ranks; ++r)
   {
-    if (!sendLayers(controller, values, tupleBytes, extents, &targets[6 * to], to, volume, array))
-    {
-      return std::string("The ranks could not exchange the volume's ") + name + ".";
-    }
+    alike = alike && std::equal(targets.begin(), targets.begin() + 6, targets.begin() + 6 * r);
+  }
+  const char* values = mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr;
+  const auto sendTo = [&](int to) {
+    return sendLayers(controller, values, tupleBytes, extents, &targets[6 * std::max(to, 0)], to, volume, array);
+  };
+  bool sent = !alike || sendTo(-1);
+  for (int to = 0; to < ranks && !alike && sent; ++to)
+  {
+    sent = sendTo(to);
+  }
+  if (!sent)
+  {
+    return std::string("The ranks could not exchange the volume's ") + name + ".";
   }
   volume->GetPointData()->AddArray(array);
   return {};
@@ -250,7 +262,6 @@ vtkSmartPointer<vtkImageData> imageOf(const int extent[6], vtkImageData* like)
 std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], bool byLayers,
   std::pair<int, int> layers, vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium)
 {
-  medium = nullptr;
   vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
@@ -388,7 +399,6 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   }
   this->From = nullptr;
   this->Volume = nullptr;
-  this->MediumArrays = nullptr;
   this->MediumLayers = nullptr;
   this->ArraysReleased = false;
   int whole[6];
@@ -402,17 +412,17 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   }
   // Every rank alike (the sums below are collective), whatever its layers.
   const bool byLayers = heldPiece.second > 1;
-  std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, this->MediumArrays);
-  if (error.empty() && this->MediumArrays)
+  vtkSmartPointer<vtkImageData> mediumArrays;
+  std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, mediumArrays);
+  if (error.empty() && mediumArrays)
   {
-    this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>();
-    *this->MediumLayers = { this->MediumArrays.Get(), { layers, {} } };
+    this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>(
+      vtkOpalRenderInput::MediumPiece{ mediumArrays, { layers, {} } });
     error = SumMedium(controller, this->Volume, *this->MediumLayers, heldPiece, this->MediumLayers->Held.Whole);
   }
   if (!error.empty())
   {
     this->Volume = nullptr;
-    this->MediumArrays = nullptr;
     this->MediumLayers = nullptr;
     return error;
   }
@@ -426,9 +436,9 @@ void GatheredVolume::ReleaseArrays()
   if (this->From) // set by a gather only: nothing with one process
   {
     this->Volume->GetPointData()->Initialize();
-    if (this->MediumArrays)
+    if (this->MediumLayers)
     {
-      this->MediumArrays->GetPointData()->Initialize();
+      this->MediumLayers->Arrays->GetPointData()->Initialize();
     }
     this->ArraysReleased = true;
   }
@@ -442,7 +452,7 @@ bool GatheredVolume::Serves(std::pair<int, int> heldPiece) const
   }
   const int* whole = this->Volume->GetExtent();
   const std::pair<int, int> read = mediumLayers(whole, heldPiece);
-  const std::pair<int, int> held = this->MediumArrays ? this->MediumLayers->Held.Layers : std::make_pair(0, whole[5] - whole[4] + 1);
+  const std::pair<int, int> held = this->MediumLayers ? this->MediumLayers->Held.Layers : std::make_pair(0, whole[5] - whole[4] + 1);
   return !this->ArraysReleased && held.first <= read.first && read.second <= held.second;
 }
 
@@ -457,6 +467,6 @@ vtkImageData* GatheredVolume::Of(vtkMultiProcessController* controller, vtkImage
 
 const vtkOpalRenderInput::MediumPiece* GatheredVolume::Medium() const
 {
-  return this->From && this->MediumArrays ? this->MediumLayers.get() : nullptr;
+  return this->From ? this->MediumLayers.get() : nullptr;
 }
 } // namespace vtkOpalVolumePieces

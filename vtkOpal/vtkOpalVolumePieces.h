@@ -73,8 +73,7 @@ public:
 private:
   vtkSmartPointer<vtkImageData> Volume;
   // Where gathered by layers: the medium's arrays' image (its extent the
-  // layers) and the whole medium's sums.
-  vtkSmartPointer<vtkImageData> MediumArrays;
+  // layers) and the whole medium's sums; else none.
   std::shared_ptr<vtkOpalRenderInput::MediumPiece> MediumLayers;
   vtkImageData* From = nullptr; // the piece it was gathered from, in its version
   vtkMTimeType Time = 0;

@@ -28,9 +28,15 @@ std::pair<int, int> RenderVolume::mediumLayers() const
   return this->Held ? this->Held->Layers : std::make_pair(0, this->Dimensions[2]);
 }
 
+std::pair<std::size_t, std::size_t> RenderVolume::voxelsOfLayers(std::pair<int, int> layers) const
+{
+  return { this->layerVoxels() * static_cast<std::size_t>(layers.first),
+    this->layerVoxels() * static_cast<std::size_t>(layers.second) };
+}
+
 std::size_t RenderVolume::mediumFirstVoxel() const
 {
-  return this->layerVoxels() * static_cast<std::size_t>(this->mediumLayers().first);
+  return this->voxelsOfLayers(this->mediumLayers()).first;
 }
 
 bool RenderVolume::absorbs() const
@@ -102,8 +108,9 @@ MediumSums sumMedium(const RenderVolume& volume, std::pair<int, int> layers)
   sums.DomainIndexSums.assign(volume.Domains.size(), std::array<double, 3>{});
   sums.DomainVoxels.assign(volume.Domains.size(), 0);
   const std::size_t first = volume.mediumFirstVoxel(), layer = volume.layerVoxels();
+  const auto [begin, end] = volume.voxelsOfLayers(layers);
   const auto nx = static_cast<std::size_t>(volume.Dimensions[0]);
-  for (std::size_t i = layer * static_cast<std::size_t>(layers.first); i < layer * static_cast<std::size_t>(layers.second); ++i)
+  for (std::size_t i = begin; i < end; ++i)
   {
     const std::size_t held = i - first;
     if (volume.AbsorptionCoefficient && volume.AbsorptionCoefficient[held] > 0.0f)
@@ -155,19 +162,11 @@ std::vector<RenderDomain> renderDomains(const DomainLayout& layout)
 
 namespace
 {
-// The whole-grid voxels [first, end) whose medium the volume's arrays hold.
-std::pair<std::size_t, std::size_t> heldVoxels(const RenderVolume& volume)
-{
-  const std::pair<int, int> layers = volume.mediumLayers();
-  return { volume.layerVoxels() * static_cast<std::size_t>(layers.first),
-    volume.layerVoxels() * static_cast<std::size_t>(layers.second) };
-}
-
 // The first voxel whose ScatteringCoefficient is not a finite value >= 0, or
 // whose SurfaceDistance is not finite, named; empty if none.
 std::string checkVoxelValues(const RenderVolume& volume)
 {
-  const auto [begin, end] = heldVoxels(volume);
+  const auto [begin, end] = volume.voxelsOfLayers(volume.mediumLayers());
   for (std::size_t i = begin; i < end; ++i)
   {
     const float mus = volume.ScatteringCoefficient[i - begin];
@@ -196,7 +195,7 @@ std::string checkAbsorption(const RenderVolume& volume)
     return {};
   }
   const float coloured = volume.colouredAbsorptionExponent();
-  const auto [begin, end] = heldVoxels(volume);
+  const auto [begin, end] = volume.voxelsOfLayers(volume.mediumLayers());
   for (std::size_t i = begin; i < end; ++i)
   {
     const float absorption = volume.AbsorptionCoefficient[i - begin], exponent = volume.AbsorptionExponent[i - begin];
@@ -245,7 +244,7 @@ std::string checkHeldMedium(const RenderVolume& volume)
 std::string checkDomains(const RenderVolume& volume)
 {
   const auto domains = static_cast<std::int64_t>(volume.Domains.size());
-  const auto [begin, end] = heldVoxels(volume);
+  const auto [begin, end] = volume.voxelsOfLayers(volume.mediumLayers());
   for (std::size_t i = begin; i < end; ++i)
   {
     const std::int32_t domain = volume.DomainId[i - begin];

@@ -83,6 +83,8 @@ struct RenderVolume
 
   std::size_t voxelCount() const;
   std::size_t layerVoxels() const;
+  // The whole-grid voxels [first, end) of layers z [first, end).
+  std::pair<std::size_t, std::size_t> voxelsOfLayers(std::pair<int, int> layers) const;
   // The layers z the medium's arrays hold: Held's, else all.
   std::pair<int, int> mediumLayers() const;
   // The whole-grid index of the medium's arrays' first value: a voxel i's
