@@ -1,5 +1,7 @@
 #include "vtkOpalRankAgreement.h"
 
+#include "vtkOpalRankWait.h"
+
 #include "vtkCommunicator.h"
 #include "vtkMultiProcessController.h"
 
@@ -61,6 +63,7 @@ int Ranks(vtkMultiProcessController* controller)
 std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine)
 {
   std::vector<vtkIdType> lengths(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  const vtkOpalRankWait::Bounded bounded(controller);
   if (!controller->AllGather(&mine, lengths.data(), 1))
   {
     throw std::runtime_error("The ranks could not exchange their lengths.");
@@ -102,6 +105,7 @@ bool GatherBytesTo(vtkMultiProcessController* controller, const char* mine, cons
     }
     const vtkIdType count = std::clamp<vtkIdType>(mineLength - start, 0, round);
     const char* sent = count > 0 ? mine + start : mine;
+    const vtkOpalRankWait::Bounded bounded(controller);
     if (!(destination < 0 ? controller->AllGatherV(sent, window.data(), count, counts.data(), places.data())
                           : controller->GatherV(sent, window.data(), count, counts.data(), places.data(), destination)))
     {
@@ -191,8 +195,20 @@ bool AnyRank(vtkMultiProcessController* given, bool mine)
   }
   const int local = mine ? 1 : 0;
   int any = 0;
+  const vtkOpalRankWait::Bounded bounded(controller);
   controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
   return any != 0;
+}
+
+std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count)
+{
+  std::vector<int> all(static_cast<std::size_t>(count) * static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  const vtkOpalRankWait::Bounded bounded(controller);
+  if (!controller->AllGather(mine, all.data(), count))
+  {
+    throw std::runtime_error("The ranks could not exchange their extents or arrays' kinds.");
+  }
+  return all;
 }
 
 int FirstWith(const std::vector<RankView>& views, int code)

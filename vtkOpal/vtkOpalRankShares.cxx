@@ -1,6 +1,7 @@
 #include "vtkOpalRankShares.h"
 
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalRankWait.h"
 
 #include "vtkMultiProcessController.h"
 
@@ -177,6 +178,7 @@ Result Share(vtkMultiProcessController* controller, bool failed, const std::func
   {
     return {};
   }
+  const vtkOpalRankWait::Naming naming("the exchange of " + what);
   const std::vector<int> sharers = sharersOf(controller, failed, needs, layout);
   if (sharers.empty())
   {

@@ -6,6 +6,7 @@
 #include "OpalVulkanError.h"
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalRankWait.h"
 #include "vtkOpalSharedLightField.h"
 #include "vtkOpalSharedMarch.h"
 #include "vtkOpalSharedScatteredLight.h"
@@ -389,6 +390,7 @@ bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedReque
     mine.Message = "The input is not image data; connect an Opal Volume.";
     vtkErrorMacro(<< mine.Message);
   }
+  const vtkOpalRankWait::Naming naming("the ranks' agreement before the render");
   const std::vector<agreement::RankView> views = agreement::Gather(this->Controller, mine);
   const int failed = agreement::FirstWith(views, RankFailed);
   const std::string disagreement = failed < 0 ? agreement::SettingsDisagreement(views) : std::string();
@@ -421,6 +423,7 @@ bool vtkOpalSpectralRender::AgreeToRender(vtkImageData* input, const FailedReque
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::AgreeOnOutcome(RenderOutcome mine)
 {
   namespace agreement = vtkOpalRankAgreement;
+  const vtkOpalRankWait::Naming naming("the ranks' agreement after the render");
   const std::vector<agreement::RankView> views =
     agreement::Gather(this->Controller, { {}, static_cast<int>(mine), this->LastErrorText });
   // The worst outcome over the ranks, which every rank returns: a failure, a

@@ -4,6 +4,7 @@
 #include "OpalParallel.h"
 #include "OpalRenderSession.h"
 #include "vtkOpalRankAgreement.h"
+#include "vtkOpalRankWait.h"
 #include "vtkOpalRenderInput.h"
 
 #include "vtkDataArray.h"
@@ -158,8 +159,7 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   vtkSmartPointer<vtkDataArray> mine = contiguous(piece->GetPointData()->GetArray(name));
   const bool empty = pointsIn(piece->GetExtent()) == 0;
   const int kind[2] = { empty ? -1 : mine ? mine->GetDataType() : 0, empty ? -1 : mine ? mine->GetNumberOfComponents() : 0 };
-  std::vector<int> kinds(2 * ranks);
-  controller->AllGather(kind, kinds.data(), 2);
+  const std::vector<int> kinds = vtkOpalRankAgreement::GatherInts(controller, kind, 2);
   std::array<int, 2> agreed{ -1, -1 };
   for (int r = 0; r < ranks; ++r)
   {
@@ -192,8 +192,7 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   // Each rank receives only the rows within its extent's layers z (all of
   // them, or a rank's piece and halo of the medium, docs/design.md §8.1):
   // to every rank at once where their extents are alike, else to each in turn.
-  std::vector<int> targets(6 * ranks);
-  controller->AllGather(volume->GetExtent(), targets.data(), 6);
+  const std::vector<int> targets = vtkOpalRankAgreement::GatherInts(controller, volume->GetExtent(), 6);
   bool alike = true;
   for (int r = 1; r < ranks; ++r)
   {
@@ -269,8 +268,7 @@ std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const 
     volume->ShallowCopy(piece);
     return {};
   }
-  std::vector<int> extents(6 * controller->GetNumberOfProcesses());
-  controller->AllGather(piece->GetExtent(), extents.data(), 6);
+  const std::vector<int> extents = vtkOpalRankAgreement::GatherInts(controller, piece->GetExtent(), 6);
   const std::string uncovered = coverageError(extents, whole);
   if (!uncovered.empty())
   {
@@ -392,6 +390,7 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   vtkInformation* pieceInformation, bool needsArrays, std::pair<int, int> heldPiece)
 {
   const bool changed = this->From != piece || this->Time != piece->GetMTime();
+  const vtkOpalRankWait::Naming naming("the gather of the volume's pieces");
   if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
     !vtkOpalRankAgreement::AnyRank(controller, changed || (needsArrays && !this->Serves(heldPiece))))
   {

@@ -8,14 +8,19 @@
 // than the pieces; the agreements' views arrive likewise. A shared step
 // (vtkOpalRankShares::Share) takes its rounds and its last exchange alike on
 // every rank; a sharer that stops ends every rank's rounds in that round;
-// ranks whose shares would be laid out differently share nothing.
+// ranks whose shares would be laid out differently share nothing. The
+// exchanges' bound (vtkOpalRankWait) reads its limit from the environment:
+// seconds as given, 0 for none, the default where unset or not a number of
+// seconds at least 0 (its end of a job is TestOpalMPIAgreement's).
 #include "vtkOpalRankAgreement.h"
 #include "vtkOpalRankShares.h"
+#include "vtkOpalRankWait.h"
 
 #include "vtkMPIController.h"
 #include "vtkNew.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <optional>
@@ -33,6 +38,35 @@ std::vector<char> bytesOf(int rank, int order)
     bytes[i] = static_cast<char>((rank * 31 + i * 7) % 251);
   }
   return bytes;
+}
+
+// The limit each value of OPAL_EXCHANGE_WAIT_LIMIT gives (nullptr: unset).
+bool checkWaitLimit(int rank)
+{
+  namespace wait = vtkOpalRankWait;
+  const std::vector<std::pair<const char*, double>> cases = { { nullptr, wait::DefaultLimitSeconds },
+    { "", wait::DefaultLimitSeconds }, { "2.5", 2.5 }, { "0", 0 }, { "-1", wait::DefaultLimitSeconds },
+    { "ten", wait::DefaultLimitSeconds }, { "5s", wait::DefaultLimitSeconds }, { "inf", wait::DefaultLimitSeconds } };
+  bool passed = true;
+  for (const auto& [text, limit] : cases)
+  {
+    if (text)
+    {
+      setenv(wait::LimitVariable, text, 1);
+    }
+    else
+    {
+      unsetenv(wait::LimitVariable);
+    }
+    if (wait::LimitSeconds() != limit)
+    {
+      std::cerr << "rank " << rank << ": " << wait::LimitVariable << "=" << (text ? text : "(unset)") << " gives "
+                << wait::LimitSeconds() << " s, not " << limit << std::endl;
+      passed = false;
+    }
+  }
+  unsetenv(wait::LimitVariable);
+  return passed;
 }
 
 bool check(bool condition, const std::string& what, int rank)
@@ -182,6 +216,7 @@ int main(int argc, char* argv[])
     passed = check(same, "rank " + std::to_string(r) + "'s view", rank) && passed;
   }
   passed = checkShare(controller, rank, ranks) && passed;
+  passed = checkWaitLimit(rank) && passed;
   // Every rank's verdict: the test fails where any rank's check failed.
   int failures = passed ? 0 : 1, allFailures = 0;
   controller->AllReduce(&failures, &allFailures, 1, vtkCommunicator::SUM_OP);

@@ -9,7 +9,9 @@ piece, and none hangs. The ranks share the light field: its sweep with the
 light above, its march from every voxel with the light low to the side; an
 abort inside either ends every rank's request alike, as one inside the
 ranks' shared assignment of a Voronoi volume's cells does, and one inside
-the view march the ranks share (ShareMarch).
+the view march the ranks share (ShareMarch). A rank that never comes to the
+render leaves the others waiting only as long as OPAL_EXCHANGE_WAIT_LIMIT
+says: they name the exchange and end the job.
 Usage: pvpython TestOpalMPIAgreement.py N"""
 import os
 import re
@@ -23,9 +25,9 @@ ranks = int(sys.argv[1])
 scene = os.path.join(os.path.dirname(os.path.abspath(__file__)), "opal_rank_agreement_scene.py")
 
 
-def run_ranks(case, rank1_environment=None):
+def run_ranks_status(case, rank1_environment=None):
     """Runs the scene on `ranks` ranks (rank 1 with its own environment where
-    given); returns stdout + stderr."""
+    given); returns the job's exit status (None past 180 s) and stdout + stderr."""
     command = [config.MPIEXEC, "-np", "1", config.PVBATCH, "--symmetric", scene, case]
     others = ["-np", str(ranks - 1)] + (["env"] + rank1_environment if rank1_environment else []) + \
         [config.PVBATCH, "--symmetric", scene, case]
@@ -34,8 +36,13 @@ def run_ranks(case, rank1_environment=None):
                                 text=True, timeout=180)
     except subprocess.TimeoutExpired:
         check(False, f"{case}: the ranks finish (no hang)")
-        return ""
-    return result.stdout + result.stderr
+        return None, ""
+    return result.returncode, result.stdout + result.stderr
+
+
+def run_ranks(case, rank1_environment=None):
+    """Runs the scene on `ranks` ranks; returns stdout + stderr."""
+    return run_ranks_status(case, rank1_environment)[1]
 
 
 def images_of(output):
@@ -82,6 +89,22 @@ def expect_abort(case, step, which, doing):
     return output
 
 
+def expect_bounded_wait():
+    """Rank 1 never comes to the render (as where it stopped, or its pipeline
+    failed before it and it went on elsewhere): the others wait in the ranks' agreement before the render no longer
+    than the limit (OPAL_EXCHANGE_WAIT_LIMIT, 5 s here), say so naming the
+    exchange, and end the job, none with an image."""
+    status, output = run_ranks_status("absent")
+    if status is None:
+        return  # the hang is the failure, said
+    check(status != 0, f"absent: the job ends with a failure, ended {status}:\n{output[-3000:]}")
+    sentence = "waited 5 s in the ranks' agreement before the render for the other ranks"
+    check(sentence in output and "OPAL_EXCHANGE_WAIT_LIMIT" in output,
+          f"absent: a waiting rank says '{sentence}', naming the limit:\n{output[-3000:]}")
+    check(not images_of(output), f"absent: no rank holds an image: {images_of(output)}")
+
+
+expect_bounded_wait()
 expect_shared("same", "the light above", "light")
 expect_refused("settings", f"Rank 1 of {ranks} renders with StepSize 0.5, rank 0 with 0")
 expect_refused("information", "ViewAngle")

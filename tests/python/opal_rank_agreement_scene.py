@@ -13,14 +13,18 @@ abort at its first progress above 0 (inside the ranks' shared assignment of
 the cells); in the march case the ranks march the view rays together
 (ShareMarch), and in the march-abort case rank 1 then asks to abort at its
 first progress above 0.3 (inside the shared march of the image, past the
-exposure's thumbnail). Each rank then prints whether it holds an image piece
+exposure's thumbnail); in the absent case rank 1 never updates the render
+(as where it stopped, or went on elsewhere) and every rank bounds its waits in
+an exchange to 5 s (OPAL_EXCHANGE_WAIT_LIMIT). Each rank then prints whether it holds an image piece
 and how many ranks traced its every-order field, computed its light field,
 assigned its volume's cells and marched its view rays ("rank R image POINTS
 shares S light L cells C march M"), so the driver sees that none holds part
 of a failed image.
 Usage: mpiexec -np N pvbatch --symmetric opal_rank_agreement_scene.py same|settings|information|every-order|abort|
-       above-abort|side|side-abort|voronoi|voronoi-abort|march|march-abort"""
+       above-abort|side|side-abort|voronoi|voronoi-abort|march|march-abort|absent"""
+import os
 import sys
+import time
 
 from paraview.simple import LoadPlugin
 from vtkmodules.vtkParallelCore import vtkMultiProcessController
@@ -53,6 +57,14 @@ if rank == 1 and case == "settings":
     render.StepSize = 0.5
 if rank == 1 and case == "information":
     render.ViewAngle = 200
+if case == "absent":
+    os.environ["OPAL_EXCHANGE_WAIT_LIMIT"] = "5"
+    if rank == 1:
+        # Not an exit: mpiexec would end the job for it (pvbatch leaves without
+        # MPI's finalize), which no bound is needed for.
+        print("rank 1 never renders", flush=True)
+        time.sleep(120)
+        sys.exit(0)
 render.UpdatePipeline()
 image = render.GetClientSideObject().GetOutputDataObject(0)
 render.UpdatePropertyInformation()
