@@ -109,7 +109,8 @@ void placeBytes(const int* e, const int* t, vtkIdType tupleBytes, vtkIdType firs
 // `volume` (its extent `target`); a rank's rows in some layers are one run
 // of its piece's bytes (z slowest).
 bool sendLayers(vtkMultiProcessController* controller, const char* values, vtkIdType tupleBytes,
-  const std::vector<int>& extents, const int* target, int to, vtkImageData* volume, vtkDataArray* array)
+  const std::vector<int>& extents, const int* target, int to, vtkImageData* volume, vtkDataArray* array,
+  vtkIdType roundBytes)
 {
   const int ranks = controller->GetNumberOfProcesses(), me = controller->GetLocalProcessId();
   std::vector<std::array<int, 6>> runs(static_cast<std::size_t>(ranks));
@@ -132,7 +133,7 @@ bool sendLayers(vtkMultiProcessController* controller, const char* values, vtkId
     [&](int rank, vtkIdType first, vtkIdType count, const char* data) {
       placeBytes(runs[static_cast<std::size_t>(rank)].data(), volume->GetExtent(), tupleBytes, first, count, data, into);
     },
-    vtkOpalRankAgreement::RoundBytes, to);
+    roundBytes, to);
 }
 
 // The array as sent: itself where its values lie in one block, else an
@@ -150,9 +151,9 @@ vtkSmartPointer<vtkDataArray> contiguous(vtkDataArray* array)
 
 // One array of every rank's piece into `volume` at its extent (the whole, or
 // the whole's x and y and some layers z): empty, or the reason it cannot be
-// (alike on every rank).
+// (alike on every rank). In exchange rounds of `roundBytes` per rank.
 std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* piece, const char* name,
-  const std::vector<int>& extents, vtkImageData* volume)
+  const std::vector<int>& extents, vtkImageData* volume, vtkIdType roundBytes)
 {
   const int ranks = controller->GetNumberOfProcesses();
   // Its type and components (0: absent; -1: an empty piece takes the others').
@@ -200,7 +201,8 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   }
   const char* values = mine && !empty ? static_cast<const char*>(mine->GetVoidPointer(0)) : nullptr;
   const auto sendTo = [&](int to) {
-    return sendLayers(controller, values, tupleBytes, extents, &targets[6 * std::max(to, 0)], to, volume, array);
+    return sendLayers(
+      controller, values, tupleBytes, extents, &targets[6 * std::max(to, 0)], to, volume, array, roundBytes);
   };
   bool sent = !alike || sendTo(-1);
   for (int to = 0; to < ranks && !alike && sent; ++to)
@@ -257,9 +259,10 @@ vtkSmartPointer<vtkImageData> imageOf(const int extent[6], vtkImageData* like)
 // Collective: the whole volume from every rank's piece (GatheredVolume::Update).
 // Where `byLayers`, the medium's arrays go into `medium`, an image of the
 // whole's x and y and its `layers` (all of them for a rank whose piece and
-// halo span the grid); else all into `volume`.
+// halo span the grid); else all into `volume`. In exchange rounds of `roundBytes` per rank.
 std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const int whole[6], bool byLayers,
-  std::pair<int, int> layers, vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium)
+  std::pair<int, int> layers, vtkSmartPointer<vtkImageData>& volume, vtkSmartPointer<vtkImageData>& medium,
+  vtkIdType roundBytes)
 {
   vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
@@ -284,7 +287,7 @@ std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const 
   for (const char* name : RenderArrays)
   {
     vtkImageData* into = medium && std::strcmp(name, "SurfaceDistance") != 0 ? medium.Get() : volume.Get();
-    const std::string error = gatherArray(controller, piece, name, extents, into);
+    const std::string error = gatherArray(controller, piece, name, extents, into, roundBytes);
     if (!error.empty())
     {
       return error;
@@ -386,6 +389,11 @@ void AskForPiece(vtkMultiProcessController* given, vtkInformation* inputInformat
   inputInformation->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), piece, 6);
 }
 
+GatheredVolume::GatheredVolume()
+  : RoundBytes(vtkOpalRankAgreement::RoundBytes)
+{
+}
+
 std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkImageData* piece,
   vtkInformation* pieceInformation, bool needsArrays, std::pair<int, int> heldPiece)
 {
@@ -412,7 +420,7 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   // Every rank alike (the sums below are collective), whatever its layers.
   const bool byLayers = heldPiece.second > 1;
   vtkSmartPointer<vtkImageData> mediumArrays;
-  std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, mediumArrays);
+  std::string error = Gather(controller, piece, whole, byLayers, layers, this->Volume, mediumArrays, this->RoundBytes);
   if (error.empty() && mediumArrays)
   {
     this->MediumLayers = std::make_shared<vtkOpalRenderInput::MediumPiece>(

@@ -39,6 +39,7 @@ VTKOPAL_EXPORT void AskForPiece(vtkMultiProcessController* controller, vtkInform
 class VTKOPAL_EXPORT GatheredVolume
 {
 public:
+  GatheredVolume();
   // Collective (every rank calls it together): gathers again where any
   // rank's piece (not null; `pieceInformation` its pipeline information,
   // which gives the whole extent) changed since the last Update, or any rank
@@ -69,6 +70,9 @@ public:
   // The medium's arrays gathered by layers (nullptr where the volume holds
   // them whole): the layers' image and the whole medium's sums.
   const vtkOpalRenderInput::MediumPiece* Medium() const;
+  // The exchange's rounds, in bytes per rank (vtkOpalRankAgreement::RoundBytes):
+  // a test's few bytes end rounds within a row and within a value.
+  void SetRoundBytes(vtkIdType bytes) { this->RoundBytes = bytes; }
 
 private:
   vtkSmartPointer<vtkImageData> Volume;
@@ -78,5 +82,6 @@ private:
   vtkImageData* From = nullptr; // the piece it was gathered from, in its version
   vtkMTimeType Time = 0;
   bool ArraysReleased = false;
+  vtkIdType RoundBytes; // vtkOpalRankAgreement::RoundBytes unless set
 };
 } // namespace vtkOpalVolumePieces
