@@ -186,18 +186,22 @@ std::string SettingsDisagreement(const std::vector<RankView>& views)
   return {};
 }
 
-bool AnyRank(vtkMultiProcessController* given, bool mine)
+bool AnyRank(vtkMultiProcessController* controller, bool mine)
+{
+  return MostOverRanks(controller, mine ? 1 : 0) != 0;
+}
+
+int MostOverRanks(vtkMultiProcessController* given, int mine)
 {
   vtkMultiProcessController* controller = ranksController(given);
   if (!controller)
   {
     return mine;
   }
-  const int local = mine ? 1 : 0;
-  int any = 0;
+  int most = mine;
   const vtkOpalRankWait::Bounded bounded(controller);
-  controller->AllReduce(&local, &any, 1, vtkCommunicator::MAX_OP);
-  return any != 0;
+  controller->AllReduce(&mine, &most, 1, vtkCommunicator::MAX_OP);
+  return most;
 }
 
 std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count)

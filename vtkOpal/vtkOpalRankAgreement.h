@@ -67,6 +67,8 @@ std::string SettingsLine(const char* name, const std::vector<double>& values);
 
 // True on every rank where any rank's `mine` is true.
 bool AnyRank(vtkMultiProcessController* controller, bool mine);
+// The largest of the ranks' `mine`, on every rank.
+int MostOverRanks(vtkMultiProcessController* controller, int mine);
 
 // The first rank (from 0) whose code is `code`, or -1.
 int FirstWith(const std::vector<RankView>& views, int code);

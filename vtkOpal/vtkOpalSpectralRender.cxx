@@ -578,6 +578,12 @@ bool vtkOpalSpectralRender::MarchesShared() const
   return this->ShareMarch && vtkOpalRankAgreement::Ranks(this->Controller) >= 2;
 }
 
+int vtkOpalSpectralRender::AgreePreviewScale(int scale)
+{
+  const vtkOpalRankWait::Naming naming("the ranks' agreement on a preview's scale");
+  return this->MarchesShared() ? vtkOpalRankAgreement::MostOverRanks(this->Controller, scale) : scale;
+}
+
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderShared(
   RenderOutcome sofar, const opal::ResolvedFrame& whole, const int extent[6], vtkImageData* output)
 {

@@ -148,6 +148,11 @@ public:
   /// piece with the halo its reads need. {0, 0} where it rendered none.
   vtkGetVector2Macro(LastGatheredLayers, int);
   vtkGetVector2Macro(LastMediumLayers, int);
+  /// Where the ranks march shared (ShareMarch under MPI), collective over the
+  /// controller's ranks: the largest of their `scale`s, so that a live view's
+  /// ranks, each choosing its previews' PreviewScale from its own frames'
+  /// cost, render one image; `scale` itself otherwise.
+  int AgreePreviewScale(int scale);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).

@@ -195,7 +195,8 @@ double vtkOpalSpectralImageActor::GetFrameBudget() const
 
 void vtkOpalSpectralImageActor::ChoosePreviewScale()
 {
-  this->Render->SetPreviewScale(this->Budget->scaleFor(this->ViewPixels[0], this->ViewPixels[1]));
+  this->Render->SetPreviewScale(
+    this->Render->AgreePreviewScale(this->Budget->scaleFor(this->ViewPixels[0], this->ViewPixels[1])));
   this->LastPreviewScale = this->Render->GetPreviewScale();
 }
 

@@ -14,6 +14,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkTrivialProducer.h"
 
 #include <string>
 
@@ -176,37 +177,101 @@ int vtkOpalSpectralRepresentation::RequestData(
   vtkImageData* piece = inputVector[0]->GetNumberOfInformationObjects() > 0
     ? vtkImageData::GetData(inputVector[0], 0)
     : nullptr;
-  vtkImageData* input = piece ? this->WholeVolume(piece, inputVector[0]->GetInformationObject(0)) : nullptr;
-  if (piece && !input)
+  vtkInformation* pieceInformation = piece ? inputVector[0]->GetInformationObject(0) : nullptr;
+  if (piece && this->MarchesShared())
+  {
+    this->TakePiece(piece, pieceInformation);
+  }
+  else if (!this->TakeWholeVolume(piece, pieceInformation))
   {
     return 0; // the pieces were not gathered (said): the view keeps the stone it had
   }
-  // A new volume only when the input changed: the render session then keeps
-  // the uploaded volume and the light field across property changes.
-  if (this->Volume && input && input->GetMTime() == this->VolumeTime)
+  this->ApplyRenderSettings();
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+// A new volume only when the input changed: the render session then keeps
+// the uploaded volume and the light field across property changes.
+bool vtkOpalSpectralRepresentation::TakeWholeVolume(vtkImageData* piece, vtkInformation* pieceInformation)
+{
+  vtkImageData* input = piece ? this->WholeVolume(piece, pieceInformation) : nullptr;
+  if (piece && !input)
   {
-    this->ApplyRenderSettings();
-    return this->Superclass::RequestData(request, inputVector, outputVector);
+    return false;
+  }
+  if (this->Volume && input && input->GetMTime() == this->VolumeTime && !this->VolumeIsPiece)
+  {
+    return true;
   }
   this->VolumeTime = input ? input->GetMTime() : 0;
+  this->VolumeIsPiece = false;
   this->Volume = vtkSmartPointer<vtkImageData>::New();
   if (input)
   {
     this->Volume->ShallowCopy(input);
   }
-  this->Volume->GetBounds(this->Bounds);
-  // Voxel centres are the points: the stone's box reaches half a voxel further.
-  double spacing[3];
-  this->Volume->GetSpacing(spacing);
-  for (int a = 0; a < 3 && this->Volume->GetNumberOfPoints() > 0; ++a)
-  {
-    this->Bounds[2 * a] -= spacing[a] / 2;
-    this->Bounds[2 * a + 1] += spacing[a] / 2;
-  }
+  this->SetStoneBounds(this->Volume->GetExtent(), this->Volume);
+  this->Render->SetController(nullptr);
+  this->Render->SetShareMarch(false);
   this->Render->SetInputData(this->Volume);
+  return true;
+}
+
+// The render gathers, in each frame's update (collective: the ranks render
+// their views' frames together), what its device reads of the ranks' pieces.
+void vtkOpalSpectralRepresentation::TakePiece(vtkImageData* piece, vtkInformation* pieceInformation)
+{
+  if (this->Volume && piece->GetMTime() == this->VolumeTime && this->VolumeIsPiece)
+  {
+    return;
+  }
+  this->Gathered = std::make_unique<vtkOpalVolumePieces::GatheredVolume>(); // the unshared frames' whole volume
+  this->VolumeTime = piece->GetMTime();
+  this->VolumeIsPiece = true;
+  this->Volume = vtkSmartPointer<vtkImageData>::New();
+  this->Volume->ShallowCopy(piece);
+  int whole[6];
+  pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  this->SetStoneBounds(whole, this->Volume);
+  this->PieceProducer->SetOutput(this->Volume);
+  this->PieceProducer->SetWholeExtent(whole);
+  this->Render->SetController(vtkMultiProcessController::GetGlobalController());
+  this->Render->SetShareMarch(true);
+  this->Render->SetInputConnection(this->PieceProducer->GetOutputPort());
+}
+
+bool vtkOpalSpectralRepresentation::MarchesShared() const
+{
+  vtkMultiProcessController* ranks = vtkMultiProcessController::GetGlobalController();
+  return this->ShareMarch && ranks && ranks->GetNumberOfProcesses() > 1;
+}
+
+// Voxel centres are the points: the stone's box reaches half a voxel further.
+void vtkOpalSpectralRepresentation::SetStoneBounds(const int extent[6], vtkImageData* placed)
+{
+  const double* origin = placed->GetOrigin();
+  const double* spacing = placed->GetSpacing();
+  const bool empty = extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4];
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Bounds[2 * a] = empty ? 0 : origin[a] + spacing[a] * (extent[2 * a] - 0.5);
+    this->Bounds[2 * a + 1] = empty ? -1 : origin[a] + spacing[a] * (extent[2 * a + 1] + 0.5);
+  }
   this->Actor->SetStoneBounds(this->Bounds);
-  this->ApplyRenderSettings();
-  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+void vtkOpalSpectralRepresentation::SetShareMarch(int share)
+{
+  if (this->ShareMarch != (share != 0))
+  {
+    this->ShareMarch = share != 0;
+    this->MarkModified(); // the view updates the representation again: its input changes
+  }
+}
+
+int vtkOpalSpectralRepresentation::GetLastMarchShares()
+{
+  return this->Render->GetLastMarchShares();
 }
 
 int vtkOpalSpectralRepresentation::ProcessViewRequest(
@@ -317,6 +382,7 @@ void vtkOpalSpectralRepresentation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Headlight: " << this->Actor->GetHeadlight() << "\n";
   os << indent << "Quality: " << this->Actor->GetStillQuality() << "\n";
   os << indent << "FrameBudget: " << this->Actor->GetFrameBudget() << "\n";
+  os << indent << "ShareMarch: " << (this->ShareMarch ? 1 : 0) << "\n";
   os << indent << "Render:\n";
   this->Render->PrintSelf(os, indent.GetNextIndent());
 }

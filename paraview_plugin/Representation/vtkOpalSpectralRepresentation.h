@@ -17,7 +17,9 @@
  * screenshots always wait. Under MPI (pvserver, pvbatch) each rank asks its
  * input for its piece of the volume alone, the ranks gather the arrays the
  * render reads into the whole volume on every rank, and each rank renders the
- * whole stone from it (docs/design.md §8.1).
+ * whole stone from it; with ShareMarch the ranks march each frame's rays
+ * together instead, each rank's device holding only its piece of the volume's
+ * layers (docs/design.md §8.1).
  *
  * The optics are the render filter's settings, with its defaults
  * (opal::RenderParameters): RefractiveIndex, BraggBandwidth, DiffractionGain, BraggModel,
@@ -48,6 +50,7 @@ class vtkImageData;
 class vtkInformation;
 class vtkOpalSpectralImageActor;
 class vtkOpalSpectralRender;
+class vtkTrivialProducer;
 
 class VTKOPALREPRESENTATION_EXPORT vtkOpalSpectralRepresentation : public vtkPVDataRepresentation
 {
@@ -81,6 +84,18 @@ public:
 
   /// The last preview's PreviewScale (its pixels: 1/scale of the width and height), for tests.
   int GetLastPreviewScale();
+
+  /// Under MPI (pvserver, pvbatch): on, the ranks march every frame's view
+  /// rays and walks to the light together, each rank's device holding only
+  /// its piece of the light fields and the medium, as Opal Spectral Render's
+  /// ShareMarch; every frame is then collective (the ranks render each frame
+  /// together, as ParaView's views do) and the ranks' previews take the
+  /// coarsest of their budgets' scales. Off (default): each rank renders the
+  /// whole stone from the whole volume gathered at the update. The picture is
+  /// the same either way; with one process it changes nothing.
+  void SetShareMarch(int share);
+  /// How many ranks marched the last frame together (0: each alone), for tests.
+  int GetLastMarchShares();
 
   /// Where the render's settings come from: an Opal Spectral Render whose
   /// properties (ParaView passes its SubProxy here and exposes that proxy's
@@ -136,6 +151,16 @@ private:
   vtkImageData* WholeVolume(vtkImageData* piece, vtkInformation* pieceInformation);
   // Copies the settings' rows into Render if they changed since the last copy.
   void ApplyRenderSettings();
+  // Whether the ranks march shared (ShareMarch under MPI).
+  bool MarchesShared() const;
+  // The render's input: the whole volume gathered from the ranks' pieces (the
+  // piece itself with one process), or, where the ranks march shared, this
+  // rank's piece announced with the whole extent (the render gathers what
+  // its device reads). False where the pieces could not be gathered (said).
+  bool TakeWholeVolume(vtkImageData* piece, vtkInformation* pieceInformation);
+  void TakePiece(vtkImageData* piece, vtkInformation* pieceInformation);
+  // The stone's box from the extent of its voxel centres.
+  void SetStoneBounds(const int extent[6], vtkImageData* placed);
 
   vtkNew<vtkOpalSpectralRender> Render;
   vtkSmartPointer<vtkOpalSpectralRender> Settings;
@@ -144,6 +169,9 @@ private:
   vtkNew<vtkOpalSpectralImageActor> Actor;
   std::unique_ptr<vtkOpalVolumePieces::GatheredVolume> Gathered; // under MPI, from the ranks' pieces
   vtkSmartPointer<vtkImageData> Volume;
-  vtkMTimeType VolumeTime = 0; // the whole volume's MTime when Volume was taken
+  vtkMTimeType VolumeTime = 0; // the whole volume's (or piece's) MTime when Volume was taken
+  bool ShareMarch = false;
+  bool VolumeIsPiece = false; // Volume is this rank's piece, fed through PieceProducer
+  vtkNew<vtkTrivialProducer> PieceProducer;
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
 };

@@ -2,7 +2,11 @@
 pvserver (1 rank, then 2 ranks under mpiexec) renders "Opal Spectral" for a
 pvpython client, and the client's screenshot equals the built-in session's:
 each server rank renders the whole stone from the whole volume and ParaView
-composites the ranks' frames by depth, which are equal.
+composites the ranks' frames by depth, which are equal. With ShareMarch the
+2 ranks march the frame together, each holding its piece of the volume's
+layers, to the same screenshot (that they do is TestOpalMPI view-march's:
+a client reads a representation's information from its own copy, which
+renders nothing).
 
 Server and clients share one virtual display: the script runs itself again
 under xvfb-run (two xvfb-runs started at once can race for a display)."""
@@ -46,14 +50,15 @@ def pixels(path):
     return vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3].astype(int)
 
 
-def served(ranks):
-    """The screenshot a client takes of a pvserver with `ranks` ranks; a
-    failed client is reported with the server's log."""
+def served(ranks, share=False):
+    """The screenshot a client takes of a pvserver with `ranks` ranks (the
+    ranks marching shared where `share`); a failed client is reported with
+    the server's log."""
     port = free_port()
     server = [config.PVSERVER, f"--server-port={port}"]
     if ranks > 1:
         server = [config.MPIEXEC, "-np", str(ranks)] + server
-    log_path = os.path.join(output, f"pvserver{ranks}.log")
+    log_path = os.path.join(output, f"pvserver{ranks}{'-shared' if share else ''}.log")
     with open(log_path, "w") as log:
         process = subprocess.Popen(server, env=child_environment(), stdout=log, stderr=subprocess.STDOUT)
     try:
@@ -61,9 +66,9 @@ def served(ranks):
             if "Accepting connection" in open(log_path).read() or process.poll() is not None:
                 break
             time.sleep(0.1)
-        path = os.path.join(output, f"served{ranks}.png")
+        path = os.path.join(output, f"served{ranks}{'-shared' if share else ''}.png")
         try:
-            run([config.PVPYTHON, scene, config.PLUGIN, path, str(port)], timeout=120)
+            run([config.PVPYTHON, scene, config.PLUGIN, path, str(port)] + (["share"] if share else []), timeout=120)
         except RuntimeError as error:
             # The server's log without loguru's "ERR|" marks, which fail the test by themselves.
             log = open(log_path).read()[-1500:].replace("ERR|", "ERR ")
@@ -80,11 +85,12 @@ builtin = pixels(builtin_path)
 background = builtin[0]
 stone = numpy.mean(numpy.any(numpy.abs(builtin - background) > 12, axis=1))
 check(0.1 < stone < 0.9, f"the built-in view shows the stone ({100 * stone:.0f}% of the view)")
-for ranks in (1, 2):
-    image = served(ranks)
+for ranks, share in ((1, False), (2, False), (2, True)):
+    image = served(ranks, share)
     differing = numpy.mean(numpy.any(numpy.abs(image - builtin) > 2, axis=1))
+    how = " marching shared" if share else ""
     # Equal arithmetic on server and client: any pixel off by more than 2 levels is an error.
     check(image.shape == builtin.shape and differing == 0,
-          f"pvserver with {ranks} rank(s): the client's view equals the built-in one "
+          f"pvserver with {ranks} rank(s){how}: the client's view equals the built-in one "
           f"({100 * differing:.2f}% of pixels differ)")
 finish("TestOpalClientServer")

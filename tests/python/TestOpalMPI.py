@@ -21,9 +21,13 @@ then renders unshared, the volume gathered and uploaded whole again.
 The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
-alone, and the screenshot equals the one-process one.
-Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|thin-march|pvti|view"""
+alone, and the screenshot equals the one-process one; the view-march case
+likewise with the representation's ShareMarch (a still frame, then a
+preview), every rank saying that the ranks marched the preview together at
+one scale.
+Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|thin-march|pvti|view|view-march"""
 import os
+import re
 import sys
 
 import numpy
@@ -41,7 +45,8 @@ serial = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_serial.vti")
 parallel = os.path.join(config.OUTPUT_DIRECTORY, f"mpi{ranks}_{kind}_parallel.pvti")
 mpiexec = [config.MPIEXEC, "-np", str(ranks), config.PVBATCH]
 
-if kind in ("pvti", "view"):
+views = ("view", "view-march")
+if kind in ("pvti",) + views:
     # A volume file read by pieces: opal-volume writes it as one .vti and as a
     # .pvti of 4 pieces; each rank reads only its piece of the .pvti (checked
     # against the .vti), the render or the view asks for no more (checked
@@ -53,7 +58,7 @@ if kind in ("pvti", "view"):
     run(volume + ["-o", whole])
     written = run(volume + ["-o", pieces, "--pieces", "4"]).stdout
     check("(4 pieces)" in written, "opal-volume says it wrote 4 pieces")
-    view = ["--view"] if kind == "view" else []
+    view = ["--view"] + (["--share-march"] if kind == "view-march" else []) if kind in views else []
     if view:
         serial, parallel = serial[:-4] + ".png", parallel[:-5] + ".png"
 
@@ -66,6 +71,12 @@ if kind in ("pvti", "view"):
                                                 "--pieces-of", whole] + view)).stdout
     check(read_by_ranks.count(" read extent ") == 2 * ranks,
           f"each of the {ranks} ranks read its own piece, before the render and after it:\n" + read_by_ranks)
+    if kind == "view-march":
+        said = re.findall(r"view march shared by (\d+) rank\(s\), preview scale (\d+)", read_by_ranks)
+        check(len(said) == ranks and all(int(shares) == ranks for shares, _ in said),
+              f"every rank's view marched its preview with the {ranks} ranks together:\n" + read_by_ranks)
+        check(len({scale for _, scale in said}) == 1 and int(said[0][1]) > 1,
+              f"the ranks' previews took one scale:\n" + read_by_ranks)
 else:
     fire = ["--preset", "fire-opal", "--side-light"]
     renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": fire,
@@ -120,7 +131,7 @@ def read(reader_class, path):
     return reader
 
 
-if kind == "view":
+if kind in views:
     images = [vtk_to_numpy(read(vtkPNGReader, path).GetOutput().GetPointData().GetScalars()) for path in (serial, parallel)]
     stone = numpy.mean(numpy.any(images[0] != images[0][0], axis=1))
     check(0.1 < stone < 0.9, f"the one-process view shows the stone ({100 * stone:.0f}% of the view)")

@@ -6,8 +6,12 @@ under Xvfb). With --pieces-of VTI each rank first checks that it read only its
 piece (under MPI: fewer points than the grid's) and that the piece equals that
 extent of the one-file volume VTI, before the render and after it, and that
 the reader never read more than a piece meanwhile (the render and the
-representation ask each rank for its piece alone).
-Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--view] [--pieces-of VTI]"""
+representation ask each rank for its piece alone). With --share-march the
+view's ranks march its frames together (the representation's ShareMarch),
+a still frame and then a preview, and each rank says how many marched the
+preview together and its scale ("view march shared by N rank(s), preview
+scale S").
+Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--view [--share-march]] [--pieces-of VTI]"""
 import sys
 
 import numpy
@@ -78,9 +82,18 @@ if "--view" in sys.argv:
     view.ViewSize = size
     display = Show(volume, view)
     display.Representation = "Opal Spectral"
+    display.ShareMarch = int("--share-march" in sys.argv)
     view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 40, 0], [0, 2, 0], [0, 0, -1]
     Render(view)
     SaveScreenshot(output, view, ImageResolution=size)
+    if "--share-march" in sys.argv:
+        # A preview too (as while the view is dragged): the ranks agree on its scale.
+        view.InteractiveRender()
+        display.UpdatePropertyInformation()
+        shares = display.GetProperty("LastMarchShares").GetElement(0)
+        scale = display.GetProperty("LastPreviewScale").GetElement(0)
+        # One write: the ranks' lines interleave.
+        print(f"view march shared by {shares} rank(s), preview scale {scale}\n", end="", flush=True)
 else:
     render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
     SaveData(output, proxy=render, DataMode="Binary")
