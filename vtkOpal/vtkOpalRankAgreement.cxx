@@ -204,13 +204,13 @@ int MostOverRanks(vtkMultiProcessController* given, int mine)
   return most;
 }
 
-std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count)
+std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count, const char* what)
 {
   std::vector<int> all(static_cast<std::size_t>(count) * static_cast<std::size_t>(controller->GetNumberOfProcesses()));
   const vtkOpalRankWait::Bounded bounded(controller);
   if (!controller->AllGather(mine, all.data(), count))
   {
-    throw std::runtime_error("The ranks could not exchange their extents or arrays' kinds.");
+    throw std::runtime_error(std::string("The ranks could not exchange ") + what + ".");
   }
   return all;
 }

@@ -34,8 +34,9 @@ int Ranks(vtkMultiProcessController* controller);
 // Collective, over the controller's processes (more than one): every rank's
 // `mine`, in rank order. Throws where the exchange failed (alike on every rank).
 VTKOPAL_EXPORT std::vector<vtkIdType> GatherLengths(vtkMultiProcessController* controller, vtkIdType mine);
-// Collective, likewise: every rank's `count` ints from `mine`, in rank order.
-std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count);
+// Collective, likewise: every rank's `count` ints from `mine`, in rank order
+// (`what` they are names a failed exchange).
+std::vector<int> GatherInts(vtkMultiProcessController* controller, const int* mine, int count, const char* what);
 // Collective, likewise: every rank's `lengths[r]` bytes from `mine` into
 // `bytes` (the ranks' bytes one after another), in rounds of at most
 // `roundBytes` (64 MiB) per rank: MPI's counts and displacements are ints.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -12,6 +13,8 @@
 #include <functional>
 #include <mutex>
 #include <sstream>
+#include <string>
+#include <system_error>
 #include <thread>
 
 namespace vtkOpalRankWait
@@ -89,9 +92,11 @@ double LimitSeconds()
   {
     return DefaultLimitSeconds;
   }
-  char* end = nullptr;
-  const double seconds = std::strtod(text, &end);
-  if (*end == '\0' && std::isfinite(seconds) && seconds >= 0)
+  // from_chars, not strtod: the same reading whatever the locale's decimal point.
+  double seconds = 0;
+  const char* end = text + std::char_traits<char>::length(text);
+  const std::from_chars_result read = std::from_chars(text, end, seconds);
+  if (read.ec == std::errc() && read.ptr == end && std::isfinite(seconds) && seconds >= 0)
   {
     return seconds;
   }

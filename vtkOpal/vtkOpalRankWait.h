@@ -3,7 +3,9 @@
 // rank never enters (its pipeline failed before the render, it stopped, its
 // device hangs): the others would wait forever. A rank still waiting in one
 // after the limit says so on its standard error, naming the exchange and the
-// limit, and ends its process with WaitExitCode, which ends the MPI job.
+// limit, and ends its process with WaitExitCode, which ends the MPI job
+// where the launcher ends a job for a rank's failure (mpiexec does; Slurm's
+// srun with --kill-on-bad-exit).
 #pragma once
 
 #include <cstdint>
@@ -43,7 +45,8 @@ private:
 };
 
 // Held across one collective call of `controller` (more than one process):
-// bounds its wait by LimitSeconds().
+// bounds its wait by LimitSeconds(). One at a time, as a rank's collectives
+// are: a second one held at once would take the bound off the first.
 class Bounded
 {
 public:

@@ -578,10 +578,10 @@ bool vtkOpalSpectralRender::MarchesShared() const
   return this->ShareMarch && vtkOpalRankAgreement::Ranks(this->Controller) >= 2;
 }
 
-int vtkOpalSpectralRender::AgreePreviewScale(int scale)
+int vtkOpalSpectralRender::MostOverSharingRanks(int value)
 {
-  const vtkOpalRankWait::Naming naming("the ranks' agreement on a preview's scale");
-  return this->MarchesShared() ? vtkOpalRankAgreement::MostOverRanks(this->Controller, scale) : scale;
+  const vtkOpalRankWait::Naming naming("the live view's ranks' agreement on a frame");
+  return this->MarchesShared() ? vtkOpalRankAgreement::MostOverRanks(this->Controller, value) : value;
 }
 
 vtkOpalSpectralRender::RenderOutcome vtkOpalSpectralRender::RenderShared(

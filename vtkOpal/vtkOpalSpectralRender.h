@@ -149,10 +149,12 @@ public:
   vtkGetVector2Macro(LastGatheredLayers, int);
   vtkGetVector2Macro(LastMediumLayers, int);
   /// Where the ranks march shared (ShareMarch under MPI), collective over the
-  /// controller's ranks: the largest of their `scale`s, so that a live view's
-  /// ranks, each choosing its previews' PreviewScale from its own frames'
-  /// cost, render one image; `scale` itself otherwise.
-  int AgreePreviewScale(int scale);
+  /// controller's ranks: the largest of their `value`s; `value` itself
+  /// otherwise. A live view's ranks so agree on what each finds alone and
+  /// every frame of theirs must share: a preview's PreviewScale (each rank's
+  /// budget measures its own frames) and whether the eye is inside the stone
+  /// (a rank whose volume a failed frame dropped cannot tell).
+  int MostOverSharingRanks(int value);
 
   /// The parameters as set on the filter (ImageSize and RefractiveIndex may
   /// be 0: the volume's; PresetRotation is the volume's and not a property).

@@ -22,6 +22,7 @@
 #include <array>
 #include <cstring>
 #include <new>
+#include <stdexcept>
 #include <vector>
 
 namespace vtkOpalVolumePieces
@@ -160,7 +161,7 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   vtkSmartPointer<vtkDataArray> mine = contiguous(piece->GetPointData()->GetArray(name));
   const bool empty = pointsIn(piece->GetExtent()) == 0;
   const int kind[2] = { empty ? -1 : mine ? mine->GetDataType() : 0, empty ? -1 : mine ? mine->GetNumberOfComponents() : 0 };
-  const std::vector<int> kinds = vtkOpalRankAgreement::GatherInts(controller, kind, 2);
+  const std::vector<int> kinds = vtkOpalRankAgreement::GatherInts(controller, kind, 2, "their arrays' types");
   std::array<int, 2> agreed{ -1, -1 };
   for (int r = 0; r < ranks; ++r)
   {
@@ -193,7 +194,7 @@ std::string gatherArray(vtkMultiProcessController* controller, vtkImageData* pie
   // Each rank receives only the rows within its extent's layers z (all of
   // them, or a rank's piece and halo of the medium, docs/design.md §8.1):
   // to every rank at once where their extents are alike, else to each in turn.
-  const std::vector<int> targets = vtkOpalRankAgreement::GatherInts(controller, volume->GetExtent(), 6);
+  const std::vector<int> targets = vtkOpalRankAgreement::GatherInts(controller, volume->GetExtent(), 6, "the extents they gather");
   bool alike = true;
   for (int r = 1; r < ranks; ++r)
   {
@@ -271,7 +272,7 @@ std::string Gather(vtkMultiProcessController* given, vtkImageData* piece, const 
     volume->ShallowCopy(piece);
     return {};
   }
-  const std::vector<int> extents = vtkOpalRankAgreement::GatherInts(controller, piece->GetExtent(), 6);
+  const std::vector<int> extents = vtkOpalRankAgreement::GatherInts(controller, piece->GetExtent(), 6, "their pieces' extents");
   const std::string uncovered = coverageError(extents, whole);
   if (!uncovered.empty())
   {
@@ -394,20 +395,30 @@ GatheredVolume::GatheredVolume()
 {
 }
 
+void GatheredVolume::SetRoundBytes(vtkIdType bytes)
+{
+  if (bytes < 1)
+  {
+    throw std::invalid_argument("The gather's RoundBytes must be at least 1 byte, not " + std::to_string(bytes) + ".");
+  }
+  this->RoundBytes = bytes;
+}
+
 std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkImageData* piece,
   vtkInformation* pieceInformation, bool needsArrays, std::pair<int, int> heldPiece)
 {
+  if (vtkOpalRankAgreement::Ranks(controller) == 1)
+  {
+    this->Forget(); // a render that left its ranks reads its input: what they gathered serves it no more
+    return {};
+  }
   const bool changed = this->From != piece || this->Time != piece->GetMTime();
   const vtkOpalRankWait::Naming naming("the gather of the volume's pieces");
-  if (vtkOpalRankAgreement::Ranks(controller) == 1 ||
-    !vtkOpalRankAgreement::AnyRank(controller, changed || (needsArrays && !this->Serves(heldPiece))))
+  if (!vtkOpalRankAgreement::AnyRank(controller, changed || (needsArrays && !this->Serves(heldPiece))))
   {
     return {};
   }
-  this->From = nullptr;
-  this->Volume = nullptr;
-  this->MediumLayers = nullptr;
-  this->ArraysReleased = false;
+  this->Forget();
   int whole[6];
   pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   const std::pair<int, int> layers = mediumLayers(whole, heldPiece);
@@ -429,13 +440,20 @@ std::string GatheredVolume::Update(vtkMultiProcessController* controller, vtkIma
   }
   if (!error.empty())
   {
-    this->Volume = nullptr;
-    this->MediumLayers = nullptr;
+    this->Forget();
     return error;
   }
   this->From = piece;
   this->Time = piece->GetMTime();
   return {};
+}
+
+void GatheredVolume::Forget()
+{
+  this->From = nullptr;
+  this->Volume = nullptr;
+  this->MediumLayers = nullptr;
+  this->ArraysReleased = false;
 }
 
 void GatheredVolume::ReleaseArrays()

@@ -52,7 +52,8 @@ public:
   // march shared by them, else one share): for more shares than one the
   // medium's arrays (all but SurfaceDistance) are gathered only for the
   // layers opal::mediumLayersRead names, with the whole medium's sums
-  // added up over the ranks. Nothing to do with one process. Empty, else
+  // added up over the ranks. With one process it gathers nothing and drops
+  // what it had gathered (its owner now reads its input whole). Empty, else
   // (alike on every rank) the reason: it does not fit, or the pieces differ in an array.
   std::string Update(vtkMultiProcessController* controller, vtkImageData* piece, vtkInformation* pieceInformation,
     bool needsArrays, std::pair<int, int> heldPiece = { 0, 1 });
@@ -70,11 +71,15 @@ public:
   // The medium's arrays gathered by layers (nullptr where the volume holds
   // them whole): the layers' image and the whole medium's sums.
   const vtkOpalRenderInput::MediumPiece* Medium() const;
-  // The exchange's rounds, in bytes per rank (vtkOpalRankAgreement::RoundBytes):
-  // a test's few bytes end rounds within a row and within a value.
-  void SetRoundBytes(vtkIdType bytes) { this->RoundBytes = bytes; }
+  // The exchange's rounds, in bytes per rank (vtkOpalRankAgreement::RoundBytes;
+  // at least 1, else std::invalid_argument): a test's few bytes end rounds
+  // within a row and within a value.
+  void SetRoundBytes(vtkIdType bytes);
 
 private:
+  // Holds nothing gathered (a render with one rank, or a gather begun or failed).
+  void Forget();
+
   vtkSmartPointer<vtkImageData> Volume;
   // Where gathered by layers: the medium's arrays' image (its extent the
   // layers) and the whole medium's sums; else none.

@@ -169,7 +169,7 @@ bool vtkOpalSpectralImageActor::EyeInsideStone(const double eye[3])
   {
     return true;
   }
-  if (!this->Render->IsEyeInsideOpal())
+  if (!this->Render->MostOverSharingRanks(this->Render->IsEyeInsideOpal() ? 1 : 0))
   {
     this->SaidEyeInside = false;
     return false;
@@ -196,7 +196,7 @@ double vtkOpalSpectralImageActor::GetFrameBudget() const
 void vtkOpalSpectralImageActor::ChoosePreviewScale()
 {
   this->Render->SetPreviewScale(
-    this->Render->AgreePreviewScale(this->Budget->scaleFor(this->ViewPixels[0], this->ViewPixels[1])));
+    this->Render->MostOverSharingRanks(this->Budget->scaleFor(this->ViewPixels[0], this->ViewPixels[1])));
   this->LastPreviewScale = this->Render->GetPreviewScale();
 }
 

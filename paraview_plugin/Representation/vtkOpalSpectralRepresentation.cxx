@@ -210,7 +210,8 @@ bool vtkOpalSpectralRepresentation::TakeWholeVolume(vtkImageData* piece, vtkInfo
   {
     this->Volume->ShallowCopy(input);
   }
-  this->SetStoneBounds(this->Volume->GetExtent(), this->Volume);
+  this->PlaceStone(this->Volume->GetExtent(), this->Volume);
+  this->PieceProducer->SetOutput(nullptr); // a piece held for a shared march would keep its arrays
   this->Render->SetController(nullptr);
   this->Render->SetShareMarch(false);
   this->Render->SetInputData(this->Volume);
@@ -232,7 +233,7 @@ void vtkOpalSpectralRepresentation::TakePiece(vtkImageData* piece, vtkInformatio
   this->Volume->ShallowCopy(piece);
   int whole[6];
   pieceInformation->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-  this->SetStoneBounds(whole, this->Volume);
+  this->PlaceStone(whole, this->Volume);
   this->PieceProducer->SetOutput(this->Volume);
   this->PieceProducer->SetWholeExtent(whole);
   this->Render->SetController(vtkMultiProcessController::GetGlobalController());
@@ -246,8 +247,9 @@ bool vtkOpalSpectralRepresentation::MarchesShared() const
   return this->ShareMarch && ranks && ranks->GetNumberOfProcesses() > 1;
 }
 
-// Voxel centres are the points: the stone's box reaches half a voxel further.
-void vtkOpalSpectralRepresentation::SetStoneBounds(const int extent[6], vtkImageData* placed)
+// Voxel centres are the points: the stone's box reaches half a voxel further
+// (an Opal volume's axes are the scene's: its direction matrix is the identity).
+void vtkOpalSpectralRepresentation::PlaceStone(const int extent[6], vtkImageData* placed)
 {
   const double* origin = placed->GetOrigin();
   const double* spacing = placed->GetSpacing();

@@ -153,14 +153,17 @@ private:
   void ApplyRenderSettings();
   // Whether the ranks march shared (ShareMarch under MPI).
   bool MarchesShared() const;
-  // The render's input: the whole volume gathered from the ranks' pieces (the
-  // piece itself with one process), or, where the ranks march shared, this
-  // rank's piece announced with the whole extent (the render gathers what
-  // its device reads). False where the pieces could not be gathered (said).
+  // The render's input, its own rendering alone: the whole volume gathered
+  // from the ranks' pieces (the piece itself with one process). False where
+  // the pieces could not be gathered (said).
   bool TakeWholeVolume(vtkImageData* piece, vtkInformation* pieceInformation);
+  // The render's input where the ranks march shared: this rank's piece,
+  // announced with the whole extent, the render gathering what its device
+  // reads in each frame's update.
   void TakePiece(vtkImageData* piece, vtkInformation* pieceInformation);
-  // The stone's box from the extent of its voxel centres.
-  void SetStoneBounds(const int extent[6], vtkImageData* placed);
+  // Bounds, and the actor's, from the extent of the stone's voxel centres
+  // placed as `placed`.
+  void PlaceStone(const int extent[6], vtkImageData* placed);
 
   vtkNew<vtkOpalSpectralRender> Render;
   vtkSmartPointer<vtkOpalSpectralRender> Settings;

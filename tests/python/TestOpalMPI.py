@@ -22,9 +22,10 @@ The pvti case reads the volume from a partitioned file, each rank its piece,
 and renders it; the view case shows that file as "Opal Spectral" in a render
 view (the live view's representation), each rank again asking for its piece
 alone, and the screenshot equals the one-process one; the view-march case
-likewise with the representation's ShareMarch (a still frame, then a
-preview), every rank saying that the ranks marched the preview together at
-one scale.
+likewise with the representation's ShareMarch (a still frame, then
+previews with each rank's own frame budget), every rank saying that the
+ranks marched the preview together at one scale, and the still frame equals
+the one-process one shared, unshared and shared again.
 Usage: pvpython TestOpalMPI.py N volume|voronoi|render|grains|fire|march|fire-march|thin-march|pvti|view|view-march"""
 import os
 import re
@@ -76,7 +77,7 @@ if kind in ("pvti",) + views:
         check(len(said) == ranks and all(int(shares) == ranks for shares, _ in said),
               f"every rank's view marched its preview with the {ranks} ranks together:\n" + read_by_ranks)
         check(len({scale for _, scale in said}) == 1 and int(said[0][1]) > 1,
-              f"the ranks' previews took one scale:\n" + read_by_ranks)
+              f"the ranks' previews took one scale, the coarsest of their budgets':\n" + read_by_ranks)
 else:
     fire = ["--preset", "fire-opal", "--side-light"]
     renders = {"render": [], "grains": ["--preset", "pinfire"], "fire": fire,
@@ -132,14 +133,19 @@ def read(reader_class, path):
 
 
 if kind in views:
-    images = [vtk_to_numpy(read(vtkPNGReader, path).GetOutput().GetPointData().GetScalars()) for path in (serial, parallel)]
+    # With ShareMarch, the still frame then unshared and shared again.
+    again = [parallel[:-4] + name for name in ("-unshared.png", "-again.png")] if kind == "view-march" else []
+    images = [vtk_to_numpy(read(vtkPNGReader, path).GetOutput().GetPointData().GetScalars())
+              for path in [serial, parallel] + again]
     stone = numpy.mean(numpy.any(images[0] != images[0][0], axis=1))
     check(0.1 < stone < 0.9, f"the one-process view shows the stone ({100 * stone:.0f}% of the view)")
     # Each rank renders the whole stone from the same gathered volume, and
     # ParaView composites equal frames by depth: the screenshots are equal.
-    differing = numpy.mean(numpy.any(images[0] != images[1], axis=1))
-    check(images[0].shape == images[1].shape and differing == 0,
-          f"the {ranks}-rank view equals the one-process view ({100 * differing:.2f}% of pixels differ)")
+    for path, image in zip([parallel] + again, images[1:]):
+        differing = numpy.mean(numpy.any(images[0] != image, axis=1))
+        check(images[0].shape == image.shape and differing == 0,
+              f"the {ranks}-rank view {os.path.basename(path)} equals the one-process view "
+              f"({100 * differing:.2f}% of pixels differ)")
     finish("TestOpalMPI", f"({kind}, {ranks} ranks)")
 serial_data = read(vtkXMLImageDataReader, serial).GetOutput()
 parallel_reader = read(vtkXMLPImageDataReader, parallel)

@@ -21,5 +21,6 @@ if display.Representation != "Opal Spectral":
     raise RuntimeError(f"shown as {display.Representation}, not Opal Spectral")
 display.ShareMarch = int(len(sys.argv) > 4 and sys.argv[4] == "share")
 view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, 40, 0], [0, 2, 0], [0, 0, -1]
+view.InteractiveRender()  # a preview, as while the view is dragged (the ranks agree on its scale when shared)
 Render(view)
 SaveScreenshot(out, view, ImageResolution=[160, 120])

@@ -8,9 +8,10 @@ extent of the one-file volume VTI, before the render and after it, and that
 the reader never read more than a piece meanwhile (the render and the
 representation ask each rank for its piece alone). With --share-march the
 view's ranks march its frames together (the representation's ShareMarch),
-a still frame and then a preview, and each rank says how many marched the
-preview together and its scale ("view march shared by N rank(s), preview
-scale S").
+a still frame and then two previews (each rank with its own frame budget),
+and each rank says how many marched the last preview together and its scale
+("view march shared by N rank(s), preview scale S"); then the still frame
+unshared (OUTPUT-unshared.png) and shared again (OUTPUT-again.png).
 Usage: pvbatch opal_render_file.py INPUT OUTPUT WIDTH HEIGHT [--view [--share-march]] [--pieces-of VTI]"""
 import sys
 
@@ -87,13 +88,22 @@ if "--view" in sys.argv:
     Render(view)
     SaveScreenshot(output, view, ImageResolution=size)
     if "--share-march" in sys.argv:
-        # A preview too (as while the view is dragged): the ranks agree on its scale.
+        # Previews (as while the view is dragged), each rank with its own
+        # budget: the first preview's scale is fixed, the next follows each
+        # rank's measured cost, so unagreed the ranks' scales would differ.
+        display.FrameBudget = 10 if vtkMultiProcessController.GetGlobalController().GetLocalProcessId() == 0 else 0.001
+        view.InteractiveRender()
         view.InteractiveRender()
         display.UpdatePropertyInformation()
         shares = display.GetProperty("LastMarchShares").GetElement(0)
         scale = display.GetProperty("LastPreviewScale").GetElement(0)
         # One write: the ranks' lines interleave.
         print(f"view march shared by {shares} rank(s), preview scale {scale}\n", end="", flush=True)
+        # Unshared, then shared again: each still frame's screenshot.
+        for share, name in ((0, "-unshared.png"), (1, "-again.png")):
+            display.ShareMarch = share
+            Render(view)
+            SaveScreenshot(output[:-4] + name, view, ImageResolution=size)
 else:
     render = OpalSpectralRender(Input=volume, ImageSize=size)  # noqa: F821 (from the plugin)
     SaveData(output, proxy=render, DataMode="Binary")
