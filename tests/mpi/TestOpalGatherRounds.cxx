@@ -7,6 +7,7 @@
 // shared march: SurfaceDistance whole, the medium's arrays for the layers its
 // device reads), every array equals, value for value, the same extent of the
 // volume one process builds whole.
+#include "OpalRankVerdict.h"
 #include "vtkOpalRenderInput.h"
 #include "vtkOpalSource.h"
 #include "vtkOpalVolumePieces.h"
@@ -138,14 +139,7 @@ int main(int argc, char* argv[])
     passed = checkGather(controller, piece, whole->GetOutput(), { 0, 1 }, roundBytes) && passed;
     passed = checkGather(controller, piece, whole->GetOutput(), { rank, ranks }, roundBytes) && passed;
   }
-  int failures = passed ? 0 : 1, allFailures = 0;
-  controller->AllReduce(&failures, &allFailures, 1, vtkCommunicator::SUM_OP);
-  if (rank == 0)
-  {
-    std::cout << "TestOpalGatherRounds (" << ranks << " ranks): "
-              << (allFailures == 0 ? "all checks passed" : "FAILED on " + std::to_string(allFailures) + " rank(s)")
-              << std::endl;
-  }
+  const int status = opaltest::rankVerdict(controller, passed, "TestOpalGatherRounds");
   controller->Finalize();
-  return allFailures == 0 ? 0 : 1;
+  return status;
 }

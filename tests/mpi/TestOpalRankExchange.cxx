@@ -12,6 +12,7 @@
 // exchanges' bound (vtkOpalRankWait) reads its limit from the environment:
 // seconds as given, 0 for none, the default where unset or not a number of
 // seconds at least 0 (its end of a job is TestOpalMPIAgreement's).
+#include "OpalRankVerdict.h"
 #include "vtkOpalRankAgreement.h"
 #include "vtkOpalRankShares.h"
 #include "vtkOpalRankWait.h"
@@ -217,15 +218,7 @@ int main(int argc, char* argv[])
   }
   passed = checkShare(controller, rank, ranks) && passed;
   passed = checkWaitLimit(rank) && passed;
-  // Every rank's verdict: the test fails where any rank's check failed.
-  int failures = passed ? 0 : 1, allFailures = 0;
-  controller->AllReduce(&failures, &allFailures, 1, vtkCommunicator::SUM_OP);
-  if (rank == 0)
-  {
-    std::cout << "TestOpalRankExchange (" << ranks << " ranks): "
-              << (allFailures == 0 ? "all checks passed" : "FAILED on " + std::to_string(allFailures) + " rank(s)")
-              << std::endl;
-  }
+  const int status = opaltest::rankVerdict(controller, passed, "TestOpalRankExchange");
   controller->Finalize();
-  return allFailures == 0 ? 0 : 1;
+  return status;
 }
