@@ -97,17 +97,18 @@ struct SharedRun
   bool MediumHeld = false;
 };
 
-// `shares` sessions, each reading its piece's fields alone, render `p` of
-// `stone` on as many threads, their march shared, as `run` says.
-std::vector<ShareResult> sharedFrames(
-  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const SharedRun& run = {})
+using Sessions = std::vector<std::unique_ptr<opaltest::SceneRenderer>>;
+
+// `shares` sessions set up as `run` says, each given `stone`, their march
+// shared through `meeting`.
+Sessions shareSessions(
+  const opal::RenderVolume& stone, int shares, const SharedRun& run, opaltest::Meeting& meeting)
 {
-  opaltest::Meeting meeting(shares);
   opal::VulkanOptions options;
   options.Validation = true;
   options.MarchPieceFieldsOnly = !run.PiecesBound;
   options.StagingTransfers = run.Staging;
-  std::vector<std::unique_ptr<opaltest::SceneRenderer>> sessions;
+  Sessions sessions;
   for (int share = 0; share < shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
@@ -130,67 +131,100 @@ std::vector<ShareResult> sharedFrames(
         return meeting.meet(share, false, mine, sink);
       } });
   }
+  return sessions;
+}
+
+// Before the shared frame, with HeldPieces: the shares compute the light
+// together (whether they did), and with MediumHeld solve every order too.
+bool shareLight(opal::RenderSession& session, const opal::RenderParameters& p, int share, int shares,
+  const SharedRun& run, opaltest::Meeting& meeting)
+{
+  const auto meetBytes = [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+    return meeting.meet(share, false, mine, sink);
+  };
+  const bool shared = session.shareLightPass(
+    opal::resolveFrame(p), share, shares,
+    [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
+      return meeting.meet(share, true, mine, sink);
+    },
+    meetBytes, [&](double done) { return share != 1 || done < run.Share1StopsLightAt; });
+  if (run.MediumHeld && p.ScatteringOrders == opal::ScatteringOrdersKind::All)
+  {
+    session.solveScatteredLightShared(
+      opal::resolveFrame(p), share, shares,
+      [&](const std::optional<std::vector<double>>& mine) { return meeting.meetScores(share, mine); }, meetBytes);
+  }
+  return shared;
+}
+
+// After the shared frame, with HeldPieces: the share's frame alone (with
+// MediumHeld first refused, then rendered once the volume is set whole).
+void renderAloneAfter(
+  opal::RenderSession& session, const opal::RenderVolume& stone, const opal::RenderParameters& p, const SharedRun& run,
+  ShareResult& result)
+{
+  session.shareMarch(std::nullopt);
+  if (run.MediumHeld)
+  {
+    try
+    {
+      session.render(p);
+    }
+    catch (const std::exception& e)
+    {
+      result.AloneRefusal = e.what();
+    }
+    session.holdPiece(0, 1); // the whole: a medium held by piece cannot serve it
+    result.VolumeDropped = !session.holdsVolume();
+    session.setVolume(stone);
+  }
+  result.Alone = session.render(p);
+  result.HeldAlone = session.heldLightLayers();
+}
+
+// Share `share`'s part of the shared frame, as `run` says.
+ShareResult renderShare(opal::RenderSession& session, const opal::RenderVolume& stone, const opal::RenderParameters& p,
+  int share, int shares, const SharedRun& run, opaltest::Meeting& meeting)
+{
+  ShareResult result;
+  try
+  {
+    if (run.HeldPieces)
+    {
+      result.LightShared = shareLight(session, p, share, shares, run, meeting);
+    }
+    result.Frame = session.render(p, [&](double done) { return share != 1 || done < run.Share1StopsAt; });
+    result.HeldLayers = session.heldLightLayers();
+    result.MediumLayers = session.heldMediumLayers();
+    result.SharedPeak = session.context().memoryPeak();
+    if (run.HeldPieces)
+    {
+      renderAloneAfter(session, stone, p, run, result);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    result.Failure = e.what();
+  }
+  const auto messages = session.context().validationMessages();
+  result.Validation = messages.empty() ? "" : messages.front();
+  return result;
+}
+
+// `shares` sessions, each reading its piece's fields alone, render `p` of
+// `stone` on as many threads, their march shared, as `run` says.
+std::vector<ShareResult> sharedFrames(
+  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const SharedRun& run = {})
+{
+  opaltest::Meeting meeting(shares);
+  const Sessions sessions = shareSessions(stone, shares, run, meeting);
   std::vector<ShareResult> results(static_cast<std::size_t>(shares));
   std::vector<std::thread> threads;
   for (int share = 0; share < shares; ++share)
   {
     threads.emplace_back([&, share] {
-      ShareResult& result = results[static_cast<std::size_t>(share)];
-      opal::RenderSession& session = sessions[static_cast<std::size_t>(share)]->Session;
-      try
-      {
-        if (run.HeldPieces)
-        {
-          result.LightShared = session.shareLightPass(
-            opal::resolveFrame(p), share, shares,
-            [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
-              return meeting.meet(share, true, mine, sink);
-            },
-            [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-              return meeting.meet(share, false, mine, sink);
-            },
-            [&](double done) { return share != 1 || done < run.Share1StopsLightAt; });
-        }
-        if (run.MediumHeld && p.ScatteringOrders == opal::ScatteringOrdersKind::All)
-        {
-          session.solveScatteredLightShared(
-            opal::resolveFrame(p), share, shares,
-            [&](const std::optional<std::vector<double>>& mine) { return meeting.meetScores(share, mine); },
-            [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-              return meeting.meet(share, false, mine, sink);
-            });
-        }
-        result.Frame = session.render(p, [&](double done) { return share != 1 || done < run.Share1StopsAt; });
-        result.HeldLayers = session.heldLightLayers();
-        result.MediumLayers = session.heldMediumLayers();
-        result.SharedPeak = session.context().memoryPeak();
-        if (run.HeldPieces)
-        {
-          session.shareMarch(std::nullopt);
-          if (run.MediumHeld)
-          {
-            try
-            {
-              session.render(p);
-            }
-            catch (const std::exception& e)
-            {
-              result.AloneRefusal = e.what();
-            }
-            session.holdPiece(0, 1); // the whole: a medium held by piece cannot serve it
-            result.VolumeDropped = !session.holdsVolume();
-            session.setVolume(stone);
-          }
-          result.Alone = session.render(p);
-          result.HeldAlone = session.heldLightLayers();
-        }
-      }
-      catch (const std::exception& e)
-      {
-        result.Failure = e.what();
-      }
-      const auto messages = session.context().validationMessages();
-      result.Validation = messages.empty() ? "" : messages.front();
+      results[static_cast<std::size_t>(share)] =
+        renderShare(sessions[static_cast<std::size_t>(share)]->Session, stone, p, share, shares, run, meeting);
     });
   }
   for (std::thread& thread : threads)
@@ -452,24 +486,11 @@ std::string refusal(int share, int shares, int pieces, bool held = false)
   }
   return "";
 }
-} // namespace
 
-int TestOpalSharedMarch(int, char*[])
+// fig12 lit from above: each share's light fields held by piece; in nine
+// bands through staging; the edge pixels' sub-rays with share 1's buffers larger.
+void checkPaperShares(const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
 {
-  if (!opaltest::makeRenderer())
-  {
-    return opaltest::noDeviceReturnCode();
-  }
-  opal::RenderParameters p;
-  p.ImageSize = { 40, 30 };
-  p.PixelSamples = 1;
-  p.WriteSpectrum = true;
-
-  opal::ModelParameters paper; // fig12's optics, lit from above
-  paper.Dimensions = { 40, 20, 50 };
-  const auto paperVolume = opal::buildVolume(paper);
-  const opal::RenderVolume paperStone = paperVolume->renderVolume();
-  OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
   // Each share holding its piece: each layer's sweep, then its queued walks
   // to the light between the shares, taken up where a share holds the
   // layer they need (each walk's voxel kept with it: the share's queue holds
@@ -490,13 +511,14 @@ int TestOpalSharedMarch(int, char*[])
   opal::RenderParameters larger = refined;
   larger.ImageSize = { 64, 48 };
   checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", { 2.0, &larger });
+}
 
-  opal::ModelParameters fire;
-  OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
-  fire.Dimensions = { 40, 20, 50 };
-  const auto fireVolume = opal::buildVolume(fire);
-  const opal::RenderVolume fireStone = fireVolume->renderVolume();
-  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+// fire-opal lit from the side: the light fields held and bound by piece,
+// share 1 aborting in the walks to the light; with every order, the medium
+// held and bound by piece.
+void checkFireShares(const opal::RenderVolume& fireStone, const opal::RenderParameters& p, double refractiveIndex)
+{
+  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", refractiveIndex);
   side.LightPosition = { 30.0, 12.0, 4.0 };
   side.ScatteringOrders = opal::ScatteringOrdersKind::All;
   side.ScatteringPhotons = 2000;
@@ -509,7 +531,7 @@ int TestOpalSharedMarch(int, char*[])
   // Share 1 aborting in the shares' walks to the light after its first work
   // (of two): every share's step stops, none hangs; each frame then computes
   // the light alone, to the lone image.
-  opal::RenderParameters single = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+  opal::RenderParameters single = opaltest::withPresetHints(p, "fire-opal", refractiveIndex);
   single.LightPosition = side.LightPosition;
   checkShared(fireStone, single, 3, "fire-opal, lit from the side, share 1 aborting in the walks to the light",
     { 2.0, nullptr, false, true, 1e-9 });
@@ -522,19 +544,19 @@ int TestOpalSharedMarch(int, char*[])
     { 2.0, nullptr, false, true, 1e-9, true });
   // The medium held by piece too, read by address (each dispatch's reads
   // beyond its piece landing outside its buffers) and bound (read at an
-  // index less the piece's first voxel): fig12 lit from above (the sweep and
-  // its queued walks), fire-opal from the side with every order (the walks,
-  // the shared solve reading each share's slab).
-  checkShared(paperStone, p, 3, "fig12, the medium held by piece", { 2.0, nullptr, false, true, 2.0, false, true });
+  // index less the piece's first voxel): fire-opal from the side with every
+  // order (the walks, the shared solve reading each share's slab).
   checkShared(fireStone, side, 3, "fire-opal, every order, the medium held by piece",
     { 2.0, nullptr, false, true, 2.0, false, true });
   checkShared(fireStone, side, 3, "fire-opal, every order, the medium bound by piece",
     { 2.0, nullptr, false, true, 2.0, true, true });
   checkMediumMemory(fireStone, single);
-  checkMediumRefusals(paperStone, p);
+}
 
-  // Share 1 aborting in its light pass (before any round) or midway through
-  // its march: every share's frame stops, none hangs or throws.
+// Share 1 aborting in its light pass (before any round) or midway through
+// its march: every share's frame stops, none hangs or throws.
+void checkAborts(const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
+{
   for (const double stopsAt : { 0.05, 0.5 })
   {
     for (const ShareResult& result : sharedFrames(paperStone, p, 3, { stopsAt }))
@@ -544,10 +566,10 @@ int TestOpalSharedMarch(int, char*[])
           (result.Failure.empty() ? "" : " (threw: " + result.Failure + ")"));
     }
   }
+}
 
-
-  checkWholeFieldRefused(paperStone, p);
-
+void checkRefusals()
+{
   OPAL_CHECK(refusal(3, 3, 1).find("Share 3 is not one of the 3 shares") != std::string::npos, "share 3 of 3: refused");
   OPAL_CHECK(refusal(0, 2, 3).find("MarchPieces") != std::string::npos, "a shared march with MarchPieces 3: refused");
   OPAL_CHECK(refusal(0, 1, 3).empty(), "one share of one with MarchPieces 3: the march alone, accepted");
@@ -556,5 +578,38 @@ int TestOpalSharedMarch(int, char*[])
   OPAL_CHECK(refusal(-1, 0, 1, true).find("is not one of the 0 shares") != std::string::npos, "holding of 0 shares: refused");
   OPAL_CHECK(refusal(0, 2, 3, true).find("MarchPieces") != std::string::npos, "holding a piece with MarchPieces 3: refused");
   OPAL_CHECK(refusal(0, 1, 3, true).empty(), "holding the whole of one share with MarchPieces 3: accepted");
+}
+} // namespace
+
+int TestOpalSharedMarch(int, char*[])
+{
+  if (!opaltest::makeRenderer())
+  {
+    return opaltest::noDeviceReturnCode();
+  }
+  opal::RenderParameters p;
+  p.ImageSize = { 40, 30 };
+  p.PixelSamples = 1;
+  p.WriteSpectrum = true;
+
+  opal::ModelParameters paper; // fig12's optics, lit from above
+  paper.Dimensions = { 40, 20, 50 };
+  const auto paperVolume = opal::buildVolume(paper);
+  const opal::RenderVolume paperStone = paperVolume->renderVolume();
+  OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
+  checkPaperShares(paperStone, p);
+
+  opal::ModelParameters fire;
+  OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
+  fire.Dimensions = { 40, 20, 50 };
+  const auto fireVolume = opal::buildVolume(fire);
+  checkFireShares(fireVolume->renderVolume(), p, fire.RefractiveIndex);
+  // The medium held by piece, read by address and bound, fig12 lit from
+  // above (the sweep and its queued walks).
+  checkShared(paperStone, p, 3, "fig12, the medium held by piece", { 2.0, nullptr, false, true, 2.0, false, true });
+  checkMediumRefusals(paperStone, p);
+  checkAborts(paperStone, p);
+  checkWholeFieldRefused(paperStone, p);
+  checkRefusals();
   return opaltest::finish("TestOpalSharedMarch");
 }
