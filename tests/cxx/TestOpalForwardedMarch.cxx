@@ -35,6 +35,7 @@
 #include "OpalVolumeBuild.h"
 
 #include <array>
+#include <functional>
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
@@ -104,6 +105,127 @@ std::array<std::string, 2> shortSchedule(
   return messages;
 }
 
+// fire-opal lit from the side with every order, and from the front and low
+// (its walks along z), also on a grid eight times finer in z.
+void checkFireLights(opal::ModelParameters fire, const opal::RenderParameters& p)
+{
+  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+  side.LightPosition = { 30.0, 12.0, 4.0 };
+  side.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  side.ScatteringPhotons = 2000;
+  const opal::ResolvedFrame frame = opal::resolveFrame(side);
+  OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
+    "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
+  checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
+
+  // Lit from the front and low, a light whose walks all cross the pieces along z.
+  opal::RenderParameters front = side;
+  front.ScatteringOrders = opal::ScatteringOrdersKind::Single;
+  front.LightPosition = { 1.0, 4.0, -30.0 };
+  checkForwarded(fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
+
+  // A grid eight times finer in z than across, lit from the side: the
+  // traces' steps and the halos count layers, not millimetres.
+  opal::ModelParameters fine = fire;
+  fine.Dimensions = { 20, 10, 80 };
+  fine.PhysicalSize = { 4.0, 2.0, 2.0 };
+  front.LightPosition = side.LightPosition;
+  checkForwarded(fine, front, "fire-opal on a grid eight times finer in z, lit from the side", { 3, 7 });
+}
+
+// The unforwarded march with its fields read by address, one value per
+// voxel (below the paired fields' bytes: VoxelCell 8, SurfaceDistance 8,
+// light field 16, absorption cells 8 and their light field 16, the Bragg
+// shadows 12), against the forwarded one with its pixels read back through
+// staging buffers, at a larger grid and single scattering.
+void checkAddressedFields(opal::ModelParameters fire, const opal::RenderParameters& p)
+{
+  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
+  side.LightPosition = { 30.0, 12.0, 4.0 };
+  fire.Dimensions = { 80, 40, 100 }; // the ray states (2 MB at 40 x 30 pixels) within the limit
+  const auto fireVolume = opal::buildVolume(fire);
+  const opal::RenderVolume fireStone = fireVolume->renderVolume();
+  opal::VulkanOptions addressed;
+  addressed.MemoryLimitBytes = fireStone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
+  addressed.StagingTransfers = true;
+  opaltest::SceneRenderer unforwarded(addressed);
+  unforwarded.Session.setVolume(fireStone);
+  const opal::RenderFrame byAddress = unforwarded.Session.render(side);
+  OPAL_CHECK(byAddress.Status == opal::FrameStatus::Completed && !byAddress.Ran.PairedFields,
+    "set-up: fire-opal's fields held one value per voxel, by address");
+  opal::VulkanOptions staged; // each piece's fields alone are read by address at any memory limit
+  staged.StagingTransfers = true;
+  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
+    "fire-opal, its fields by address and through staging: forwarded through 3 pieces, each "
+    "reading its fields alone, gives the unforwarded image");
+}
+
+// Too few sweeps for the paths (two of fig12's march's or walks' to the
+// light, lit from above or from the side, where three suffice): the states
+// left unfinished after the last pass refuse the frame, naming the pass,
+// where an image would lack them; the light field of a refused pass is not
+// kept for the next frame. Three sweeps of each leave none.
+void checkShortSchedules(const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
+{
+  const auto marchLeft = shortSchedule(paperStone, p, 2, 0);
+  OPAL_CHECK(marchLeft[0].find("The view march forwarded through 3 pieces left ") == 0 &&
+      marchLeft[0].find("states unfinished") != std::string::npos,
+    "the march in two sweeps: the frame refused, naming the march (got: " + marchLeft[0] + ")");
+  const auto lightLeft = shortSchedule(paperStone, p, 0, 2);
+  OPAL_CHECK(lightLeft[0].find("The light pass forwarded through 3 pieces left ") == 0 && lightLeft[1] == lightLeft[0],
+    "the walks to the light in two sweeps: each frame refused, naming the light pass, no field kept "
+    "from the first (got: " + lightLeft[0] + " | " + lightLeft[1] + ")");
+  opal::RenderParameters sideLit = p;
+  sideLit.LightPosition = { 30.0, 6.0, 4.0 }; // every voxel walks to the light
+  const auto sideLeft = shortSchedule(paperStone, sideLit, 0, 2);
+  OPAL_CHECK(sideLeft[0].find("The light pass forwarded through 3 pieces left ") == 0,
+    "every voxel's walk to the light in two sweeps: the frame refused (got: " + sideLeft[0] + ")");
+  const auto enough = shortSchedule(paperStone, p, 3, 3);
+  OPAL_CHECK(enough[0].empty() && enough[1].empty(),
+    "three sweeps of each: no state left, both frames complete (got: " + enough[0] + " | " + enough[1] + ")");
+}
+
+// The VulkanError's message `make` throws, "" where it throws none.
+std::string vulkanRefusal(const std::function<void()>& make)
+{
+  try
+  {
+    make();
+  }
+  catch (const opal::VulkanError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
+// Ray states beyond the device's storage-buffer range: the frame refused
+// before any pass, naming the range, and the session renders the next frame.
+// Each piece's fields alone are read by address: a device that cannot
+// address buffers is refused up front, naming what it lacks.
+void checkDeviceRefusals(const opal::RenderVolume& thin, const opal::RenderParameters& p)
+{
+  opal::VulkanOptions smallRange;
+  smallRange.MarchPieces = 2;
+  smallRange.Simulated.MaxStorageBufferRange = 1 << 20; // the fields fit; 40 x 30 pixels' states (2 MB) do not
+  opaltest::SceneRenderer limited(smallRange);
+  limited.Session.setVolume(thin);
+  std::string message = vulkanRefusal([&] { limited.Session.render(p); });
+  OPAL_CHECK(message.find("ray states") != std::string::npos && message.find("maxStorageBufferRange of 1048576") != std::string::npos,
+    "ray states beyond the storage-buffer range: the frame refused, naming the range (got: " + message + ")");
+  opal::RenderParameters small = p;
+  small.ImageSize = { 8, 6 };
+  OPAL_CHECK(limited.Session.render(small).Status == opal::FrameStatus::Completed,
+    "after the refusal, a frame whose ray states fit completes");
+
+  opal::VulkanOptions unaddressable;
+  unaddressable.MarchPieces = 2;
+  unaddressable.MarchPieceFieldsOnly = true;
+  unaddressable.Simulated.WithoutBufferDeviceAddress = true;
+  message = vulkanRefusal([&] { opaltest::SceneRenderer refused(unaddressable); });
+  OPAL_CHECK(message.find("MarchPieceFieldsOnly") != std::string::npos && message.find("bufferDeviceAddress") != std::string::npos,
+    "pieces' fields alone on a device that cannot address buffers: refused, naming both (got: " + message + ")");
+}
 } // namespace
 
 int TestOpalForwardedMarch(int, char*[])
@@ -129,76 +251,11 @@ int TestOpalForwardedMarch(int, char*[])
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
   fire.Dimensions = { 40, 20, 50 };
-  opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
-  side.LightPosition = { 30.0, 12.0, 4.0 };
-  side.ScatteringOrders = opal::ScatteringOrdersKind::All;
-  side.ScatteringPhotons = 2000;
-  const opal::ResolvedFrame frame = opal::resolveFrame(side);
-  OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
-    "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
-  checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
+  checkFireLights(fire, p);
+  checkAddressedFields(fire, p);
 
-  // Lit from the front and low, a light whose walks all cross the pieces along z.
-  opal::RenderParameters front = side;
-  front.ScatteringOrders = opal::ScatteringOrdersKind::Single;
-  front.LightPosition = { 1.0, 4.0, -30.0 };
-  checkForwarded(fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
-
-  // A grid eight times finer in z than across, lit from the side: the
-  // traces' steps and the halos count layers, not millimetres.
-  opal::ModelParameters fine = fire;
-  fine.Dimensions = { 20, 10, 80 };
-  fine.PhysicalSize = { 4.0, 2.0, 2.0 };
-  front.LightPosition = side.LightPosition;
-  checkForwarded(fine, front, "fire-opal on a grid eight times finer in z, lit from the side", { 3, 7 });
-
-  // The unforwarded march with its fields read by address, one value per
-  // voxel (below the paired fields' bytes: VoxelCell 8, SurfaceDistance 8,
-  // light field 16, absorption cells 8 and their light field 16, the Bragg
-  // shadows 12), against the forwarded one with its pixels read back through
-  // staging buffers, at a larger grid and single scattering.
-  side.ScatteringOrders = opal::ScatteringOrdersKind::Single;
-  fire.Dimensions = { 80, 40, 100 }; // the ray states (2 MB at 40 x 30 pixels) within the limit
-  const auto fireVolume = opal::buildVolume(fire);
-  const opal::RenderVolume fireStone = fireVolume->renderVolume();
-  opal::VulkanOptions addressed;
-  addressed.MemoryLimitBytes = fireStone.voxelCount() * (8 + 8 + 16 + 8 + 16 + 12) - 1;
-  addressed.StagingTransfers = true;
-  opaltest::SceneRenderer unforwarded(addressed);
-  unforwarded.Session.setVolume(fireStone);
-  const opal::RenderFrame byAddress = unforwarded.Session.render(side);
-  OPAL_CHECK(byAddress.Status == opal::FrameStatus::Completed && !byAddress.Ran.PairedFields,
-    "set-up: fire-opal's fields held one value per voxel, by address");
-  opal::VulkanOptions staged; // each piece's fields alone are read by address at any memory limit
-  staged.StagingTransfers = true;
-  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
-    "fire-opal, its fields by address and through staging: forwarded through 3 pieces, each "
-    "reading its fields alone, gives the unforwarded image");
-
-  // Too few sweeps for the paths (two of fig12's march's or walks' to the
-  // light, lit from above or from the side, where three suffice): the states
-  // left unfinished after the last pass refuse the frame, naming the pass,
-  // where an image would lack them; the light field of a refused pass is not
-  // kept for the next frame. Three sweeps of each leave none.
-  paper.Dimensions = { 40, 20, 50 };
   const auto paperVolume = opal::buildVolume(paper);
-  const opal::RenderVolume paperStone = paperVolume->renderVolume();
-  const auto marchLeft = shortSchedule(paperStone, p, 2, 0);
-  OPAL_CHECK(marchLeft[0].find("The view march forwarded through 3 pieces left ") == 0 &&
-      marchLeft[0].find("states unfinished") != std::string::npos,
-    "the march in two sweeps: the frame refused, naming the march (got: " + marchLeft[0] + ")");
-  const auto lightLeft = shortSchedule(paperStone, p, 0, 2);
-  OPAL_CHECK(lightLeft[0].find("The light pass forwarded through 3 pieces left ") == 0 && lightLeft[1] == lightLeft[0],
-    "the walks to the light in two sweeps: each frame refused, naming the light pass, no field kept "
-    "from the first (got: " + lightLeft[0] + " | " + lightLeft[1] + ")");
-  opal::RenderParameters sideLit = p;
-  sideLit.LightPosition = { 30.0, 6.0, 4.0 }; // every voxel walks to the light
-  const auto sideLeft = shortSchedule(paperStone, sideLit, 0, 2);
-  OPAL_CHECK(sideLeft[0].find("The light pass forwarded through 3 pieces left ") == 0,
-    "every voxel's walk to the light in two sweeps: the frame refused (got: " + sideLeft[0] + ")");
-  const auto enough = shortSchedule(paperStone, p, 3, 3);
-  OPAL_CHECK(enough[0].empty() && enough[1].empty(),
-    "three sweeps of each: no state left, both frames complete (got: " + enough[0] + " | " + enough[1] + ")");
+  checkShortSchedules(paperVolume->renderVolume(), p);
 
   // Three layers in seven pieces: four pieces of none, walked by no ray.
   paper.Dimensions = { 40, 20, 3 };
@@ -207,46 +264,6 @@ int TestOpalForwardedMarch(int, char*[])
   opaltest::SceneRenderer whole({});
   OPAL_CHECK(opaltest::identical(forwarded(thin, p, 7), whole.render(thin, p)),
     "three layers in seven pieces: the forwarded render gives the unforwarded image");
-
-  // Ray states beyond the device's storage-buffer range: the frame refused
-  // before any pass, naming the range, and the session renders the next frame.
-  opal::VulkanOptions smallRange;
-  smallRange.MarchPieces = 2;
-  smallRange.Simulated.MaxStorageBufferRange = 1 << 20; // the fields fit; 40 x 30 pixels' states (2 MB) do not
-  opaltest::SceneRenderer limited(smallRange);
-  limited.Session.setVolume(thin);
-  std::string message;
-  try
-  {
-    limited.Session.render(p);
-  }
-  catch (const opal::VulkanError& e)
-  {
-    message = e.what();
-  }
-  OPAL_CHECK(message.find("ray states") != std::string::npos && message.find("maxStorageBufferRange of 1048576") != std::string::npos,
-    "ray states beyond the storage-buffer range: the frame refused, naming the range (got: " + message + ")");
-  opal::RenderParameters small = p;
-  small.ImageSize = { 8, 6 };
-  OPAL_CHECK(limited.Session.render(small).Status == opal::FrameStatus::Completed,
-    "after the refusal, a frame whose ray states fit completes");
-
-  // Each piece's fields alone are read by address: a device that cannot
-  // address buffers is refused up front, naming what it lacks.
-  opal::VulkanOptions unaddressable;
-  unaddressable.MarchPieces = 2;
-  unaddressable.MarchPieceFieldsOnly = true;
-  unaddressable.Simulated.WithoutBufferDeviceAddress = true;
-  message.clear();
-  try
-  {
-    opaltest::SceneRenderer refused(unaddressable);
-  }
-  catch (const opal::VulkanError& e)
-  {
-    message = e.what();
-  }
-  OPAL_CHECK(message.find("MarchPieceFieldsOnly") != std::string::npos && message.find("bufferDeviceAddress") != std::string::npos,
-    "pieces' fields alone on a device that cannot address buffers: refused, naming both (got: " + message + ")");
+  checkDeviceRefusals(thin, p);
   return opaltest::finish("TestOpalForwardedMarch");
 }
