@@ -478,6 +478,107 @@ void checkTooManyVoxels(opal::RenderSession& session, const opal::RenderParamete
     "after the refusal the session renders its volume as before");
 }
 
+// The first frame runs every stage; a camera-only frame reuses the volume
+// and the light field, giving exactly a fresh session's image, as a
+// render-only build does. Returns that camera's image.
+opal::RenderImage checkCameraReuse(opal::RenderSession& session, const opal::ModelParameters& model,
+  const opal::BuiltVolume& volume, const opal::RenderParameters& moved)
+{
+  const opal::RenderFrame a = session.render(smallView());
+  OPAL_CHECK(a.Status == opal::FrameStatus::Completed && a.Ran.Upload && a.Ran.LightPass && a.Ran.Readback,
+    "the first frame uploads, runs the light pass and completes (" + stages(a.Ran) + ")");
+  const opal::RenderFrame b = session.render(moved);
+  OPAL_CHECK(b.Status == opal::FrameStatus::Completed && !b.Ran.Upload && !b.Ran.LightPass && b.Ran.March,
+    "a camera-only frame reuses the volume and the light field (" + stages(b.Ran) + ")");
+  OPAL_CHECK(!opaltest::identical(a.Image, b.Image), "the new camera gives a new image");
+  opaltest::SceneRenderer fresh(opal::VulkanOptions{});
+  const opal::RenderImage c = fresh.render(volume.renderVolume(), moved);
+  OPAL_CHECK(opaltest::identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
+  // opal-render's build keeps only what the render reads: the same image.
+  const auto renderOnly = opal::buildVolume(model, nullptr, opal::VolumeArrays::Render);
+  OPAL_CHECK(renderOnly->VoxelType.empty() && renderOnly->LatticeOrientation.empty() &&
+      renderOnly->ScatteringCoefficient == volume.ScatteringCoefficient && renderOnly->DomainId == volume.DomainId &&
+      renderOnly->SurfaceDistance == volume.SurfaceDistance,
+    "a render-only build keeps the render's fields, equal to the whole build's, and no description");
+  OPAL_CHECK(opaltest::identical(b.Image, fresh.render(renderOnly->renderVolume(), moved)),
+    "a render-only build renders exactly the whole build's image");
+  return b.Image;
+}
+
+// What the light field depends on reruns it; an abort during the light pass
+// is an explicit status, and the next frame reruns the pass.
+void checkLightPassReruns(opal::RenderSession& session, const opal::RenderParameters& moved)
+{
+  auto lightPassRuns = [&session, &moved](const std::string& what, auto change) {
+    opal::RenderParameters p = moved;
+    change(p);
+    const opal::RenderFrame frame = session.render(p);
+    OPAL_CHECK(frame.Ran.LightPass && !frame.Ran.Upload, what + " reruns the light pass (" + stages(frame.Ran) + ")");
+    session.render(moved); // back to the reference light
+  };
+  lightPassRuns("a new light position", [](opal::RenderParameters& p) { p.LightPosition = { 5.0, 60.0, 0.0 }; });
+  lightPassRuns("a model rotation", [](opal::RenderParameters& p) { p.ModelRotation = { 5.0, 0.0, 0.0 }; });
+  lightPassRuns("a new refractive index", [](opal::RenderParameters& p) { p.RefractiveIndex = 1.4; });
+  lightPassRuns("the paper's fall-off rule", [](opal::RenderParameters& p) { p.LightFalloffAtEntry = true; });
+
+  opal::RenderParameters lit = moved;
+  lit.LightPosition = { -5.0, 60.0, 0.0 };
+  const opal::RenderFrame aborted = session.render(lit, [](double) { return false; });
+  OPAL_CHECK(aborted.Status == opal::FrameStatus::Aborted && aborted.Image.RGB.empty(),
+    "an abort is reported as FrameStatus::Aborted with no image");
+  const opal::RenderFrame after = session.render(lit);
+  OPAL_CHECK(after.Status == opal::FrameStatus::Completed && after.Ran.LightPass,
+    "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
+}
+
+// Fields of 8.5 M voxels (68 MB of ScatteringCoefficient and DomainId, as of
+// SurfaceDistance) go up in two rounds of VulkanBuffer::FillRoundBytes; with
+// every order in an absorbing body the solve reads its medium back from the
+// device's cells and absorption cells (two rounds through staging); fields
+// held unpaired; a grid one voxel wide, paired.
+void checkLargeFields(opaltest::SceneRenderer& renderer, const opal::ModelParameters& model,
+  const opal::RenderParameters& moved)
+{
+  opal::ModelParameters large = model;
+  large.Dimensions = { 256, 128, 260 };
+  const auto largeVolume = opal::buildVolume(large);
+  checkStagingTransfers(largeVolume->renderVolume(), moved, renderer.render(largeVolume->renderVolume(), moved),
+    "fields in two rounds");
+  large.BodyAbsorption = 0.05;
+  const auto absorbingVolume = opal::buildVolume(large);
+  opal::RenderParameters everyOrder = moved;
+  everyOrder.ScatteringOrders = opal::ScatteringOrdersKind::All;
+  everyOrder.ScatteringPhotons = 2000;
+  checkStagingTransfers(absorbingVolume->renderVolume(), everyOrder,
+    renderer.render(absorbingVolume->renderVolume(), everyOrder), "every order, its medium read back in two rounds");
+  opal::ModelParameters absorbingSmall = model;
+  absorbingSmall.Dimensions = { 64, 32, 80 };
+  absorbingSmall.BodyAbsorption = 0.05;
+  checkUnpairedFields(opal::buildVolume(absorbingSmall)->renderVolume(), moved);
+  opal::ModelParameters oneWide = model;
+  oneWide.Dimensions = { 1, 200, 500 };
+  checkOneVoxelWidePaired(opal::buildVolume(oneWide)->renderVolume(), moved);
+}
+
+// What the process's exit does to every live session: a running frame
+// stops, the device objects go, and a later use says so.
+void checkRelease(opal::RenderSession& session, const opal::RenderParameters& moved)
+{
+  session.startFrame(opal::resolveFrame(moved));
+  session.release();
+  bool refused = false;
+  try
+  {
+    session.render(moved);
+  }
+  catch (const opal::VulkanError& e)
+  {
+    refused = std::string(e.what()).find("released") != std::string::npos;
+  }
+  OPAL_CHECK(refused && session.backgroundState() == opal::BackgroundState::None,
+    "a released session stops its frame and refuses a render, saying why");
+}
+
 int TestOpalRenderSession(int, char*[])
 {
   auto renderer = opaltest::makeRenderer();
@@ -492,106 +593,25 @@ int TestOpalRenderSession(int, char*[])
   const auto volume = opal::buildVolume(model);
   opal::RenderSession& session = renderer->Session;
   session.setVolume(volume->renderVolume());
-
-  const opal::RenderParameters first = smallView();
-  const opal::RenderFrame a = session.render(first);
-  OPAL_CHECK(a.Status == opal::FrameStatus::Completed && a.Ran.Upload && a.Ran.LightPass && a.Ran.Readback,
-    "the first frame uploads, runs the light pass and completes (" + stages(a.Ran) + ")");
-
   // A new camera only: the eye moves and looks at the same point.
-  opal::RenderParameters moved = first;
+  opal::RenderParameters moved = smallView();
   moved.EyePosition = { 8.0, 58.0, 6.0 };
-  const opal::RenderFrame b = session.render(moved);
-  OPAL_CHECK(b.Status == opal::FrameStatus::Completed && !b.Ran.Upload && !b.Ran.LightPass && b.Ran.March,
-    "a camera-only frame reuses the volume and the light field (" + stages(b.Ran) + ")");
-  OPAL_CHECK(!opaltest::identical(a.Image, b.Image), "the new camera gives a new image");
-  {
-    opaltest::SceneRenderer fresh(opal::VulkanOptions{});
-    const opal::RenderImage c = fresh.render(volume->renderVolume(), moved);
-    OPAL_CHECK(opaltest::identical(b.Image, c), "the reused light field gives exactly a fresh session's image");
-    // opal-render's build keeps only what the render reads: the same image.
-    const auto renderOnly = opal::buildVolume(model, nullptr, opal::VolumeArrays::Render);
-    OPAL_CHECK(renderOnly->VoxelType.empty() && renderOnly->LatticeOrientation.empty() &&
-        renderOnly->ScatteringCoefficient == volume->ScatteringCoefficient && renderOnly->DomainId == volume->DomainId &&
-        renderOnly->SurfaceDistance == volume->SurfaceDistance,
-      "a render-only build keeps the render's fields, equal to the whole build's, and no description");
-    OPAL_CHECK(opaltest::identical(b.Image, fresh.render(renderOnly->renderVolume(), moved)),
-      "a render-only build renders exactly the whole build's image");
-  }
-
-  // What the light field depends on reruns it.
-  auto lightPassRuns = [&session, &moved](const std::string& what, auto change) {
-    opal::RenderParameters p = moved;
-    change(p);
-    const opal::RenderFrame frame = session.render(p);
-    OPAL_CHECK(frame.Ran.LightPass && !frame.Ran.Upload, what + " reruns the light pass (" + stages(frame.Ran) + ")");
-    session.render(moved); // back to the reference light
-  };
-  lightPassRuns("a new light position", [](opal::RenderParameters& p) { p.LightPosition = { 5.0, 60.0, 0.0 }; });
-  lightPassRuns("a model rotation", [](opal::RenderParameters& p) { p.ModelRotation = { 5.0, 0.0, 0.0 }; });
-  lightPassRuns("a new refractive index", [](opal::RenderParameters& p) { p.RefractiveIndex = 1.4; });
-  lightPassRuns("the paper's fall-off rule", [](opal::RenderParameters& p) { p.LightFalloffAtEntry = true; });
-
-  // Abort during the light pass: an explicit status, and the next frame reruns the pass.
-  opal::RenderParameters lit = moved;
-  lit.LightPosition = { -5.0, 60.0, 0.0 };
-  const opal::RenderFrame aborted = session.render(lit, [](double) { return false; });
-  OPAL_CHECK(aborted.Status == opal::FrameStatus::Aborted && aborted.Image.RGB.empty(),
-    "an abort is reported as FrameStatus::Aborted with no image");
-  const opal::RenderFrame after = session.render(lit);
-  OPAL_CHECK(after.Status == opal::FrameStatus::Completed && after.Ran.LightPass,
-    "after an aborted light pass the next frame runs it (" + stages(after.Ran) + ")");
+  const opal::RenderImage image = checkCameraReuse(session, model, *volume, moved);
+  checkLightPassReruns(session, moved);
 
   checkScatteredLightStages(session, moved);
   checkSharedSolve(session, volume->renderVolume(), moved);
   checkScatteredLightFromGrid(volume->renderVolume(), moved);
   checkKeptShadowsCounted(volume->renderVolume(), moved);
-  checkStagingTransfers(volume->renderVolume(), moved, b.Image);
+  checkStagingTransfers(volume->renderVolume(), moved, image);
   checkFixedExposureHoldsNoThumbnail(volume->renderVolume(), moved);
-  checkFrameTicket(session, moved, b.Image);
-  checkTooManyVoxels(session, moved, b.Image);
-  // After the frame ticket (which renders the session's volume): fields of
-  // 8.5 M voxels (68 MB of ScatteringCoefficient and DomainId, as of
-  // SurfaceDistance) go up in two rounds of VulkanBuffer::FillRoundBytes.
-  opal::ModelParameters large = model;
-  large.Dimensions = { 256, 128, 260 };
-  const auto largeVolume = opal::buildVolume(large);
-  checkStagingTransfers(largeVolume->renderVolume(), moved, renderer->render(largeVolume->renderVolume(), moved),
-    "fields in two rounds");
-  // Every order in an absorbing body: the solve reads its medium back from
-  // the device's cells and absorption cells (two rounds through staging).
-  large.BodyAbsorption = 0.05;
-  const auto absorbingVolume = opal::buildVolume(large);
-  opal::RenderParameters everyOrder = moved;
-  everyOrder.ScatteringOrders = opal::ScatteringOrdersKind::All;
-  everyOrder.ScatteringPhotons = 2000;
-  checkStagingTransfers(absorbingVolume->renderVolume(), everyOrder,
-    renderer->render(absorbingVolume->renderVolume(), everyOrder), "every order, its medium read back in two rounds");
-  opal::ModelParameters absorbingSmall = model;
-  absorbingSmall.Dimensions = { 64, 32, 80 };
-  absorbingSmall.BodyAbsorption = 0.05;
-  checkUnpairedFields(opal::buildVolume(absorbingSmall)->renderVolume(), moved);
-  opal::ModelParameters oneWide = model;
-  oneWide.Dimensions = { 1, 200, 500 };
-  checkOneVoxelWidePaired(opal::buildVolume(oneWide)->renderVolume(), moved);
+  checkFrameTicket(session, moved, image);
+  checkTooManyVoxels(session, moved, image);
+  // After the frame ticket (which renders the session's volume).
+  checkLargeFields(*renderer, model, moved);
 
   const auto messages = renderer->context().validationMessages();
   OPAL_CHECK(messages.empty(), "the validation layer is silent" + (messages.empty() ? "" : ": " + messages.front()));
-
-  // What the process's exit does to every live session: a running frame
-  // stops, the device objects go, and a later use says so.
-  session.startFrame(opal::resolveFrame(moved));
-  session.release();
-  bool refused = false;
-  try
-  {
-    session.render(moved);
-  }
-  catch (const opal::VulkanError& e)
-  {
-    refused = std::string(e.what()).find("released") != std::string::npos;
-  }
-  OPAL_CHECK(refused && session.backgroundState() == opal::BackgroundState::None,
-    "a released session stops its frame and refuses a render, saying why");
+  checkRelease(session, moved);
   return opaltest::finish("TestOpalRenderSession");
 }
