@@ -200,15 +200,12 @@ bool allFinite(const opal::ScatteredLight& field, const opal::ScatteringMedium& 
         return false;
   return true;
 }
-} // namespace
-
-int TestOpalScatteredLight(int, char*[])
+// Clear of absorption: every photon that entered leaves (no roulette, no
+// budget reached); the field is deterministic, kept nodes' volumes and
+// ranges of voxels give the same values, the device's evaluation agrees, and
+// a solve shared by 2, 3, 5 and 20 processes equals one process's. Returns it.
+opal::ScatteredLight checkClearField(const opal::ScatteringMedium& medium)
 {
-  opaltest::EllipsoidScene scene;
-  const opal::RenderVolume volume = scene.build();
-  opal::ScatteringMedium medium = mediumOf(volume);
-
-  // Clear of absorption: every photon that entered leaves (no roulette, no budget reached).
   const auto clear = opal::solveScatteredLight(medium, requestFor(medium, 1.45, 4096), nullptr);
   OPAL_CHECK(clear && clear->Warning.empty() && clear->GivenUp == 0, "the paper's body is within the budget");
   OPAL_CHECK(std::fabs(clear->Escaped / clear->Entered - 1) < 1e-9, "without absorption what enters leaves");
@@ -241,7 +238,6 @@ int TestOpalScatteredLight(int, char*[])
     "the values of a range of voxels equal the whole field's there");
   OPAL_CHECK(refuses([&] { clear->meanRadiance(medium, clearValues.size() - 1, 2, part.data()); }, "asked for voxels"),
     "voxels beyond the medium are refused");
-
   // Shared by 2, 3 and 5 processes, and by more processes than the solve has tasks: the same field.
   for (const int shares : { 2, 3, 5, 20 })
   {
@@ -249,9 +245,15 @@ int TestOpalScatteredLight(int, char*[])
     OPAL_CHECK(valuesOf(shared, medium) == clearValues && shared.Escaped == clear->Escaped,
       "a solve shared by " + std::to_string(shares) + " equals one process's bit for bit");
   }
-  // The render session's geometry: the inside bits and the apex, SurfaceDistance given back (read from
-  // the device) when a solve needs it: the same field. Values whose signs disagree (a round read from
-  // the wrong place) are refused; without them surfaceDistance throws.
+  return *clear;
+}
+
+// The render session's geometry: the inside bits and the apex, SurfaceDistance given back (read from
+// the device) when a solve needs it: the same field. Values whose signs disagree (a round read from
+// the wrong place) are refused; without them surfaceDistance throws.
+void checkGeometryGivenBack(
+  const opal::RenderVolume& volume, const opal::ScatteringMedium& medium, const opal::ScatteredLight& clear)
+{
   opal::ScatteringMedium givenBack = medium;
   givenBack.Geometry = opal::VolumeGeometry(volume, false);
   bool insideAgrees = !givenBack.Geometry.insideAt(medium.Geometry.boxHigh() + 1.0);
@@ -283,26 +285,14 @@ int TestOpalScatteredLight(int, char*[])
     "SurfaceDistance given back one voxel off is refused");
   givenBack.Geometry.setSurfaceDistance(distance);
   const auto fromGivenBack = opal::solveScatteredLight(givenBack, requestFor(givenBack, 1.45, 4096), nullptr);
-  OPAL_CHECK(valuesOf(*fromGivenBack, givenBack) == clearValues, "SurfaceDistance given back: the same field");
+  OPAL_CHECK(valuesOf(*fromGivenBack, givenBack) == valuesOf(clear, medium), "SurfaceDistance given back: the same field");
+}
 
-  const opal::ScatteredLightRequest small = requestFor(medium, 1.45, 64);
-  OPAL_CHECK(refuses([&] { opal::traceScatteredLightShare(medium, small, 2, 2, nullptr); }, "share 2 of 2"),
-    "a share that does not exist is refused");
-  std::vector<std::vector<double>> oneMissing{ *opal::traceScatteredLightShare(medium, small, 0, 2, nullptr), {} };
-  OPAL_CHECK(refuses([&] { opal::scatteredLightFromShares(medium, small, oneMissing); }, "share 1 of 2 holds 0"),
-    "scores of the wrong size are refused, naming the share");
-
-  // Total internal reflection keeps the scattered light inside longer.
-  const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);
-  const auto clearMeans = fieldMeans(*clear, medium), matchedMeans = fieldMeans(*matched, medium);
-  for (int m = 0; m < opal::ScatteredLightNodes; ++m)
-  {
-    std::cout << "node " << m << ": field mean " << clearMeans[m] << " at index 1.45, "
-              << matchedMeans[m] << " index-matched" << std::endl;
-    OPAL_CHECK(clearMeans[m] > 1.2 * matchedMeans[m], "a refracting boundary holds scattered light in");
-  }
-
-  // Absorbing: grey 0.1/mm everywhere and 2/mm in the lowest millimetre (a backing).
+// Absorbing: grey 0.1/mm everywhere and 2/mm in the lowest millimetre (a
+// backing): what enters leaves or is absorbed, and the field dims.
+void checkAbsorbingBody(
+  opal::ScatteringMedium medium, const std::array<double, opal::ScatteredLightNodes>& clearMeans)
+{
   const opal::VolumeGeometry& g = medium.Geometry;
   medium.Absorption.resize(medium.Scattering.size());
   for (std::size_t i = 0; i < medium.Absorption.size(); ++i)
@@ -318,8 +308,12 @@ int TestOpalScatteredLight(int, char*[])
   OPAL_CHECK(std::fabs(balance) < 0.01, "with absorption what enters leaves or is absorbed (roulette: within 1%)");
   OPAL_CHECK(absorbing->Absorbed > 0.1 * absorbing->Entered, "the absorption and the backing take their share");
   OPAL_CHECK(fieldMeans(*absorbing, medium)[0] < clearMeans[0], "absorption dims the scattered light");
+}
 
-  // An optical depth beyond the budget: said, and the field it has is finite.
+// An optical depth beyond the budget: said, and the field it has is finite;
+// cancelled: no field.
+void checkBudgetAndCancel(opal::ScatteringMedium medium)
+{
   medium.Absorption.clear();
   for (float& mu : medium.Scattering)
     mu = 2000.0f;
@@ -330,9 +324,36 @@ int TestOpalScatteredLight(int, char*[])
   OPAL_CHECK(!opaque->Warning.empty() && opaque->Warning.find("budget") != std::string::npos,
     "a solve beyond its budget says so");
   OPAL_CHECK(allFinite(*opaque, medium), "and gives a finite field");
-
-  // Cancelled: no field.
   OPAL_CHECK(!opal::solveScatteredLight(medium, requestFor(medium, 1.0, 64), [](double) { return false; }),
     "a cancelled solve gives nothing");
+}
+} // namespace
+
+int TestOpalScatteredLight(int, char*[])
+{
+  opaltest::EllipsoidScene scene;
+  const opal::RenderVolume volume = scene.build();
+  const opal::ScatteringMedium medium = mediumOf(volume);
+  const opal::ScatteredLight clear = checkClearField(medium);
+  checkGeometryGivenBack(volume, medium, clear);
+
+  const opal::ScatteredLightRequest small = requestFor(medium, 1.45, 64);
+  OPAL_CHECK(refuses([&] { opal::traceScatteredLightShare(medium, small, 2, 2, nullptr); }, "share 2 of 2"),
+    "a share that does not exist is refused");
+  std::vector<std::vector<double>> oneMissing{ *opal::traceScatteredLightShare(medium, small, 0, 2, nullptr), {} };
+  OPAL_CHECK(refuses([&] { opal::scatteredLightFromShares(medium, small, oneMissing); }, "share 1 of 2 holds 0"),
+    "scores of the wrong size are refused, naming the share");
+
+  // Total internal reflection keeps the scattered light inside longer.
+  const auto matched = opal::solveScatteredLight(medium, requestFor(medium, 1.0, 4096), nullptr);
+  const auto clearMeans = fieldMeans(clear, medium), matchedMeans = fieldMeans(*matched, medium);
+  for (int m = 0; m < opal::ScatteredLightNodes; ++m)
+  {
+    std::cout << "node " << m << ": field mean " << clearMeans[m] << " at index 1.45, "
+              << matchedMeans[m] << " index-matched" << std::endl;
+    OPAL_CHECK(clearMeans[m] > 1.2 * matchedMeans[m], "a refracting boundary holds scattered light in");
+  }
+  checkAbsorbingBody(medium, clearMeans);
+  checkBudgetAndCancel(medium);
   return opaltest::finish("TestOpalScatteredLight");
 }
