@@ -199,12 +199,11 @@ bool vtkOpalSpectralRepresentation::TakeWholeVolume(vtkImageData* piece, vtkInfo
   {
     return false;
   }
-  if (this->Volume && input && input->GetMTime() == this->VolumeTime && !this->VolumeIsPiece)
+  if (input && this->HoldsVolume(input, false))
   {
     return true;
   }
-  this->VolumeTime = input ? input->GetMTime() : 0;
-  this->VolumeIsPiece = false;
+  this->TakenVolume = { input ? input->GetMTime() : 0, false };
   this->Volume = vtkSmartPointer<vtkImageData>::New();
   if (input)
   {
@@ -222,13 +221,12 @@ bool vtkOpalSpectralRepresentation::TakeWholeVolume(vtkImageData* piece, vtkInfo
 // their views' frames together), what its device reads of the ranks' pieces.
 void vtkOpalSpectralRepresentation::TakePiece(vtkImageData* piece, vtkInformation* pieceInformation)
 {
-  if (this->Volume && piece->GetMTime() == this->VolumeTime && this->VolumeIsPiece)
+  if (this->HoldsVolume(piece, true))
   {
     return;
   }
   this->Gathered = std::make_unique<vtkOpalVolumePieces::GatheredVolume>(); // the unshared frames' whole volume
-  this->VolumeTime = piece->GetMTime();
-  this->VolumeIsPiece = true;
+  this->TakenVolume = { piece->GetMTime(), true };
   this->Volume = vtkSmartPointer<vtkImageData>::New();
   this->Volume->ShallowCopy(piece);
   int whole[6];
@@ -239,6 +237,11 @@ void vtkOpalSpectralRepresentation::TakePiece(vtkImageData* piece, vtkInformatio
   this->Render->SetController(vtkMultiProcessController::GetGlobalController());
   this->Render->SetShareMarch(true);
   this->Render->SetInputConnection(this->PieceProducer->GetOutputPort());
+}
+
+bool vtkOpalSpectralRepresentation::HoldsVolume(vtkImageData* input, bool asPiece) const
+{
+  return this->Volume && input->GetMTime() == this->TakenVolume.Time && this->TakenVolume.AsPiece == asPiece;
 }
 
 bool vtkOpalSpectralRepresentation::MarchesShared() const

@@ -153,6 +153,8 @@ private:
   void ApplyRenderSettings();
   // Whether the ranks march shared (ShareMarch under MPI).
   bool MarchesShared() const;
+  // Whether Volume holds `input` as it is now, taken as a piece (or whole).
+  bool HoldsVolume(vtkImageData* input, bool asPiece) const;
   // The render's input, its own rendering alone: the whole volume gathered
   // from the ranks' pieces (the piece itself with one process). False where
   // the pieces could not be gathered (said).
@@ -172,9 +174,14 @@ private:
   vtkNew<vtkOpalSpectralImageActor> Actor;
   std::unique_ptr<vtkOpalVolumePieces::GatheredVolume> Gathered; // under MPI, from the ranks' pieces
   vtkSmartPointer<vtkImageData> Volume;
-  vtkMTimeType VolumeTime = 0; // the whole volume's (or piece's) MTime when Volume was taken
+  // What Volume was taken from: the whole volume's (or the piece's) MTime
+  // then, and whether it is this rank's piece, fed through PieceProducer.
+  struct
+  {
+    vtkMTimeType Time = 0;
+    bool AsPiece = false;
+  } TakenVolume;
   bool ShareMarch = false;
-  bool VolumeIsPiece = false; // Volume is this rank's piece, fed through PieceProducer
   vtkNew<vtkTrivialProducer> PieceProducer;
   double Bounds[6] = { 0, -1, 0, -1, 0, -1 };
 };
