@@ -2,8 +2,8 @@
 // the live view's final frames, docs/design.md §5.2): it equals the frame an
 // update renders, pixel for pixel; a cancel, a new background frame or an
 // update abandons one still running and the session works on; the filter can
-// end with one running; bad settings do not start one. Run under the
-// sanitizers too (scripts/opal.sh test).
+// end with one running; bad settings do not start one. The test command runs
+// it under the sanitizers (scripts/opal.sh test).
 #include "OpalQuarterScaleRender.h"
 #include "OpalRenderParameters.h"
 #include "OpalRenderScenes.h"
