@@ -37,43 +37,65 @@
 #include <array>
 #include <functional>
 #include <initializer_list>
+#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 namespace
 {
-// The image through `pieces` pieces, under the validation layer (its
-// synchronization checks included: a ray state read before its write is a
-// message); with `piecesOnly`, each piece's dispatch reads the fields it
-// reads per voxel from buffers of its layers and their halo alone.
-opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces,
-  opal::VulkanOptions options = {}, bool piecesOnly = true)
+// A session's options for a march through `pieces` pieces, under the
+// validation layer (its synchronization checks included: a ray state read
+// before its write is a message); with `piecesOnly`, each piece's dispatch
+// reads the fields it reads per voxel from buffers of its layers and their
+// halo alone.
+opal::VulkanOptions forwardedOptions(int pieces, bool piecesOnly, opal::VulkanOptions options = {})
 {
   options.Validation = true;
   options.MarchPieces = pieces;
   options.MarchPieceFieldsOnly = piecesOnly;
-  opaltest::SceneRenderer renderer(options);
-  return renderer.render(stone, p);
+  return options;
 }
+
+// The sessions the scenes keep, each made once, so that its pipelines are
+// built once (on lavapipe most of a scene's time is its sessions'
+// pipelines): the unforwarded one, and one per count of pieces and layout,
+// each taking every scene's volume in turn.
+struct KeptRenderers
+{
+  opaltest::SceneRenderer Whole{ opal::VulkanOptions{} };
+  std::map<std::pair<int, bool>, std::unique_ptr<opaltest::SceneRenderer>> Forwarded;
+
+  // The image through `pieces` pieces (forwardedOptions).
+  opal::RenderImage forwarded(const opal::RenderVolume& stone, const opal::RenderParameters& p, int pieces,
+    bool piecesOnly = true)
+  {
+    std::unique_ptr<opaltest::SceneRenderer>& renderer = this->Forwarded[{ pieces, piecesOnly }];
+    if (!renderer)
+    {
+      renderer = std::make_unique<opaltest::SceneRenderer>(forwardedOptions(pieces, piecesOnly));
+    }
+    return renderer->render(stone, p);
+  }
+};
 
 // With `bound`, also forwarded through the first count of pieces with the
 // fields whole and bound, paired (the layout without piecesOnly).
-void checkForwarded(const opal::ModelParameters& model, const opal::RenderParameters& p, const std::string& scene,
-  std::initializer_list<int> pieceCounts, bool bound = false)
+void checkForwarded(KeptRenderers& kept, const opal::ModelParameters& model, const opal::RenderParameters& p,
+  const std::string& scene, std::initializer_list<int> pieceCounts, bool bound = false)
 {
   const auto volume = opal::buildVolume(model);
   const opal::RenderVolume stone = volume->renderVolume();
-  opaltest::SceneRenderer whole({});
-  const opal::RenderImage expected = whole.render(stone, p);
+  const opal::RenderImage expected = kept.Whole.render(stone, p);
   for (const int pieces : pieceCounts)
   {
-    OPAL_CHECK(opaltest::identical(forwarded(stone, p, pieces), expected),
+    OPAL_CHECK(opaltest::identical(kept.forwarded(stone, p, pieces), expected),
       scene + ": forwarded through " + std::to_string(pieces) +
         " pieces gives the unforwarded image, value for value");
   }
   if (bound)
   {
-    OPAL_CHECK(opaltest::identical(forwarded(stone, p, *pieceCounts.begin(), {}, false), expected),
+    OPAL_CHECK(opaltest::identical(kept.forwarded(stone, p, *pieceCounts.begin(), false), expected),
       scene + ": forwarded with its fields whole and bound, the unforwarded image");
   }
 }
@@ -107,7 +129,7 @@ std::array<std::string, 2> shortSchedule(
 
 // fire-opal lit from the side with every order, and from the front and low
 // (its walks along z), also on a grid eight times finer in z.
-void checkFireLights(opal::ModelParameters fire, const opal::RenderParameters& p)
+void checkFireLights(KeptRenderers& kept, opal::ModelParameters fire, const opal::RenderParameters& p)
 {
   opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", fire.RefractiveIndex);
   side.LightPosition = { 30.0, 12.0, 4.0 };
@@ -116,13 +138,13 @@ void checkFireLights(opal::ModelParameters fire, const opal::RenderParameters& p
   const opal::ResolvedFrame frame = opal::resolveFrame(side);
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
-  checkForwarded(fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
+  checkForwarded(kept, fire, side, "fire-opal, lit from the side, every order", { 2, 3, 7 }, true);
 
   // Lit from the front and low, a light whose walks all cross the pieces along z.
   opal::RenderParameters front = side;
   front.ScatteringOrders = opal::ScatteringOrdersKind::Single;
   front.LightPosition = { 1.0, 4.0, -30.0 };
-  checkForwarded(fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
+  checkForwarded(kept, fire, front, "fire-opal, lit from the front (its walks to the light along z)", { 3, 7 });
 
   // A grid eight times finer in z than across, lit from the side: the
   // traces' steps and the halos count layers, not millimetres.
@@ -130,7 +152,7 @@ void checkFireLights(opal::ModelParameters fire, const opal::RenderParameters& p
   fine.Dimensions = { 20, 10, 80 };
   fine.PhysicalSize = { 4.0, 2.0, 2.0 };
   front.LightPosition = side.LightPosition;
-  checkForwarded(fine, front, "fire-opal on a grid eight times finer in z, lit from the side", { 3, 7 });
+  checkForwarded(kept, fine, front, "fire-opal on a grid eight times finer in z, lit from the side", { 3, 7 });
 }
 
 // The unforwarded march with its fields read by address, one value per
@@ -155,7 +177,8 @@ void checkAddressedFields(opal::ModelParameters fire, const opal::RenderParamete
     "set-up: fire-opal's fields held one value per voxel, by address");
   opal::VulkanOptions staged; // each piece's fields alone are read by address at any memory limit
   staged.StagingTransfers = true;
-  OPAL_CHECK(opaltest::identical(forwarded(fireStone, side, 3, staged), byAddress.Image),
+  opaltest::SceneRenderer forwarded(forwardedOptions(3, true, staged));
+  OPAL_CHECK(opaltest::identical(forwarded.render(fireStone, side), byAddress.Image),
     "fire-opal, its fields by address and through staging: forwarded through 3 pieces, each "
     "reading its fields alone, gives the unforwarded image");
 }
@@ -241,17 +264,18 @@ int TestOpalForwardedMarch(int, char*[])
 
   opal::ModelParameters paper; // fig12's optics
   paper.Dimensions = { 40, 20, 50 };
-  checkForwarded(paper, p, "fig12", { 3 });
+  KeptRenderers kept;
+  checkForwarded(kept, paper, p, "fig12", { 3 });
 
   opal::ModelParameters grains;
   OPAL_CHECK(grains.applyPreset(opal::presetIndexByName("pinfire")), "pinfire is a preset");
   grains.Dimensions = { 40, 20, 50 };
-  checkForwarded(grains, opaltest::withPresetHints(p, "pinfire", grains.RefractiveIndex), "pinfire", { 2 });
+  checkForwarded(kept, grains, opaltest::withPresetHints(p, "pinfire", grains.RefractiveIndex), "pinfire", { 2 });
 
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
   fire.Dimensions = { 40, 20, 50 };
-  checkFireLights(fire, p);
+  checkFireLights(kept, fire, p);
   checkAddressedFields(fire, p);
 
   const auto paperVolume = opal::buildVolume(paper);
@@ -261,8 +285,7 @@ int TestOpalForwardedMarch(int, char*[])
   paper.Dimensions = { 40, 20, 3 };
   const auto thinVolume = opal::buildVolume(paper);
   const opal::RenderVolume thin = thinVolume->renderVolume();
-  opaltest::SceneRenderer whole({});
-  OPAL_CHECK(opaltest::identical(forwarded(thin, p, 7), whole.render(thin, p)),
+  OPAL_CHECK(opaltest::identical(kept.forwarded(thin, p, 7), kept.Whole.render(thin, p)),
     "three layers in seven pieces: the forwarded render gives the unforwarded image");
   checkDeviceRefusals(thin, p);
   return opaltest::finish("TestOpalForwardedMarch");

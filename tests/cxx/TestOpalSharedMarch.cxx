@@ -38,6 +38,8 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -99,10 +101,8 @@ struct SharedRun
 
 using Sessions = std::vector<std::unique_ptr<opaltest::SceneRenderer>>;
 
-// `shares` sessions set up as `run` says, each given `stone`, their march
-// shared through `meeting`.
-Sessions shareSessions(
-  const opal::RenderVolume& stone, int shares, const SharedRun& run, opaltest::Meeting& meeting)
+// `shares` sessions with `run`'s options, under the validation layer.
+Sessions makeSessions(const SharedRun& run, int shares)
 {
   opal::VulkanOptions options;
   options.Validation = true;
@@ -112,26 +112,60 @@ Sessions shareSessions(
   for (int share = 0; share < shares; ++share)
   {
     sessions.push_back(std::make_unique<opaltest::SceneRenderer>(options));
-    opal::RenderSession& session = sessions.back()->Session;
-    if (run.MediumHeld)
-    {
-      session.holdPiece(share, shares);
-    }
-    session.setVolume(stone);
-    if (share == 1 && run.Share1Before)
-    {
-      session.render(*run.Share1Before);
-    }
-    if (run.HeldPieces)
-    {
-      session.holdPiece(share, shares);
-    }
-    session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
-      [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
-        return meeting.meet(share, false, mine, sink);
-      } });
   }
   return sessions;
+}
+
+// The sessions the cases keep, each made once, so that its pipelines are
+// built once (on lavapipe most of a case's time is its sessions' pipelines):
+// the lone session that renders each case's reference image, and the
+// shares' sessions of each kind of options (the fields bound, through
+// staging). A kept session takes each case's volume and pieces anew, after
+// whatever its last case did (an abort, a frame alone, a piece held): a
+// session serving many stones in turn, as the live view's does.
+struct KeptSessions
+{
+  std::unique_ptr<opaltest::SceneRenderer> Lone;
+  std::map<std::pair<bool, bool>, Sessions> Shares;
+
+  // The first `shares` kept sessions of `run`'s options, made as needed.
+  std::vector<opal::RenderSession*> sharesFor(const SharedRun& run, int shares)
+  {
+    Sessions& kept = this->Shares[{ run.PiecesBound, run.Staging }];
+    if (kept.size() < static_cast<std::size_t>(shares))
+    {
+      Sessions more = makeSessions(run, shares - static_cast<int>(kept.size()));
+      std::move(more.begin(), more.end(), std::back_inserter(kept));
+    }
+    std::vector<opal::RenderSession*> sessions;
+    for (int share = 0; share < shares; ++share)
+    {
+      sessions.push_back(&kept[static_cast<std::size_t>(share)]->Session);
+    }
+    return sessions;
+  }
+};
+
+// `session` set up as share `share` of `shares` as `run` says, given
+// `stone`, its march shared through `meeting`.
+void prepareShare(opal::RenderSession& session, const opal::RenderVolume& stone, int share, int shares,
+  const SharedRun& run, opaltest::Meeting& meeting)
+{
+  session.shareMarch(std::nullopt);
+  session.holdPiece(run.MediumHeld ? share : 0, run.MediumHeld ? shares : 1); // a kept session's last piece let go
+  session.setVolume(stone);
+  if (share == 1 && run.Share1Before)
+  {
+    session.render(*run.Share1Before);
+  }
+  if (run.HeldPieces)
+  {
+    session.holdPiece(share, shares);
+  }
+  session.shareMarch(opal::RenderSession::MarchShare{ share, shares,
+    [&meeting, share](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
+      return meeting.meet(share, false, mine, sink);
+    } });
 }
 
 // Before the shared frame, with HeldPieces: the shares compute the light
@@ -212,24 +246,48 @@ ShareResult renderShare(opal::RenderSession& session, const opal::RenderVolume& 
 }
 
 // `shares` sessions, each reading its piece's fields alone, render `p` of
-// `stone` on as many threads, their march shared, as `run` says.
-std::vector<ShareResult> sharedFrames(
-  const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const SharedRun& run = {})
+// `stone` on as many threads, their march shared, as `run` says: `kept`'s
+// sessions where given, but fresh ones where share 1 renders a larger frame
+// before (its buffers must be larger than the others') or the medium is held
+// by piece (held from the volume's upload; its memory peak compared).
+std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares,
+  const SharedRun& run, KeptSessions* kept)
 {
   opaltest::Meeting meeting(shares);
-  const Sessions sessions = shareSessions(stone, shares, run, meeting);
+  Sessions fresh;
+  std::vector<opal::RenderSession*> sessions;
+  if (kept && !run.Share1Before && !run.MediumHeld)
+  {
+    sessions = kept->sharesFor(run, shares);
+  }
+  else
+  {
+    fresh = makeSessions(run, shares);
+    for (const auto& renderer : fresh)
+    {
+      sessions.push_back(&renderer->Session);
+    }
+  }
+  for (int share = 0; share < shares; ++share)
+  {
+    prepareShare(*sessions[static_cast<std::size_t>(share)], stone, share, shares, run, meeting);
+  }
   std::vector<ShareResult> results(static_cast<std::size_t>(shares));
   std::vector<std::thread> threads;
   for (int share = 0; share < shares; ++share)
   {
     threads.emplace_back([&, share] {
       results[static_cast<std::size_t>(share)] =
-        renderShare(sessions[static_cast<std::size_t>(share)]->Session, stone, p, share, shares, run, meeting);
+        renderShare(*sessions[static_cast<std::size_t>(share)], stone, p, share, shares, run, meeting);
     });
   }
   for (std::thread& thread : threads)
   {
     thread.join();
+  }
+  for (opal::RenderSession* session : sessions)
+  {
+    session->shareMarch(std::nullopt); // the meeting ends here
   }
   return results;
 }
@@ -245,12 +303,11 @@ std::pair<int, int> heldPiece(const opal::RenderVolume& stone, int share, int sh
 }
 
 // Every share of `shares` renders the lone session's image, value for value.
-void checkShared(const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares, const std::string& scene,
-  const SharedRun& run = {})
+void checkShared(KeptSessions& kept, const opal::RenderVolume& stone, const opal::RenderParameters& p, int shares,
+  const std::string& scene, const SharedRun& run = {})
 {
-  opaltest::SceneRenderer alone({});
-  const opal::RenderImage lone = alone.render(stone, p);
-  const std::vector<ShareResult> results = sharedFrames(stone, p, shares, run);
+  const opal::RenderImage lone = kept.Lone->render(stone, p);
+  const std::vector<ShareResult> results = sharedFrames(stone, p, shares, run, &kept);
   for (std::size_t share = 0; share < results.size(); ++share)
   {
     const ShareResult& result = results[share];
@@ -309,8 +366,8 @@ void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParame
   const SharedRun whole{ 2.0, nullptr, false, true, 2.0, true };
   SharedRun byPiece = whole;
   byPiece.MediumHeld = true;
-  const std::vector<ShareResult> wholes = sharedFrames(stone, p, 3, whole);
-  const std::vector<ShareResult> pieces = sharedFrames(stone, p, 3, byPiece);
+  const std::vector<ShareResult> wholes = sharedFrames(stone, p, 3, whole, nullptr); // fresh: their peaks compared
+  const std::vector<ShareResult> pieces = sharedFrames(stone, p, 3, byPiece, nullptr);
   const std::uint64_t layerVoxels = static_cast<std::uint64_t>(stone.Dimensions[0]) * stone.Dimensions[1];
   for (int share = 0; share < 3; ++share)
   {
@@ -489,13 +546,13 @@ std::string refusal(int share, int shares, int pieces, bool held = false)
 
 // fig12 lit from above: each share's light fields held by piece; in nine
 // bands through staging; the edge pixels' sub-rays with share 1's buffers larger.
-void checkPaperShares(const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
+void checkPaperShares(KeptSessions& kept, const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
 {
   // Each share holding its piece: each layer's sweep, then its queued walks
   // to the light between the shares, taken up where a share holds the
   // layer they need (each walk's voxel kept with it: the share's queue holds
   // its own), their light stored back in their own voxel's share.
-  checkShared(paperStone, p, 3, "fig12, each share's light fields held by piece", { 2.0, nullptr, false, true });
+  checkShared(kept, paperStone, p, 3, "fig12, each share's light fields held by piece", { 2.0, nullptr, false, true });
   // Bands: 640 pixels across, a shared band holds 24 rows (2^14 pixels at
   // most, in whole rows of 8), so 200 rows take nine, the last of 8 rows;
   // the whole image's states (~190 MB) would pass lavapipe's storage-buffer
@@ -503,20 +560,20 @@ void checkPaperShares(const opal::RenderVolume& paperStone, const opal::RenderPa
   opal::RenderParameters wide = p;
   wide.ImageSize = { 640, 200 };
   wide.WriteSpectrum = false;
-  checkShared(paperStone, wide, 2, "fig12, 640 x 200 pixels in nine bands, through staging", { 2.0, nullptr, true });
+  checkShared(kept, paperStone, wide, 2, "fig12, 640 x 200 pixels in nine bands, through staging", { 2.0, nullptr, true });
   opal::RenderParameters refined = p;
   refined.PixelSamples = 3;
   // Share 1's edge queues' buffers larger than the others' (a larger frame
   // alone before): share 0's queues still go to it.
   opal::RenderParameters larger = refined;
   larger.ImageSize = { 64, 48 };
-  checkShared(paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", { 2.0, &larger });
+  checkShared(kept, paperStone, refined, 3, "fig12, the edge pixels' 3 x 3 sub-rays, share 1's buffers larger", { 2.0, &larger });
 }
 
 // fire-opal lit from the side: the light fields held and bound by piece,
 // share 1 aborting in the walks to the light; with every order, the medium
 // held and bound by piece.
-void checkFireShares(const opal::RenderVolume& fireStone, const opal::RenderParameters& p, double refractiveIndex)
+void checkFireShares(KeptSessions& kept, const opal::RenderVolume& fireStone, const opal::RenderParameters& p, double refractiveIndex)
 {
   opal::RenderParameters side = opaltest::withPresetHints(p, "fire-opal", refractiveIndex);
   side.LightPosition = { 30.0, 12.0, 4.0 };
@@ -526,40 +583,40 @@ void checkFireShares(const opal::RenderVolume& fireStone, const opal::RenderPara
   OPAL_CHECK(frame.Error.empty() && opal::conservesEnergy(frame.Parameters),
     "set-up: fire-opal's frame conserves energy (rounds and Bragg shadows)");
   side.PixelSamples = 3;
-  checkShared(fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays, light fields by piece",
+  checkShared(kept, fireStone, side, 3, "fire-opal, lit from the side, every order, the edge pixels' sub-rays, light fields by piece",
     { 2.0, nullptr, false, true });
   // Share 1 aborting in the shares' walks to the light after its first work
   // (of two): every share's step stops, none hangs; each frame then computes
   // the light alone, to the lone image.
   opal::RenderParameters single = opaltest::withPresetHints(p, "fire-opal", refractiveIndex);
   single.LightPosition = side.LightPosition;
-  checkShared(fireStone, single, 3, "fire-opal, lit from the side, share 1 aborting in the walks to the light",
+  checkShared(kept, fireStone, single, 3, "fire-opal, lit from the side, share 1 aborting in the walks to the light",
     { 2.0, nullptr, false, true, 1e-9 });
   // The light fields held by piece, bound: the shared frame, the frames that
   // compute the light alone after share 1's abort (whole, after the frame's
   // parameter block was written) and the frames alone after them.
-  checkShared(fireStone, side, 3, "fire-opal, every order, the light fields bound by piece",
+  checkShared(kept, fireStone, side, 3, "fire-opal, every order, the light fields bound by piece",
     { 2.0, nullptr, false, true, 2.0, true });
-  checkShared(fireStone, single, 3, "fire-opal, the light fields bound by piece, share 1 aborting in the walks to the light",
+  checkShared(kept, fireStone, single, 3, "fire-opal, the light fields bound by piece, share 1 aborting in the walks to the light",
     { 2.0, nullptr, false, true, 1e-9, true });
   // The medium held by piece too, read by address (each dispatch's reads
   // beyond its piece landing outside its buffers) and bound (read at an
   // index less the piece's first voxel): fire-opal from the side with every
   // order (the walks, the shared solve reading each share's slab).
-  checkShared(fireStone, side, 3, "fire-opal, every order, the medium held by piece",
+  checkShared(kept, fireStone, side, 3, "fire-opal, every order, the medium held by piece",
     { 2.0, nullptr, false, true, 2.0, false, true });
-  checkShared(fireStone, side, 3, "fire-opal, every order, the medium bound by piece",
+  checkShared(kept, fireStone, side, 3, "fire-opal, every order, the medium bound by piece",
     { 2.0, nullptr, false, true, 2.0, true, true });
   checkMediumMemory(fireStone, single);
 }
 
 // Share 1 aborting in its light pass (before any round) or midway through
 // its march: every share's frame stops, none hangs or throws.
-void checkAborts(const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
+void checkAborts(KeptSessions& kept, const opal::RenderVolume& paperStone, const opal::RenderParameters& p)
 {
   for (const double stopsAt : { 0.05, 0.5 })
   {
-    for (const ShareResult& result : sharedFrames(paperStone, p, 3, { stopsAt }))
+    for (const ShareResult& result : sharedFrames(paperStone, p, 3, { stopsAt }, &kept))
     {
       OPAL_CHECK(result.Failure.empty() && result.Frame.Status == opal::FrameStatus::Aborted && result.Frame.Image.RGB.empty(),
         "share 1 aborting at " + std::to_string(stopsAt) + ": every share's frame stops without an image" +
@@ -583,7 +640,8 @@ void checkRefusals()
 
 int TestOpalSharedMarch(int, char*[])
 {
-  if (!opaltest::makeRenderer())
+  KeptSessions kept{ opaltest::makeRenderer(), {} };
+  if (!kept.Lone)
   {
     return opaltest::noDeviceReturnCode();
   }
@@ -597,18 +655,18 @@ int TestOpalSharedMarch(int, char*[])
   const auto paperVolume = opal::buildVolume(paper);
   const opal::RenderVolume paperStone = paperVolume->renderVolume();
   OPAL_CHECK(opal::resolveFrame(p).Parameters.Exposure <= 0.0, "set-up: the exposure is measured on a thumbnail");
-  checkPaperShares(paperStone, p);
+  checkPaperShares(kept, paperStone, p);
 
   opal::ModelParameters fire;
   OPAL_CHECK(fire.applyPreset(opal::presetIndexByName("fire-opal")), "fire-opal is a preset");
   fire.Dimensions = { 40, 20, 50 };
   const auto fireVolume = opal::buildVolume(fire);
-  checkFireShares(fireVolume->renderVolume(), p, fire.RefractiveIndex);
+  checkFireShares(kept, fireVolume->renderVolume(), p, fire.RefractiveIndex);
   // The medium held by piece, read by address and bound, fig12 lit from
   // above (the sweep and its queued walks).
-  checkShared(paperStone, p, 3, "fig12, the medium held by piece", { 2.0, nullptr, false, true, 2.0, false, true });
+  checkShared(kept, paperStone, p, 3, "fig12, the medium held by piece", { 2.0, nullptr, false, true, 2.0, false, true });
   checkMediumRefusals(paperStone, p);
-  checkAborts(paperStone, p);
+  checkAborts(kept, paperStone, p);
   checkWholeFieldRefused(paperStone, p);
   checkRefusals();
   return opaltest::finish("TestOpalSharedMarch");
