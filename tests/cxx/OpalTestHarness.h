@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <iostream>
 #include <string>
@@ -17,6 +18,20 @@
 
 namespace opaltest
 {
+// The message of the exception `call` throws, "" where it throws none.
+inline std::string thrown(const std::function<void()>& call)
+{
+  try
+  {
+    call();
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+
 
 inline int& failureCount()
 {

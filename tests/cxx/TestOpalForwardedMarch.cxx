@@ -208,20 +208,6 @@ void checkShortSchedules(const opal::RenderVolume& paperStone, const opal::Rende
     "three sweeps of each: no state left, both frames complete (got: " + enough[0] + " | " + enough[1] + ")");
 }
 
-// The VulkanError's message `make` throws, "" where it throws none.
-std::string vulkanRefusal(const std::function<void()>& make)
-{
-  try
-  {
-    make();
-  }
-  catch (const opal::VulkanError& e)
-  {
-    return e.what();
-  }
-  return "";
-}
-
 // Ray states beyond the device's storage-buffer range: the frame refused
 // before any pass, naming the range, and the session renders the next frame.
 // Each piece's fields alone are read by address: a device that cannot
@@ -233,7 +219,7 @@ void checkDeviceRefusals(const opal::RenderVolume& thin, const opal::RenderParam
   smallRange.Simulated.MaxStorageBufferRange = 1 << 20; // the fields fit; 40 x 30 pixels' states (2 MB) do not
   opaltest::SceneRenderer limited(smallRange);
   limited.Session.setVolume(thin);
-  std::string message = vulkanRefusal([&] { limited.Session.render(p); });
+  std::string message = opaltest::thrown([&] { limited.Session.render(p); });
   OPAL_CHECK(message.find("ray states") != std::string::npos && message.find("maxStorageBufferRange of 1048576") != std::string::npos,
     "ray states beyond the storage-buffer range: the frame refused, naming the range (got: " + message + ")");
   opal::RenderParameters small = p;
@@ -245,7 +231,7 @@ void checkDeviceRefusals(const opal::RenderVolume& thin, const opal::RenderParam
   unaddressable.MarchPieces = 2;
   unaddressable.MarchPieceFieldsOnly = true;
   unaddressable.Simulated.WithoutBufferDeviceAddress = true;
-  message = vulkanRefusal([&] { opaltest::SceneRenderer refused(unaddressable); });
+  message = opaltest::thrown([&] { opaltest::SceneRenderer refused(unaddressable); });
   OPAL_CHECK(message.find("MarchPieceFieldsOnly") != std::string::npos && message.find("bufferDeviceAddress") != std::string::npos,
     "pieces' fields alone on a device that cannot address buffers: refused, naming both (got: " + message + ")");
 }

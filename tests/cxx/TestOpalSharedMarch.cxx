@@ -176,8 +176,9 @@ bool shareLight(opal::RenderSession& session, const opal::RenderParameters& p, i
   const auto meetBytes = [&](const std::vector<char>& mine, const opal::RenderSession::ShareSink& sink) {
     return meeting.meet(share, false, mine, sink);
   };
+  const opal::ResolvedFrame frame = opal::resolveFrame(p);
   const bool shared = session.shareLightPass(
-    opal::resolveFrame(p), share, shares,
+    frame, share, shares,
     [&](const std::optional<std::vector<char>>& mine, const opal::RenderSession::ShareSink& sink) {
       return meeting.meet(share, true, mine, sink);
     },
@@ -185,7 +186,7 @@ bool shareLight(opal::RenderSession& session, const opal::RenderParameters& p, i
   if (run.MediumHeld && p.ScatteringOrders == opal::ScatteringOrdersKind::All)
   {
     session.solveScatteredLightShared(
-      opal::resolveFrame(p), share, shares,
+      frame, share, shares,
       [&](const std::optional<std::vector<double>>& mine) { return meeting.meetScores(share, mine); }, meetBytes);
   }
   return shared;
@@ -382,20 +383,6 @@ void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParame
   }
 }
 
-// The message `call` throws, "" where it throws none.
-std::string thrown(const std::function<void()>& call)
-{
-  try
-  {
-    call();
-  }
-  catch (const std::exception& e)
-  {
-    return e.what();
-  }
-  return "";
-}
-
 // `stone` as a rank's gather holds it (docs/design.md §8.1): the medium's
 // arrays of `layers` alone, with the whole medium's sums added up from two
 // ranks' layers (0 to 20, 20 to the last).
@@ -427,7 +414,7 @@ void checkMediumOfLayers(opal::RenderSession& session, const opal::RenderVolume&
   OPAL_CHECK(enough.domainCentres() == stone.domainCentres() && enough.absorbs() == stone.absorbs() &&
       enough.colouredAbsorptionExponent() == stone.colouredAbsorptionExponent(),
     "the ranks' sums added up give the whole medium's domain centres and absorption");
-  const std::string fewer = thrown([&] { session.setVolume(mediumOfLayers(stone, { 11, 39 })); });
+  const std::string fewer = opaltest::thrown([&] { session.setVolume(mediumOfLayers(stone, { 11, 39 })); });
   OPAL_CHECK(fewer.find("hold layers z 11 to 39") != std::string::npos &&
       fewer.find("reads layers 10 to 39") != std::string::npos && session.holdsVolume() &&
       session.heldMediumLayers() == std::make_pair(11, 38),
@@ -456,9 +443,9 @@ void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderPara
   const auto noScores = [](const std::optional<std::vector<double>>&) {
     return std::optional<std::vector<std::vector<double>>>();
   };
-  const std::string background = thrown([&] { session.startFrame(frame); });
-  const std::string light = thrown([&] { session.shareLightPass(frame, 0, 2, ended, round); });
-  const std::string solve = thrown([&] { session.solveScatteredLightShared(frame, 2, 3, noScores, round); });
+  const std::string background = opaltest::thrown([&] { session.startFrame(frame); });
+  const std::string light = opaltest::thrown([&] { session.shareLightPass(frame, 0, 2, ended, round); });
+  const std::string solve = opaltest::thrown([&] { session.solveScatteredLightShared(frame, 2, 3, noScores, round); });
   OPAL_CHECK(background.find("A background frame reads the medium anywhere") != std::string::npos &&
       background.find("layers 11 to 38 of its 50") != std::string::npos,
     "a background frame refused, naming the layers held (" + background + ")");
