@@ -89,7 +89,14 @@ OPAL_CONSTANT int RayStatesBinding = 26;
 // A forwarded pass's count of the states its last dispatch left unfinished
 // (§8.1): one uint, which the host requires to stay 0; a placeholder otherwise.
 OPAL_CONSTANT int ForwardedLeftBinding = 27;
-OPAL_CONSTANT int BindingCount = 28;
+// SurfaceDistance as the highlight pass reads it (docs/design.md §3.4): the
+// grid's cells in tiles of SurfaceTileCells^3, each held exact or standing as
+// one bound (core/render/OpalSurfaceTiles.h), so that every process holds it
+// whole while the field is held by piece.
+OPAL_CONSTANT int SurfaceTileBinding = 28;       // SurfaceTile per tile, x fastest
+OPAL_CONSTANT int SurfaceTileValuesBinding = 29; // (SurfaceTileCells + 1)^3 floats per tile held, x fastest
+OPAL_CONSTANT int BindingCount = 30;
+OPAL_CONSTANT int SurfaceTileCells = 8;
 
 // The highlight pass's modes, one pipeline each (specialisation constant 0).
 OPAL_CONSTANT int HighlightSelect = 0; // every pixel: queue those near the light's mirror image
@@ -172,6 +179,15 @@ struct VoxelCell
 {
   float scattering; // ScatteringCoefficient, 1/mm at 550 nm
   int domainId;     // -1 or an index into the domain table
+};
+
+// A tile of SurfaceDistance (SurfaceTileBinding): its values' slot in
+// SurfaceTileValuesBinding, or -1 where `bound` stands for the whole tile
+// (the least |SurfaceDistance| read in it, with its sign).
+struct SurfaceTile
+{
+  int slot;
+  float bound;
 };
 
 // The light field (docs/design.md §3.3) of a voxel and of its +x neighbour
@@ -311,6 +327,8 @@ struct VolumeAddresses
   uvec2 entryVoxels;
   uvec2 scatteredLight;
   uvec2 scatteredLightGrid; // the every-order field's tally grid, not per voxel
+  uvec2 surfaceTiles;       // the highlight's SurfaceDistance: per tile, not per voxel
+  uvec2 surfaceTileValues;
 };
 
 // Push constants of the light pass: the voxels [first, first + count) in

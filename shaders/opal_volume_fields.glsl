@@ -31,6 +31,21 @@ const bool PAIRED_FIELDS = true;
 #define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[i]
 #endif
 
+// The highlight pass reads SurfaceDistance from its tiles alone (SURFACE_TILES).
+#ifdef SURFACE_TILES
+#ifdef OPAL_VOLUME_ADDRESSES
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer SurfaceTileRef { SurfaceTile value; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer SurfaceTileValueRef { float value; };
+#define SURFACE_TILE_AT(i) SurfaceTileRef(voxelAddress(volumeAddresses.surfaceTiles, (i), 8u)).value
+#define SURFACE_TILE_VALUE_AT(i) SurfaceTileValueRef(voxelAddress(volumeAddresses.surfaceTileValues, (i), 4u)).value
+#else
+layout(std430, set = 0, binding = SurfaceTileBinding) readonly buffer SurfaceTileField { SurfaceTile surfaceTiles[]; };
+layout(std430, set = 0, binding = SurfaceTileValuesBinding) readonly buffer SurfaceTileValueField { float surfaceTileValues[]; };
+#define SURFACE_TILE_AT(i) surfaceTiles[i]
+#define SURFACE_TILE_VALUE_AT(i) surfaceTileValues[i]
+#endif
+#endif
+
 // A voxel's index. A grid holds up to 2^32 - 1 voxels (docs/design.md
 // §3.7), beyond int's range: an index's bits are read unsigned (voxelAddress,
 // voxelOfIndex), its int wrapping past 2^31, and -1 (2^32 - 1) is no voxel.
@@ -93,25 +108,54 @@ vec2 surfaceDistancePair(int i)
   return PAIRED_FIELDS ? SURFACE_DISTANCE_AT(i) : SURFACE_DISTANCE_FROM_AT(i);
 }
 
+// The trilinear mix of a cell's corners, as pairs along x.
+float cellMix(vec2 p00, vec2 p10, vec2 p01, vec2 p11, vec3 f)
+{
+  return mix(mix(mix(p00.x, p00.y, f.x), mix(p10.x, p10.y, f.x), f.y),
+    mix(mix(p01.x, p01.y, f.x), mix(p11.x, p11.y, f.x), f.y), f.z);
+}
+
+#ifdef SURFACE_TILES
+// The cell of corners c0, c1 read from its tile (SurfaceTile): the held
+// tile's own values, which are the field's, or the tile's bound.
+float tiledCellValue(ivec3 c0, ivec3 c1, vec3 f)
+{
+  const int side = SurfaceTileCells + 1;
+  ivec3 tile = c0 / SurfaceTileCells;
+  ivec3 tiles = (max(P.gridDimensions - 1, ivec3(1)) + SurfaceTileCells - 1) / SurfaceTileCells;
+  SurfaceTile t = SURFACE_TILE_AT(tile.x + tiles.x * (tile.y + tiles.y * tile.z));
+  if (t.slot < 0) return t.bound;
+  ivec3 a = c0 - tile * SurfaceTileCells, b = c1 - tile * SurfaceTileCells;
+  int base = t.slot * side * side * side;
+  int r00 = base + side * (a.y + side * a.z), r10 = base + side * (b.y + side * a.z);
+  int r01 = base + side * (a.y + side * b.z), r11 = base + side * (b.y + side * b.z);
+  return cellMix(vec2(SURFACE_TILE_VALUE_AT(r00 + a.x), SURFACE_TILE_VALUE_AT(r00 + b.x)),
+    vec2(SURFACE_TILE_VALUE_AT(r10 + a.x), SURFACE_TILE_VALUE_AT(r10 + b.x)),
+    vec2(SURFACE_TILE_VALUE_AT(r01 + a.x), SURFACE_TILE_VALUE_AT(r01 + b.x)),
+    vec2(SURFACE_TILE_VALUE_AT(r11 + a.x), SURFACE_TILE_VALUE_AT(r11 + b.x)), f);
+}
+#endif
+
 // SurfaceDistance trilinear over voxel centres; within half a cell beyond
 // the outermost centres (up to the grid's box) the outermost cells'
 // interpolant continues linearly. Clamped there, the field's value at the
 // lowest centres plus the distance to them cut a chamfer half a cell high
 // under the rim, where the dome meets the base y = 0: the silhouette's
-// pixels came out 1-2% dark (docs/design.md §3.3).
+// pixels came out 1-2% dark (docs/design.md §3.3). With SURFACE_TILES read
+// from the tiles, else from the field.
 float trilinearSurfaceDistance(vec3 position)
 {
   vec3 g = clamp((position - P.gridOrigin) / P.gridSpacing, vec3(-0.5), vec3(P.gridDimensions) - 0.5);
   ivec3 c0 = clamp(ivec3(floor(g)), ivec3(0), max(P.gridDimensions - 2, ivec3(0)));
   ivec3 c1 = min(c0 + 1, P.gridDimensions - 1);
   vec3 f = g - vec3(c0);
+#ifdef SURFACE_TILES
+  return tiledCellValue(c0, c1, f);
+#else
   int sy = P.gridDimensions.x, sz = P.gridDimensions.x * P.gridDimensions.y;
-  vec2 p00 = surfaceDistancePair(c0.x + c0.y * sy + c0.z * sz);
-  vec2 p10 = surfaceDistancePair(c0.x + c1.y * sy + c0.z * sz);
-  vec2 p01 = surfaceDistancePair(c0.x + c0.y * sy + c1.z * sz);
-  vec2 p11 = surfaceDistancePair(c0.x + c1.y * sy + c1.z * sz);
-  return mix(mix(mix(p00.x, p00.y, f.x), mix(p10.x, p10.y, f.x), f.y),
-    mix(mix(p01.x, p01.y, f.x), mix(p11.x, p11.y, f.x), f.y), f.z);
+  return cellMix(surfaceDistancePair(c0.x + c0.y * sy + c0.z * sz), surfaceDistancePair(c0.x + c1.y * sy + c0.z * sz),
+    surfaceDistancePair(c0.x + c0.y * sy + c1.z * sz), surfaceDistancePair(c0.x + c1.y * sy + c1.z * sz), f);
+#endif
 }
 
 // SurfaceDistance, continued beyond the grid's box by the distance to it

@@ -20,6 +20,8 @@
 layout(local_size_x = HighlightGroupSize) in;
 layout(constant_id = HighlightModeConstant) const int HIGHLIGHT_MODE = HighlightSelect;
 #define PAIRED_FIELDS_CONSTANT HighlightPairedFieldsConstant
+// The surface from its tiles, which every process holds whole (docs/design.md §3.4).
+#define SURFACE_TILES
 #include "opal_volume_fields.glsl"
 #include "opal_optics.glsl"
 #include "opal_camera.glsl"

@@ -138,6 +138,10 @@ const std::map<std::string, std::size_t>& expectedOffsets()
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, entryVoxels),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, scatteredLight),
     OPAL_FIELD("volumeAddresses.", VolumeAddresses, scatteredLightGrid),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, surfaceTiles),
+    OPAL_FIELD("volumeAddresses.", VolumeAddresses, surfaceTileValues),
+    OPAL_FIELD("surfaceTiles[0].", SurfaceTile, slot),
+    OPAL_FIELD("surfaceTiles[0].", SurfaceTile, bound),
   };
 #undef OPAL_FIELD
   return table;
@@ -145,13 +149,13 @@ const std::map<std::string, std::size_t>& expectedOffsets()
 
 // Prefixes of the contract's structs in the shaders' reflection.
 const std::set<std::string> contractPrefixes = { "P.", "bins[0].", "queues[0].", "lightField[0].", "lightAbsorption[0].", "lightShadow[0].", "scatteredLightNodes[0].", "domains[0].", "pixelColour[0].",
-  "pixelBragg[0].", "pixelMirror[0].", "pixelSums[0].", "work.", "marchWork.", "highlightWork.", "volumeAddresses." };
+  "pixelBragg[0].", "pixelMirror[0].", "pixelSums[0].", "work.", "marchWork.", "highlightWork.", "volumeAddresses.", "surfaceTiles[0]." };
 
 // Array strides the reflection reports for the contract's records.
 const std::map<std::string, std::size_t> expectedStrides = { { "bins[0].", sizeof(WavelengthBinRecord) },
   { "lightField[0].", sizeof(LightFieldPair) }, { "lightAbsorption[0].", sizeof(LightFieldPair) }, { "lightShadow[0].", sizeof(LightShadow) }, { "scatteredLightNodes[0].", sizeof(ScatteredLightNode) }, { "queues[0].", sizeof(DispatchQueue) }, { "domains[0].", sizeof(DomainRecord) }, { "pixelColour[0].", sizeof(PixelColour) },
   { "pixelBragg[0].", sizeof(PixelBragg) }, { "pixelMirror[0].", sizeof(PixelMirror) },
-  { "pixelSums[0].", sizeof(PixelSum) } };
+  { "pixelSums[0].", sizeof(PixelSum) }, { "surfaceTiles[0].", sizeof(SurfaceTile) } };
 
 // The reflection of a pass as built: `options` "" or, for the passes that
 // read per-voxel fields by address, "--target-env vulkan1.2 -DOPAL_VOLUME_ADDRESSES".

@@ -10,6 +10,7 @@
 #include "OpalRenderSessionState.h"
 #include "OpalSessionRegistry.h"
 #include "OpalSkinCells.h"
+#include "OpalSurfaceTiles.h"
 #include "OpalVulkanError.h"
 
 #include <algorithm>
@@ -216,9 +217,22 @@ RenderVolume shapeOf(const RenderVolume& volume)
 } // namespace
 
 // SurfaceDistance and the light fields (the absorption's where it absorbs)
-// on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7).
-void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v)
+// on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7),
+// and SurfaceDistance's tiles, which the highlight pass reads (§3.4).
+void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, const SurfaceTiles& tiles, DeviceVolume& v)
 {
+  std::vector<gpu::SurfaceTile> records(tiles.tileCount());
+  for (std::size_t i = 0; i < records.size(); ++i)
+  {
+    records[i] = { tiles.Slot[i], tiles.Bound[i] };
+  }
+  v.SurfaceTileRecords = deviceLocalBuffer(*this->Context, records.size() * sizeof(gpu::SurfaceTile), "SurfaceDistance tiles",
+    records.data(), v.FieldPlacement);
+  v.SurfaceTileBytes = tiles.bytes();
+  v.SurfaceTileValues = tiles.Values.empty()
+    ? deviceLocalBuffer(*this->Context, sizeof(float), "SurfaceDistance tiles' values placeholder", nullptr, v.FieldPlacement)
+    : deviceLocalBuffer(*this->Context, tiles.Values.size() * sizeof(float), "SurfaceDistance tiles' values",
+        tiles.Values.data(), v.FieldPlacement);
   const std::pair<std::size_t, std::size_t> voxels{ 0, volume.voxelCount() };
   v.SurfaceDistance = v.PairedFields
     ? deviceVoxelField<gpu::vec2>(*this->Context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
@@ -390,8 +404,10 @@ void RenderSession::setVolume(const RenderVolume& volume)
   // The light fields' and the medium's layers beyond the piece held.
   const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels();
   const std::uint64_t unheldMedium = voxels - uploaded->mediumVoxels();
+  const SurfaceTiles tiles = surfaceTiles(volume, gpu::SurfaceTileCells);
   this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields) -
-      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs),
+      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs) +
+      tiles.bytes(),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.
@@ -406,7 +422,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->AbsorptionCells = absorptionBuffer(context, volume, medium, skin, placement);
-  this->uploadSurfaceAndLightFields(volume, *uploaded);
+  this->uploadSurfaceAndLightFields(volume, tiles, *uploaded);
   this->allocateLightPassBuffers(volume, *uploaded);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);
@@ -781,9 +797,7 @@ bool RenderSession::scatteredLightFromGrid(const FrameSetup& setup) const
   const DeviceVolume& v = *this->Volume;
   const std::uint64_t keptShadows =
     v.HasShadowField && !conservesEnergy(setup.Parameters) ? v.lightVoxels() * sizeof(gpu::LightShadow) : 0;
-  return volumeDeviceBytes(v.Shape.Dimensions, this->framedVoxels(), v.mediumVoxels(), v.Absorbs, setup.Parameters,
-           true, v.PairedFields) +
-    keptShadows +
+  return this->volumeBytes(setup, true) + keptShadows +
     this->frameImageBytes(setup, true) > this->Context->memoryBudget();
 }
 
@@ -833,12 +847,20 @@ std::uint64_t RenderSession::frameImageBytes(const FrameSetup& setup, bool kept)
     (kept ? std::max<std::uint64_t>(rays, b.RayStates->size()) : rays);
 }
 
+// The volume's bytes on the device for this frame: its fields
+// (volumeDeviceBytes) and SurfaceDistance's tiles.
+std::uint64_t RenderSession::volumeBytes(const FrameSetup& setup, bool fieldPerVoxel) const
+{
+  const DeviceVolume& v = *this->Volume;
+  return volumeDeviceBytes(v.Shape.Dimensions, this->framedVoxels(), v.mediumVoxels(), v.Absorbs, setup.Parameters,
+           fieldPerVoxel, v.PairedFields) +
+    v.SurfaceTileBytes;
+}
+
 void RenderSession::checkMemoryBudget(const FrameSetup& setup) const
 {
   const bool fieldPerVoxel = !setup.ScatteredLightFromGrid;
-  const std::uint64_t volumeBytes =
-    volumeDeviceBytes(this->Volume->Shape.Dimensions, this->framedVoxels(), this->Volume->mediumVoxels(),
-      this->Volume->Absorbs, setup.Parameters, fieldPerVoxel, this->Volume->PairedFields);
+  const std::uint64_t volumeBytes = this->volumeBytes(setup, fieldPerVoxel);
   const std::uint64_t deviceBytes = volumeBytes + this->frameImageBytes(setup, false);
   this->requireDeviceMemory(
     deviceBytes, "the render needs", " (volume " + formatBytes(volumeBytes) + ")", "use fewer voxels or pixels");
@@ -981,6 +1003,8 @@ void RenderSession::bindBuffers()
   buffers[gpu::WavelengthTableBinding] = b.WavelengthTable.get();
   buffers[gpu::VoxelCellBinding] = v.Cells.get();
   buffers[gpu::SurfaceDistanceBinding] = v.SurfaceDistance.get();
+  buffers[gpu::SurfaceTileBinding] = v.SurfaceTileRecords.get();
+  buffers[gpu::SurfaceTileValuesBinding] = v.SurfaceTileValues.get();
   buffers[gpu::LightFieldBinding] = v.LightField.get();
   buffers[gpu::LightEntryQueuesBinding] = v.EntryQueues.get();
   buffers[gpu::LightEntryVoxelsBinding] = v.EntryVoxels.get();
@@ -1022,7 +1046,7 @@ void RenderSession::addressFields(std::vector<const VulkanBuffer*>& buffers) con
   v.Addresses->upload(&addresses, sizeof(addresses));
   for (int binding : { gpu::VoxelCellBinding, gpu::SurfaceDistanceBinding, gpu::LightFieldBinding,
          gpu::LightAbsorptionBinding, gpu::AbsorptionCellBinding, gpu::LightShadowBinding, gpu::LightEntryVoxelsBinding,
-         gpu::ScatteredLightBinding, gpu::ScatteredLightGridBinding })
+         gpu::ScatteredLightBinding, gpu::ScatteredLightGridBinding, gpu::SurfaceTileBinding, gpu::SurfaceTileValuesBinding })
   {
     buffers[static_cast<std::size_t>(binding)] = v.Addresses.get();
   }
@@ -1057,7 +1081,8 @@ gpu::VolumeAddresses RenderSession::volumeAddresses(const std::map<const VulkanB
     { &addresses.lightAbsorption, v.LightAbsorption.get() }, { &addresses.absorptionCells, v.AbsorptionCells.get() },
     { &addresses.lightShadow, v.LightShadow.get() }, { &addresses.entryVoxels, v.EntryVoxels.get() },
     { &addresses.scatteredLight, v.ScatteredLight.get() },
-    { &addresses.scatteredLightGrid, v.ScatteredLightGrid.get() } };
+    { &addresses.scatteredLightGrid, v.ScatteredLightGrid.get() }, { &addresses.surfaceTiles, v.SurfaceTileRecords.get() },
+    { &addresses.surfaceTileValues, v.SurfaceTileValues.get() } };
   for (const auto& [address, buffer] : fields)
   {
     const auto piece = at.find(buffer);

@@ -40,6 +40,7 @@ struct RenderParameterBlock;
 }
 class VulkanBuffer;
 struct ScatteredLight;
+struct SurfaceTiles;
 struct ScatteredLightRequest;
 struct ScatteringMedium;
 struct WavelengthBin;
@@ -324,7 +325,7 @@ private:
   void dropVolume();
   void writeHeldFirstVoxel() const;
   void uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const;
-  void uploadSurfaceAndLightFields(const RenderVolume& volume, DeviceVolume& v);
+  void uploadSurfaceAndLightFields(const RenderVolume& volume, const SurfaceTiles& tiles, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;
@@ -339,6 +340,7 @@ private:
   bool lightFieldServes(const FrameSetup& setup) const;
   std::uint64_t framedVoxels() const;
   void makeScatteredField(bool perVoxel);
+  std::uint64_t volumeBytes(const FrameSetup& setup, bool fieldPerVoxel) const;
   void checkMemoryBudget(const FrameSetup& setup) const;
   // Throws VulkanError (out of device memory) where `bytes` exceed the
   // device's budget: "<needs> about <bytes> of device memory<detail>, more

@@ -175,6 +175,10 @@ struct RenderSession::DeviceVolume
   // solve runs on it (docs/design.md §3.10).
   ScatteringMedium Medium;
   std::unique_ptr<VulkanBuffer> Cells, SurfaceDistance, DomainTable;
+  // SurfaceDistance's tiles (gpu::SurfaceTile) and their held values, which
+  // the highlight pass reads (docs/design.md §3.4).
+  std::unique_ptr<VulkanBuffer> SurfaceTileRecords, SurfaceTileValues;
+  std::uint64_t SurfaceTileBytes = 0;
   std::unique_ptr<VulkanBuffer> LightField;
   std::unique_ptr<VulkanBuffer> EntryQueues, EntryVoxels; // the light pass's queued entry voxels
   // The absorption (docs/design.md §3.9): each voxel's (coloured, grey) mu_a
