@@ -20,9 +20,9 @@ arrays). ARRAYS is the volume's OutputArrays: all (the default) or render
 (only what the render reads). SCHEME is whole (the default: each rank
 renders its piece of the image from the whole volume's fields, then the
 shared steps above) or pieces: every render, the footprint's too, with
-ShareMarch (each rank holding its piece of the light fields, the
-every-order field and the medium's cells), the frame then every order, and
-the estimate from it.
+ShareMarch (each rank's device holding its piece of the light fields, the
+every-order field and the medium: its cells and SurfaceDistance), the frame
+then every order, and the estimate from it.
 Usage: opal_bench_mpi.py PLUGIN NX NY NZ [ARRAYS [SCHEME]]"""
 import os
 import resource
@@ -128,7 +128,8 @@ def estimate(volume_seconds, bytes_per_voxel, device_bytes_per_voxel):
           f"{build_ns:.0f} ns per voxel and rank, {stone * build_ns / 1e9 / ranks:.0f} s on {ranks} rank(s); "
           f"{bytes_per_voxel:.0f} bytes per voxel here beyond the process's own footprint "
           f"({device_bytes_per_voxel:.0f} of them device buffers), so {stone * bytes_per_voxel / 2**30:.0f} GB per rank "
-          + ("(each rank its piece of the light fields and the medium, SurfaceDistance whole)" if pieces
+          + ("(each rank's device its piece of the light fields and the medium, SurfaceDistance's tiles whole; "
+             "its host SurfaceDistance whole until the upload)" if pieces
              else "(the device fields of the whole volume on every rank)"), flush=True)
 
 

@@ -26,9 +26,9 @@ layout(std430, set = 0, binding = VoxelCellBinding) readonly buffer VoxelCells {
 layout(std430, set = 0, binding = SurfaceDistanceBinding) readonly buffer SurfaceDistanceField { vec2 surfaceDistancePairs[]; };
 const bool PAIRED_FIELDS = true;
 #define VOXEL_CELL_AT(i) voxelCells[mediumIndex(i)]
-#define SURFACE_DISTANCE_AT(i) surfaceDistancePairs[i]
-#define SURFACE_DISTANCE_SINGLE_AT(i) surfaceDistancePairs[i].x
-#define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[i]
+#define SURFACE_DISTANCE_AT(i) surfaceDistancePairs[mediumIndex(i)]
+#define SURFACE_DISTANCE_SINGLE_AT(i) surfaceDistancePairs[mediumIndex(i)].x
+#define SURFACE_DISTANCE_FROM_AT(i) surfaceDistancePairs[mediumIndex(i)]
 #endif
 
 // The highlight pass reads SurfaceDistance from its tiles alone (SURFACE_TILES).
@@ -62,7 +62,7 @@ int heldIndex(int index)
   return index - P.heldFirstVoxel;
 }
 
-// The same for the medium's cells and absorption cells (P.mediumFirstVoxel).
+// The same for the medium's cells, absorption cells and SurfaceDistance (P.mediumFirstVoxel).
 int mediumIndex(int index)
 {
   return index - P.mediumFirstVoxel;

@@ -295,7 +295,7 @@ std::vector<ShareResult> sharedFrames(const opal::RenderVolume& stone, const opa
 
 // Share `share` of `shares`' layers of `stone` and `halo` beside them, within
 // the grid: what its light fields hold by piece (SweepHaloRows, 2), and its
-// medium where held by piece (TraceStepLayers + 1, 5).
+// medium where held by piece (TraceStepLayers + 2, 6).
 std::pair<int, int> heldPiece(const opal::RenderVolume& stone, int share, int shares, int halo = 2)
 {
   const int layers = stone.Dimensions[2];
@@ -344,9 +344,9 @@ void checkShared(KeptSessions& kept, const opal::RenderVolume& stone, const opal
     }
     if (run.MediumHeld)
     {
-      const std::pair<int, int> piece = heldPiece(stone, static_cast<int>(share), shares, 5);
+      const std::pair<int, int> piece = heldPiece(stone, static_cast<int>(share), shares, 6);
       OPAL_CHECK(result.MediumLayers == piece,
-        what + ": its medium held its piece and 5 layers beside it alone, layers " + std::to_string(piece.first) +
+        what + ": its medium held its piece and 6 layers beside it alone, layers " + std::to_string(piece.first) +
           " to " + std::to_string(piece.second) + " (held " + std::to_string(result.MediumLayers.first) + " to " +
           std::to_string(result.MediumLayers.second) + ")");
       OPAL_CHECK(result.AloneRefusal.find("A frame marched by one process alone reads the medium anywhere") !=
@@ -358,10 +358,11 @@ void checkShared(KeptSessions& kept, const opal::RenderVolume& stone, const opal
   }
 }
 
-// Each share's medium held by piece (MediumHeld) takes the cells' and the
-// absorption cells' bytes beyond its piece and halo (16 per voxel: fire-opal
-// absorbs) off its device's peak through the shared frame, against the
-// same shares holding the medium whole.
+// Each share's medium held by piece (MediumHeld) takes the cells', the
+// absorption cells' and SurfaceDistance's bytes beyond its piece and halo (20
+// per voxel at least: fire-opal absorbs, SurfaceDistance 4 or a pair of 8)
+// off its device's peak through the shared frame, against the same shares
+// holding the medium whole.
 void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParameters& p)
 {
   const SharedRun whole{ 2.0, nullptr, false, true, 2.0, true };
@@ -374,10 +375,10 @@ void checkMediumMemory(const opal::RenderVolume& stone, const opal::RenderParame
   {
     const ShareResult& w = wholes[static_cast<std::size_t>(share)];
     const ShareResult& h = pieces[static_cast<std::size_t>(share)];
-    const std::pair<int, int> held = heldPiece(stone, share, 3, 5);
+    const std::pair<int, int> held = heldPiece(stone, share, 3, 6);
     const std::uint64_t unheld = layerVoxels * static_cast<std::uint64_t>(stone.Dimensions[2] - (held.second - held.first));
-    OPAL_CHECK(w.Failure.empty() && h.Failure.empty() && h.SharedPeak + unheld * 16 <= w.SharedPeak,
-      "share " + std::to_string(share) + ": the medium held by piece takes " + std::to_string(unheld * 16) +
+    OPAL_CHECK(w.Failure.empty() && h.Failure.empty() && h.SharedPeak + unheld * 20 <= w.SharedPeak,
+      "share " + std::to_string(share) + ": the medium held by piece takes " + std::to_string(unheld * 20) +
         " bytes off the device's peak (" + std::to_string(h.SharedPeak) + " against " + std::to_string(w.SharedPeak) +
         " bytes)");
   }
@@ -409,25 +410,25 @@ opal::RenderVolume mediumOfLayers(const opal::RenderVolume& stone, std::pair<int
 // whole's domain centres; layers beyond the grid are refused.
 void checkMediumOfLayers(opal::RenderSession& session, const opal::RenderVolume& stone)
 {
-  const opal::RenderVolume enough = mediumOfLayers(stone, { 10, 39 }); // share 1 of 3 of 50: 16 to 33, and 6 beside
-  OPAL_CHECK(opal::mediumLayersRead(50, 1, 3) == std::make_pair(10, 39), "share 1 of 3 of 50 layers reads layers 10 to 39");
+  const opal::RenderVolume enough = mediumOfLayers(stone, { 9, 40 }); // share 1 of 3 of 50: 16 to 33, and 7 beside
+  OPAL_CHECK(opal::mediumLayersRead(50, 1, 3) == std::make_pair(9, 40), "share 1 of 3 of 50 layers reads layers 9 to 40");
   OPAL_CHECK(enough.domainCentres() == stone.domainCentres() && enough.absorbs() == stone.absorbs() &&
       enough.colouredAbsorptionExponent() == stone.colouredAbsorptionExponent(),
     "the ranks' sums added up give the whole medium's domain centres and absorption");
-  const std::string fewer = opaltest::thrown([&] { session.setVolume(mediumOfLayers(stone, { 11, 39 })); });
-  OPAL_CHECK(fewer.find("hold layers z 11 to 39") != std::string::npos &&
-      fewer.find("reads layers 10 to 39") != std::string::npos && session.holdsVolume() &&
-      session.heldMediumLayers() == std::make_pair(11, 38),
+  const std::string fewer = opaltest::thrown([&] { session.setVolume(mediumOfLayers(stone, { 10, 40 })); });
+  OPAL_CHECK(fewer.find("hold layers z 10 to 40") != std::string::npos &&
+      fewer.find("reads layers 9 to 40") != std::string::npos && session.holdsVolume() &&
+      session.heldMediumLayers() == std::make_pair(10, 39),
     "a medium lacking a layer the piece reads refused, the volume held kept (" + fewer + ")");
   session.setVolume(enough);
-  OPAL_CHECK(session.heldMediumLayers() == std::make_pair(11, 38), "a medium of the layers the piece reads uploaded");
+  OPAL_CHECK(session.heldMediumLayers() == std::make_pair(10, 39), "a medium of the layers the piece reads uploaded");
   opal::RenderVolume beyond = enough;
   beyond.Held->Layers = { 10, 51 };
   OPAL_CHECK(opal::validate(beyond).find("is not a range of the volume's 50 layers z") != std::string::npos,
     "a medium held beyond the grid's layers refused (" + opal::validate(beyond) + ")");
 }
 
-// A session whose medium holds piece 1 of 3 (layers 16 to 33 of 50 and 5
+// A session whose medium holds piece 1 of 3 (layers 16 to 33 of 50 and 6
 // beside them) refuses, naming why, what would read the medium beyond it: a
 // background frame, a light field shared by other shares than its piece's,
 // an every-order solve whose slab it lacks. A medium held by layers (checkMediumOfLayers).
@@ -447,15 +448,15 @@ void checkMediumRefusals(const opal::RenderVolume& stone, const opal::RenderPara
   const std::string light = opaltest::thrown([&] { session.shareLightPass(frame, 0, 2, ended, round); });
   const std::string solve = opaltest::thrown([&] { session.solveScatteredLightShared(frame, 2, 3, noScores, round); });
   OPAL_CHECK(background.find("A background frame reads the medium anywhere") != std::string::npos &&
-      background.find("layers 11 to 38 of its 50") != std::string::npos,
+      background.find("layers 10 to 39 of its 50") != std::string::npos,
     "a background frame refused, naming the layers held (" + background + ")");
   OPAL_CHECK(light.find("A light field shared by other processes than the march's") != std::string::npos,
     "a light field shared by other shares refused (" + light + ")");
   OPAL_CHECK(solve.find("An every-order solve shared by other processes than the march's") != std::string::npos,
     "a solve whose slab is not held refused (" + solve + ")");
   checkMediumOfLayers(session, stone);
-  session.holdPiece(2, 5); // layers 20 to 30 and 5 beside: within 11 to 38
-  OPAL_CHECK(session.holdsVolume() && session.heldMediumLayers() == std::make_pair(11, 38),
+  session.holdPiece(2, 5); // layers 20 to 30 and 6 beside: within 10 to 39
+  OPAL_CHECK(session.holdsVolume() && session.heldMediumLayers() == std::make_pair(10, 39),
     "a piece within the medium's layers keeps the volume");
   session.holdPiece(0, 3);
   OPAL_CHECK(!session.holdsVolume(), "a piece beyond the medium's layers drops the volume, to be set again");

@@ -101,12 +101,12 @@ else:
         check(f"view march shared by {ranks} rank(s)" in together,
               f"the {ranks} ranks march the view rays together:\n" + together)
         # Rank 0's host gathered the medium's arrays (all but SurfaceDistance)
-        # for its piece of the 60 layers and 6 beside it, and its device held
-        # its cells for the piece and 5 beside it (docs/design.md §8.1); one
-        # process holds all of them.
+        # for its piece of the 60 layers and 7 beside it, and its device held
+        # its cells and SurfaceDistance for the piece and 6 beside it
+        # (docs/design.md §8.1); one process holds all of them.
         layers = int(grid[2])
         piece = layers // ranks
-        for what, alone_layers, rank0_layers in (("gathered", layers, piece + 6), ("held on the device", layers, piece + 5)):
+        for what, alone_layers, rank0_layers in (("gathered", layers, piece + 7), ("held on the device", layers, piece + 6)):
             check(f"medium {what} for layers 0 to {alone_layers}" in alone, f"one process's medium {what} whole:\n" + alone)
             check(f"medium {what} for layers 0 to {rank0_layers}" in together,
                   f"rank 0's medium {what} for its piece of {ranks}:\n" + together)

@@ -151,10 +151,8 @@ std::vector<RenderSession::PieceField> RenderSession::marchFields() const
   std::vector<PieceField> pieceFields;
   for (const auto& [field, bytes] : fields)
   {
-    pieceFields.push_back({ field, bytes, 1, nullptr, false });
+    pieceFields.push_back({ field, bytes, field == v.SurfaceDistance.get() ? gpu::TraceStepLayers + 2 : 1, nullptr, false });
   }
-  pieceFields.push_back(
-    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float), gpu::TraceStepLayers + 2, nullptr, false });
   return pieceFields;
 }
 

@@ -3,8 +3,8 @@
 // §8.1): its march reads them only in its piece and one layer beside it, and
 // the light's sweep, shared by the same shares, only SweepHaloRows rows
 // beside it; and where the volume is set after the piece, of the medium's
-// cells and absorption cells, which the march and the walks to the light
-// read only within MediumHaloLayers of it.
+// cells, absorption cells and SurfaceDistance, which the march and the walks
+// to the light read only within MediumHaloLayers of it.
 #include "OpalRenderSession.h"
 
 #include "OpalParallel.h"
@@ -115,11 +115,13 @@ std::pair<int, int> RenderSession::mediumLayersOf(const DeviceVolume& v) const
 }
 
 // The medium's fields held from DeviceVolume::MediumLayers, with their bytes
-// per voxel: the cells and, where the volume absorbs, the absorption cells.
+// per voxel: the cells, SurfaceDistance and, where the volume absorbs, the
+// absorption cells.
 std::vector<std::pair<VulkanBuffer*, std::uint64_t>> RenderSession::mediumFields() const
 {
   const DeviceVolume& v = *this->Volume;
-  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields{ { v.Cells.get(), sizeof(gpu::VoxelCell) } };
+  std::vector<std::pair<VulkanBuffer*, std::uint64_t>> fields{ { v.Cells.get(), sizeof(gpu::VoxelCell) },
+    { v.SurfaceDistance.get(), v.PairedFields ? sizeof(gpu::vec2) : sizeof(float) } };
   if (v.Absorbs)
   {
     fields.emplace_back(v.AbsorptionCells.get(), sizeof(gpu::vec2));

@@ -216,10 +216,13 @@ RenderVolume shapeOf(const RenderVolume& volume)
 }
 } // namespace
 
-// SurfaceDistance and the light fields (the absorption's where it absorbs)
-// on the device, as pairs or one value per voxel (v.PairedFields, docs/design.md §3.7),
-// and SurfaceDistance's tiles, which the highlight pass reads (§3.4).
-void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, const SurfaceTiles& tiles, DeviceVolume& v)
+// SurfaceDistance of `voxels` (the medium's: all, or a piece's layers and
+// their halo, holdPiece) and the light fields (the absorption's where it
+// absorbs) on the device, as pairs or one value per voxel (v.PairedFields,
+// docs/design.md §3.7), and SurfaceDistance's tiles, which the highlight pass
+// reads (§3.4).
+void RenderSession::uploadSurfaceAndLightFields(
+  const RenderVolume& volume, const SurfaceTiles& tiles, std::pair<std::size_t, std::size_t> voxels, DeviceVolume& v)
 {
   std::vector<gpu::SurfaceTile> records(tiles.tileCount());
   for (std::size_t i = 0; i < records.size(); ++i)
@@ -233,7 +236,6 @@ void RenderSession::uploadSurfaceAndLightFields(const RenderVolume& volume, cons
     ? deviceLocalBuffer(*this->Context, sizeof(float), "SurfaceDistance tiles' values placeholder", nullptr, v.FieldPlacement)
     : deviceLocalBuffer(*this->Context, tiles.Values.size() * sizeof(float), "SurfaceDistance tiles' values",
         tiles.Values.data(), v.FieldPlacement);
-  const std::pair<std::size_t, std::size_t> voxels{ 0, volume.voxelCount() };
   v.SurfaceDistance = v.PairedFields
     ? deviceVoxelField<gpu::vec2>(*this->Context, voxels, "SurfaceDistance volume (voxel and +x neighbour)",
         v.FieldPlacement, {}, [&volume](std::size_t i) { return surfaceDistancePair(volume, i); })
@@ -406,7 +408,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   const std::uint64_t unheldMedium = voxels - uploaded->mediumVoxels();
   const SurfaceTiles tiles = surfaceTiles(volume, gpu::SurfaceTileCells);
   this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields) -
-      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs) +
+      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs, uploaded->PairedFields) +
       tiles.bytes(),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
@@ -422,7 +424,7 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Absorbs = absorbs;
   uploaded->AbsorptionExponent = volume.colouredAbsorptionExponent();
   uploaded->AbsorptionCells = absorptionBuffer(context, volume, medium, skin, placement);
-  this->uploadSurfaceAndLightFields(volume, tiles, *uploaded);
+  this->uploadSurfaceAndLightFields(volume, tiles, medium, *uploaded);
   this->allocateLightPassBuffers(volume, *uploaded);
   uploaded->Addresses = std::make_unique<VulkanBuffer>(context, sizeof(gpu::VolumeAddresses), "volume field addresses");
   const std::vector<gpu::DomainRecord> records = domainRecords(volume);

@@ -325,7 +325,8 @@ private:
   void dropVolume();
   void writeHeldFirstVoxel() const;
   void uploadParameterBlock(const gpu::RenderParameterBlock& frameBlock) const;
-  void uploadSurfaceAndLightFields(const RenderVolume& volume, const SurfaceTiles& tiles, DeviceVolume& v);
+  void uploadSurfaceAndLightFields(
+    const RenderVolume& volume, const SurfaceTiles& tiles, std::pair<std::size_t, std::size_t> voxels, DeviceVolume& v);
   void allocateLightPassBuffers(const RenderVolume& volume, DeviceVolume& v);
   void allocateLightFields(DeviceVolume& v) const;
   std::pair<int, int> lightLayersOf(const DeviceVolume& v) const;

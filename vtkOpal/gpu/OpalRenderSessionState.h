@@ -48,12 +48,15 @@ constexpr int SweepHaloRows = 2;
 // read, one layer, within them). The shares holding their pieces exchange
 // only the rows the pieces beside hold of theirs.
 constexpr int HeldPieceHalo = SweepHaloRows;
-// The layers beside a piece the medium's cells and absorption cells hold
-// where uploaded by piece (RenderSession::holdPiece before setVolume): a walk
-// to the light reads the cells of TraceStepLayers + 1 layers behind its piece
-// where it starts behind it (walkLayerHeld, docs/design.md §8.1); the march
-// one, the sweep SweepHaloRows.
-constexpr int MediumHaloLayers = gpu::TraceStepLayers + 1;
+// The layers beside a piece the medium (its cells, absorption cells and
+// SurfaceDistance) holds where uploaded by piece (RenderSession::holdPiece
+// before setVolume): the march's and the walks' traces read SurfaceDistance
+// within TraceStepLayers + 2 layers of their piece (their steps, the
+// bisection and the normal), a walk to the light the cells of
+// TraceStepLayers + 1 behind its piece where it starts behind it
+// (walkLayerHeld, docs/design.md §8.1), the march the cells of one, the
+// sweep SweepHaloRows. The highlight reads SurfaceDistance's tiles (§3.4).
+constexpr int MediumHaloLayers = gpu::TraceStepLayers + 2;
 constexpr int MarchTileSize = 64; // pixels per side of a band's tiles: the fewest rows a march submit takes
 // The works of a march shared by processes (docs/design.md §8.1) are alike on
 // every share, so its bands and refined pixels per dispatch are fixed (the
@@ -87,15 +90,15 @@ inline std::uint64_t lightBytesPerVoxel(bool absorbs, bool pairedFields)
   const std::uint64_t lightField = pairedFields ? sizeof(gpu::LightFieldPair) : sizeof(gpu::vec2);
   return lightField * (absorbs ? 2 : 1);
 }
-// The medium's cells and absorption cells, which a piece may hold alone.
-inline std::uint64_t mediumBytesPerVoxel(bool absorbs)
+// The medium's cells, absorption cells and SurfaceDistance, which a piece may hold alone.
+inline std::uint64_t mediumBytesPerVoxel(bool absorbs, bool pairedFields)
 {
-  return sizeof(gpu::VoxelCell) + (absorbs ? sizeof(gpu::vec2) : 0);
+  const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
+  return sizeof(gpu::VoxelCell) + (absorbs ? sizeof(gpu::vec2) : 0) + surfaceDistance;
 }
 inline std::uint64_t deviceBytesPerVoxel(bool absorbs, bool pairedFields)
 {
-  const std::uint64_t surfaceDistance = pairedFields ? sizeof(gpu::vec2) : sizeof(float);
-  return surfaceDistance + mediumBytesPerVoxel(absorbs) + lightBytesPerVoxel(absorbs, pairedFields);
+  return mediumBytesPerVoxel(absorbs, pairedFields) + lightBytesPerVoxel(absorbs, pairedFields);
 }
 // A frame's progress before its march: the light pass and the every-order
 // solve (renderFrame), then the exposure's thumbnail up to 0.25.
@@ -128,7 +131,7 @@ inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std
     static_cast<std::uint64_t>(dimensions[2]);
   const std::uint64_t gridBytes = everyOrder ? scatteredLightGridBytes(dimensions) : 0;
   const std::uint64_t light = lightBytesPerVoxel(absorbs, pairedFields);
-  const std::uint64_t medium = mediumBytesPerVoxel(absorbs);
+  const std::uint64_t medium = mediumBytesPerVoxel(absorbs, pairedFields);
   return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) - light - medium) + mediumVoxels * medium +
     heldVoxels * (light + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                    (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +

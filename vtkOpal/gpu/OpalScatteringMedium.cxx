@@ -63,7 +63,7 @@ void readEach(const VulkanBuffer& buffer, std::size_t held, VoxelRange voxels, f
 }
 
 // The device's medium of `voxels`: the cells' scattering coefficients, the
-// absorption cells (both held from voxel `held` on) and SurfaceDistance,
+// absorption cells and SurfaceDistance (all held from voxel `held` on),
 // each voxel's its pair's first value where `paired` (the second is its +x
 // neighbour's).
 void readMedium(const VulkanBuffer& cells, const VulkanBuffer& absorption, std::size_t held, const VulkanBuffer& surface,
@@ -73,11 +73,11 @@ void readMedium(const VulkanBuffer& cells, const VulkanBuffer& absorption, std::
     cells, held, voxels, into.Scattering.data(), [](const gpu::VoxelCell& cell) { return cell.scattering; });
   if (paired)
   {
-    readEach<gpu::vec2>(surface, 0, voxels, into.SurfaceDistance.data(), [](const gpu::vec2& pair) { return pair.x; });
+    readEach<gpu::vec2>(surface, held, voxels, into.SurfaceDistance.data(), [](const gpu::vec2& pair) { return pair.x; });
   }
   else
   {
-    readEach<float>(surface, 0, voxels, into.SurfaceDistance.data(), [](float value) { return value; });
+    readEach<float>(surface, held, voxels, into.SurfaceDistance.data(), [](float value) { return value; });
   }
   if (!into.Absorption.empty())
   {
