@@ -1,5 +1,7 @@
 #include "OpalSurfaceTiles.h"
 
+#include "OpalParallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -46,6 +48,11 @@ std::vector<AxisNode> axisNodes(int n, int cells, int t)
 double nodeValue(const RenderVolume& v, const AxisNode& x, const AxisNode& y, const AxisNode& z)
 {
   const auto& d = v.Dimensions;
+  if (x.W == 0.0 && y.W == 0.0 && z.W == 0.0)
+  {
+    return v.SurfaceDistance[static_cast<std::size_t>(x.First) +
+      static_cast<std::size_t>(d[0]) * (static_cast<std::size_t>(y.First) + static_cast<std::size_t>(d[1]) * z.First)];
+  }
   double sum = 0.0;
   for (int corner = 0; corner < 8; ++corner)
   {
@@ -154,22 +161,28 @@ SurfaceTiles surfaceTiles(const RenderVolume& volume, int cells)
   tiles.Count = surfaceTileCount(volume.Dimensions, cells);
   const std::size_t tileValues = static_cast<std::size_t>(cells + 1) * (cells + 1) * (cells + 1);
   const double near = SurfaceTileNearSpacings * std::max({ volume.Spacing[0], volume.Spacing[1], volume.Spacing[2] });
-  std::array<int, 3> t{};
-  for (t[2] = 0; t[2] < tiles.Count[2]; ++t[2])
-  {
-    for (t[1] = 0; t[1] < tiles.Count[1]; ++t[1])
-    {
-      for (t[0] = 0; t[0] < tiles.Count[0]; ++t[0])
-      {
-        const double bound = tileBound(volume, cells, t, near);
-        const bool held = std::isnan(bound);
-        tiles.Slot.push_back(held ? static_cast<std::int32_t>(tiles.Values.size() / tileValues) : -1);
-        tiles.Bound.push_back(held ? 0.0f : boundTowardZero(bound));
-        if (held)
+  // The bounds in parallel over the tiles' layers (each tile's alone), then
+  // the held tiles' values in tile order.
+  const int rowTiles = tiles.Count[0] * tiles.Count[1];
+  std::vector<double> bounds(static_cast<std::size_t>(rowTiles) * tiles.Count[2]);
+  parallelFor(0, tiles.Count[2], [&](int from, int to) {
+    for (int z = from; z < to; ++z)
+      for (int y = 0; y < tiles.Count[1]; ++y)
+        for (int x = 0; x < tiles.Count[0]; ++x)
         {
-          holdTile(volume, cells, t, tiles.Values);
+          bounds[static_cast<std::size_t>(x + tiles.Count[0] * y) + static_cast<std::size_t>(rowTiles) * z] =
+            tileBound(volume, cells, { x, y, z }, near);
         }
-      }
+  });
+  for (std::size_t i = 0; i < bounds.size(); ++i)
+  {
+    const bool held = std::isnan(bounds[i]);
+    tiles.Slot.push_back(held ? static_cast<std::int32_t>(tiles.Values.size() / tileValues) : -1);
+    tiles.Bound.push_back(held ? 0.0f : boundTowardZero(bounds[i]));
+    if (held)
+    {
+      const int t = static_cast<int>(i % static_cast<std::size_t>(rowTiles));
+      holdTile(volume, cells, { t % tiles.Count[0], t / tiles.Count[0], static_cast<int>(i / rowTiles) }, tiles.Values);
     }
   }
   return tiles;
