@@ -156,7 +156,7 @@ struct OPAL_ALIGNED RenderParameterBlock
   // bound (a piece of a march shared by processes, §8.1): an index less
   // it. 0 where they are addressed, whose addresses are shifted instead.
   int heldFirstVoxel;
-  // The same for the medium's cells and absorption cells, which hold a
+  // The same for the medium (cells, absorption cells, SurfaceDistance), which holds a
   // piece where it was uploaded by piece (a wider halo than the light fields').
   int mediumFirstVoxel;
 };

@@ -112,7 +112,7 @@ public:
   /// volume's layers z, handing those that leave it to the other ranks
   /// between rounds (docs/design.md §8.1); every rank renders the whole image
   /// and outputs its piece, its device holding only its piece of the light
-  /// fields and the medium's cells. Off (default): each rank renders its
+  /// fields and the medium (its cells and SurfaceDistance). Off (default): each rank renders its
   /// piece of the image from the whole volume. With one process it changes nothing.
   vtkSetMacro(ShareMarch, bool);
   vtkGetMacro(ShareMarch, bool);

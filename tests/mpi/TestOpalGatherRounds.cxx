@@ -42,11 +42,12 @@ vtkSmartPointer<vtkOpalSource> absorbingOpal()
 }
 
 // The layers z [first, end) of the medium a share of a shared march reads
-// (opal::mediumLayersRead): its share of the layers and 6 beside it.
+// (opal::mediumLayersRead): its share of the layers and 7 beside it (the
+// 6 its device holds, the cells and SurfaceDistance, and the skin's one).
 std::pair<int, int> layersRead(int share, int shares)
 {
   const int nz = Dimensions[2];
-  return { std::max(0, share * nz / shares - 6), std::min(nz, (share + 1) * nz / shares + 6) };
+  return { std::max(0, share * nz / shares - 7), std::min(nz, (share + 1) * nz / shares + 7) };
 }
 
 // Whether `array` of `image` holds at each of its points the values of the

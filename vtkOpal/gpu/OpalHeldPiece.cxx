@@ -107,7 +107,7 @@ std::pair<int, int> RenderSession::heldMediumLayers() const
   return this->Volume ? this->Volume->MediumLayers : std::pair<int, int>{ 0, 0 };
 }
 
-// The layers the medium's cells of a volume set now hold: for a piece held
+// The layers the medium of a volume set now holds: for a piece held
 // (holdPiece) the piece and MediumHaloLayers beside it, else all.
 std::pair<int, int> RenderSession::mediumLayersOf(const DeviceVolume& v) const
 {

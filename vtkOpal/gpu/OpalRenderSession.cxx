@@ -755,7 +755,7 @@ int RenderSession::boundFirstVoxel() const
   return v.addressed() ? 0 : static_cast<int>(v.lightFirstVoxel());
 }
 
-// The same for the medium's cells and absorption cells (MediumLayers).
+// The same for the medium: cells, absorption cells and SurfaceDistance (MediumLayers).
 int RenderSession::boundMediumVoxel() const
 {
   const DeviceVolume& v = *this->Volume;

@@ -204,7 +204,7 @@ public:
   // computes the light alone computes it whole. The every-order field is
   // written at the voxels held. A new piece drops the light field held and
   // the every-order field (not its grid). A volume set after it uploads the
-  // medium's cells and absorption cells for the piece and MediumHaloLayers
+  // medium (cells, absorption cells, SurfaceDistance) for the piece and MediumHaloLayers
   // beside it alone; then what would read them beyond (a frame not marched
   // shared, a light pass or solve computed alone or by other shares) is
   // refused, and a later piece they do not cover drops the volume, to be set
@@ -214,7 +214,7 @@ public:
   void holdPiece(int share, int shares);
   // The layers z [first, second) the fields holdPiece names hold (none without a volume).
   std::pair<int, int> heldLightLayers() const;
-  // The layers z the medium's cells and absorption cells hold (none without a volume).
+  // The layers z the medium (cells, absorption cells, SurfaceDistance) holds (none without a volume).
   std::pair<int, int> heldMediumLayers() const;
   // Whether the volume held would serve frames after holdPiece(share, shares):
   // its medium held whole, or for that piece (false: it is set again).

@@ -121,7 +121,8 @@ inline std::uint64_t scatteredLightGridBytes(const std::array<int, 3>& dimension
 // voxel where `fieldPerVoxel` (else the march evaluates the grid, §3.10),
 // its fields paired where `pairedFields` (§3.7); the light fields, the
 // Bragg shadows and the every-order field for `heldVoxels` of them (all, or
-// a piece: RenderSession::holdPiece), the medium's cells for `mediumVoxels`.
+// a piece: RenderSession::holdPiece), the medium (cells, SurfaceDistance)
+// for `mediumVoxels`.
 inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std::uint64_t heldVoxels,
   std::uint64_t mediumVoxels, bool absorbs, const RenderParameters& p, bool fieldPerVoxel, bool pairedFields)
 {
@@ -216,7 +217,7 @@ struct RenderSession::DeviceVolume
   // design.md §8.1), read from the piece's first voxel (an address shifted
   // by it, or bound, an index less it: RenderSession::boundFirstVoxel).
   std::pair<int, int> LightLayers{ 0, 0 };
-  // The layers z the medium's cells and absorption cells hold: all, or where
+  // The layers z the medium (cells, absorption cells, SurfaceDistance) holds: all, or where
   // uploaded for a piece held (holdPiece before setVolume) the piece and
   // MediumHaloLayers beside it, read likewise from their first voxel
   // (RenderSession::boundMediumVoxel). What would read them beyond is refused

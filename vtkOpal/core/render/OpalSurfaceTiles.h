@@ -6,7 +6,7 @@
 // SurfaceDistance over the tile with its sign. The highlight's traces need
 // no more: sphere tracing steps by a bound, the sign is the inside, and the
 // bisection and the normal read near the surface, in the held tiles. Small
-// beside the field (a fifth at 320 x 160 x 400, falling as 1 / resolution),
+// beside the field (26% of its bytes at 320 x 160 x 400, falling as 1 / resolution),
 // every process can hold it whole while the field itself is held by piece
 // (docs/design.md §8.1).
 #pragma once
