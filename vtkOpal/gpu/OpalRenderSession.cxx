@@ -403,13 +403,10 @@ void RenderSession::setVolume(const RenderVolume& volume)
   uploaded->Shape = shapeOf(volume);
   uploaded->LightLayers = this->lightLayersOf(*uploaded);
   uploaded->MediumLayers = this->mediumLayersOf(*uploaded);
-  // The light fields' and the medium's layers beyond the piece held.
-  const std::uint64_t unheldVoxels = voxels - uploaded->lightVoxels();
-  const std::uint64_t unheldMedium = voxels - uploaded->mediumVoxels();
+  // The light fields and the medium for the layers they hold, and the tiles.
   const SurfaceTiles tiles = surfaceTiles(volume, gpu::SurfaceTileCells);
-  this->requireDeviceMemory(static_cast<std::uint64_t>(voxels) * deviceBytesPerVoxel(absorbs, uploaded->PairedFields) -
-      unheldVoxels * lightBytesPerVoxel(absorbs, uploaded->PairedFields) - unheldMedium * mediumBytesPerVoxel(absorbs, uploaded->PairedFields) +
-      tiles.bytes(),
+  this->requireDeviceMemory(uploaded->lightVoxels() * lightBytesPerVoxel(absorbs, uploaded->PairedFields) +
+      uploaded->mediumVoxels() * mediumBytesPerVoxel(absorbs, uploaded->PairedFields) + tiles.bytes(),
     "the volume needs", "", "use fewer voxels");
   const BufferPlacement placement = uploaded->FieldPlacement;
   // The medium reaches the smooth surface: skin cells filled from inside.

@@ -127,13 +127,10 @@ inline std::uint64_t volumeDeviceBytes(const std::array<int, 3>& dimensions, std
   std::uint64_t mediumVoxels, bool absorbs, const RenderParameters& p, bool fieldPerVoxel, bool pairedFields)
 {
   const bool everyOrder = scattersEveryOrder(p);
-  const std::uint64_t voxels =
-    static_cast<std::uint64_t>(dimensions[0]) * static_cast<std::uint64_t>(dimensions[1]) *
-    static_cast<std::uint64_t>(dimensions[2]);
   const std::uint64_t gridBytes = everyOrder ? scatteredLightGridBytes(dimensions) : 0;
   const std::uint64_t light = lightBytesPerVoxel(absorbs, pairedFields);
   const std::uint64_t medium = mediumBytesPerVoxel(absorbs, pairedFields);
-  return voxels * (deviceBytesPerVoxel(absorbs, pairedFields) - light - medium) + mediumVoxels * medium +
+  return mediumVoxels * medium +
     heldVoxels * (light + (conservesEnergy(p) ? sizeof(gpu::LightShadow) : 0) +
                    (everyOrder && fieldPerVoxel ? sizeof(gpu::vec4) : 0)) +
     gridBytes;
